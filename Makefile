@@ -1,0 +1,147 @@
+# voxlux: one non-recursive GNU Makefile.
+#
+#   make              build/libvoxlux.a and every program into bin/
+#   make test         unit tests (cmocka) and command-line tests
+#   make SANITIZE=1 test   the same under ASan+UBSan (separate build dir)
+#   make deps         install the Debian packages the build and tests need
+#   make install PREFIX=/usr/local [DESTDIR=...]
+#   make fuzz         libFuzzer targets (clang) over the committed corpus
+#   make bench        benchmarks (see examples/bench)
+#   make demo         the README's first command
+#
+# New modules, programs and tests are picked up by wildcard: a file in
+# src/core/ joins the library, src/tools/NAME.c becomes bin/NAME,
+# tests/unit/test_NAME.c becomes a unit test, tests/cli/test_*.sh a CLI test.
+
+CC ?= cc
+PREFIX ?= /usr/local
+SANITIZE ?=
+OPT ?= -O2
+
+ifeq ($(SANITIZE),1)
+BUILD := build/san
+BINDIR := build/san/bin
+SANFLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+OPT := -O1 -g
+else
+BUILD := build
+BINDIR := bin
+SANFLAGS :=
+endif
+
+# OpenMP: gcc always has it; clang needs libomp-dev.
+OPENMP ?= -fopenmp
+WARN := -Wall -Wextra -Wshadow -Wno-unused-parameter
+CPPFLAGS += -Isrc/core -Isrc/tools/common -D_GNU_SOURCE
+CFLAGS ?= $(OPT) -g
+CFLAGS += -std=c11 $(WARN) $(OPENMP) $(SANFLAGS) -MMD -MP
+PNG_CFLAGS := $(shell pkg-config --cflags libpng 2>/dev/null)
+PNG_LIBS := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
+LDLIBS := $(PNG_LIBS) -lz -lm
+LDFLAGS += $(OPENMP) $(SANFLAGS)
+CPPFLAGS += $(PNG_CFLAGS)
+
+CORE_SRC := $(sort $(wildcard src/core/*.c))
+CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/%.o)
+LIB := $(BUILD)/libvoxlux.a
+COMMON_SRC := $(sort $(wildcard src/tools/common/*.c))
+COMMON_OBJ := $(COMMON_SRC:%.c=$(BUILD)/%.o)
+TOOL_SRC := $(sort $(wildcard src/tools/*.c))
+TOOLS := $(TOOL_SRC:src/tools/%.c=$(BINDIR)/%)
+UNIT_SRC := $(sort $(wildcard tests/unit/test_*.c))
+UNIT := $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
+UNIT_HELP := $(sort $(wildcard tests/unit/helper_*.c))
+UNIT_HELP_OBJ := $(UNIT_HELP:%.c=$(BUILD)/%.o)
+HEADERS := $(sort $(wildcard src/core/vx_*.h))
+FUZZ_SRC := $(sort $(wildcard tests/fuzz/fuzz_*.c))
+FUZZ := $(FUZZ_SRC:tests/fuzz/%.c=build/fuzz/%)
+FUZZ_TIME ?= 30
+
+.SECONDARY:
+.DELETE_ON_ERROR:
+
+.PHONY: all test unit cli deps install uninstall fuzz fuzz-build bench demo \
+	studies clean check-deps
+all: $(LIB) $(TOOLS)
+
+$(BUILD)/%.o: %.c
+	@mkdir -p $(@D)
+	$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<
+
+$(LIB): $(CORE_OBJ)
+	@mkdir -p $(@D)
+	rm -f $@
+	ar rcs $@ $^
+
+$(BINDIR)/%: $(BUILD)/src/tools/%.o $(COMMON_OBJ) $(LIB)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(COMMON_OBJ) $(LIB) $(LDLIBS)
+
+$(BUILD)/tests/%: $(BUILD)/tests/unit/%.o $(UNIT_HELP_OBJ) $(LIB)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(UNIT_HELP_OBJ) $(LIB) -lcmocka $(LDLIBS)
+
+test: all $(UNIT)
+	@VX_BIN=$(BINDIR) VX_UNIT_DIR=$(BUILD)/tests sh tests/run.sh
+
+unit: $(UNIT)
+	@VX_BIN=$(BINDIR) VX_UNIT_DIR=$(BUILD)/tests VX_ONLY=unit sh tests/run.sh
+
+cli: all
+	@VX_BIN=$(BINDIR) VX_UNIT_DIR=$(BUILD)/tests VX_ONLY=cli sh tests/run.sh
+
+# ---- dependencies (Debian) ----
+DEB_BUILD := build-essential pkg-config libpng-dev zlib1g-dev libcmocka-dev
+DEB_TEST := mricron-data
+DEB_FUZZ := clang libclang-rt-14-dev libomp-dev
+deps:
+	@missing=""; for p in $(DEB_BUILD) $(DEB_TEST) $(DEB_FUZZ) $(DEB_EXTRA); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q 'ok installed' || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  echo "installing:$$missing"; \
+	  SUDO=; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
+	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $$missing >/dev/null; \
+	else echo "all Debian packages present"; fi
+
+# ---- install ----
+install: all
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig \
+	  $(DESTDIR)$(PREFIX)/include/voxlux $(DESTDIR)$(PREFIX)/share/man/man1 \
+	  $(DESTDIR)$(PREFIX)/share/man/man5 $(DESTDIR)$(PREFIX)/share/man/man7
+	install -m 755 $(TOOLS) $(DESTDIR)$(PREFIX)/bin
+	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib
+	install -m 644 $(HEADERS) $(DESTDIR)$(PREFIX)/include/voxlux
+	for s in 1 5 7; do for f in man/man$$s/*.$$s; do [ -e "$$f" ] && \
+	  install -m 644 $$f $(DESTDIR)$(PREFIX)/share/man/man$$s; done; done; true
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|'"$$(sed -n 's/.*VX_VERSION "\(.*\)".*/\1/p' src/core/vx_version.h)"'|' \
+	  voxlux.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/voxlux.pc
+
+uninstall:
+	for t in $(TOOLS); do rm -f $(DESTDIR)$(PREFIX)/bin/$$(basename $$t); done
+	rm -rf $(DESTDIR)$(PREFIX)/include/voxlux
+	rm -f $(DESTDIR)$(PREFIX)/lib/libvoxlux.a $(DESTDIR)$(PREFIX)/lib/pkgconfig/voxlux.pc
+
+# ---- fuzzing (clang + libFuzzer) ----
+FUZZ_CFLAGS := -g -O1 -fsanitize=fuzzer,address,undefined -Isrc/core -D_GNU_SOURCE $(PNG_CFLAGS)
+build/fuzz/%: tests/fuzz/%.c $(CORE_SRC) $(wildcard src/core/*.h)
+	@mkdir -p $(@D)
+	clang $(FUZZ_CFLAGS) -o $@ $< $(CORE_SRC) $(LDLIBS)
+
+fuzz-build: $(FUZZ)
+
+fuzz: fuzz-build
+	FUZZ_TIME=$(FUZZ_TIME) sh tests/fuzz/run.sh $(FUZZ)
+
+# ---- examples ----
+demo: all
+	sh examples/demo.sh
+
+bench: all
+	$(MAKE) -C examples/bench
+
+clean:
+	rm -rf build bin/*
+
+-include $(CORE_OBJ:.o=.d) $(COMMON_OBJ:.o=.d) $(TOOL_SRC:src/tools/%.c=$(BUILD)/src/tools/%.d) \
+	$(UNIT_SRC:%.c=$(BUILD)/%.d)

@@ -1,0 +1,556 @@
+/* grid.c: rectilinear volumes, offset-table layouts, the VOLM chunk. */
+#include "vx_grid.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+size_t
+vx_type_size(vx_type t)
+{
+	switch (t) {
+	case VX_U8: return 1;
+	case VX_U16: case VX_I16: return 2;
+	case VX_F32: return 4;
+	default: return 0;
+	}
+}
+
+const char *
+vx_type_name(vx_type t)
+{
+	switch (t) {
+	case VX_U8: return "u8";
+	case VX_U16: return "u16";
+	case VX_I16: return "i16";
+	case VX_F32: return "f32";
+	default: return "unknown";
+	}
+}
+
+vx_type
+vx_type_parse(const char *s)
+{
+	int t;
+
+	for (t = VX_TYPE_UNKNOWN + 1; t < VX_TYPE_LAST; t++)
+		if (strcmp(s, vx_type_name((vx_type)t)) == 0)
+			return (vx_type)t;
+	return VX_TYPE_UNKNOWN;
+}
+
+/* ---- layouts ---- */
+
+void
+vx_layout_free(vx_layout *lay)
+{
+	int a;
+
+	for (a = 0; a < 3; a++)
+		free(lay->off[a]);
+	memset(lay, 0, sizeof *lay);
+}
+
+size_t
+vx_layout_nsample(const vx_layout *lay)
+{
+	return (size_t)lay->pdims[0] * (size_t)lay->pdims[1] *
+	    (size_t)lay->pdims[2];
+}
+
+static int
+check_dims(const int64_t dims[3], vx_err *e)
+{
+	int a;
+
+	for (a = 0; a < 3; a++)
+		if (dims[a] < 1 || dims[a] > VX_GRID_MAX_DIM)
+			return vx_err_set(e, VX_EDATA,
+			    "dims %lld %lld %lld: each must be in 1..%lld",
+			    (long long)dims[0], (long long)dims[1],
+			    (long long)dims[2], (long long)VX_GRID_MAX_DIM);
+	return 0;
+}
+
+static int
+alloc_tables(vx_layout *lay, const int64_t dims[3], vx_err *e)
+{
+	int a;
+
+	for (a = 0; a < 3; a++) {
+		lay->off[a] = malloc(((size_t)dims[a] + 1) * sizeof(int64_t));
+		if (lay->off[a] == NULL) {
+			vx_layout_free(lay);
+			return vx_err_set(e, VX_ENOMEM, "out of memory for layout");
+		}
+	}
+	return 0;
+}
+
+static int
+check_total(const vx_layout *lay, vx_err *e)
+{
+	uint64_t n = (uint64_t)lay->pdims[0] * (uint64_t)lay->pdims[1];
+
+	/* each pdim <= 2^21, so the first product cannot overflow */
+	if (n > VX_GRID_MAX_SAMPLES ||
+	    n * (uint64_t)lay->pdims[2] > VX_GRID_MAX_SAMPLES)
+		return vx_err_set(e, VX_EDATA,
+		    "volume of %lld x %lld x %lld samples exceeds the limit of "
+		    "%llu samples", (long long)lay->pdims[0],
+		    (long long)lay->pdims[1], (long long)lay->pdims[2],
+		    (unsigned long long)VX_GRID_MAX_SAMPLES);
+	return 0;
+}
+
+int
+vx_layout_linear(vx_layout *lay, const int64_t dims[3], vx_err *e)
+{
+	int64_t stride[3];
+	int a, rc;
+
+	memset(lay, 0, sizeof *lay);
+	if ((rc = check_dims(dims, e)) != 0)
+		return rc;
+	memcpy(lay->pdims, dims, sizeof lay->pdims);
+	if ((rc = check_total(lay, e)) != 0)
+		return rc;
+	if ((rc = alloc_tables(lay, dims, e)) != 0)
+		return rc;
+	stride[0] = 1;
+	stride[1] = dims[0];
+	stride[2] = dims[0] * dims[1];
+	for (a = 0; a < 3; a++) {
+		int64_t x;
+
+		for (x = 0; x < dims[a]; x++)
+			lay->off[a][x] = x * stride[a];
+		lay->off[a][dims[a]] = lay->off[a][dims[a] - 1];
+	}
+	return 0;
+}
+
+int
+vx_layout_bricked(vx_layout *lay, const int64_t dims[3], int nlev,
+    const int bricks[][3], vx_err *e)
+{
+	int64_t w[VX_LAYOUT_MAXLEV][3];  /* level-l brick width in samples */
+	int64_t vol[VX_LAYOUT_MAXLEV];   /* level-l brick volume in samples */
+	int64_t nb[3];
+	int a, l, rc;
+
+	if (nlev == 0)
+		return vx_layout_linear(lay, dims, e);
+	memset(lay, 0, sizeof *lay);
+	if ((rc = check_dims(dims, e)) != 0)
+		return rc;
+	if (nlev < 0 || nlev > VX_LAYOUT_MAXLEV)
+		return vx_err_set(e, VX_EDATA, "layout: %d brick levels (1..%d)",
+		    nlev, VX_LAYOUT_MAXLEV);
+	lay->nlev = nlev;
+	for (l = 0; l < nlev; l++) {
+		vol[l] = 1;
+		for (a = 0; a < 3; a++) {
+			int b = bricks[l][a];
+
+			if (b < 1 || b > 1024 || (b & (b - 1)) != 0)
+				return vx_err_set(e, VX_EDATA,
+				    "layout: brick edge %d is not a power of two "
+				    "in 1..1024", b);
+			lay->brick[l][a] = b;
+			w[l][a] = (l ? w[l - 1][a] : 1) * b;
+			if (w[l][a] > VX_GRID_MAX_DIM)
+				return vx_err_set(e, VX_EDATA,
+				    "layout: bricks wider than %lld samples",
+				    (long long)VX_GRID_MAX_DIM);
+			vol[l] *= w[l][a];
+		}
+	}
+	for (a = 0; a < 3; a++) {
+		int64_t wt = w[nlev - 1][a];
+
+		nb[a] = (dims[a] + wt - 1) / wt;
+		lay->pdims[a] = nb[a] * wt;
+	}
+	if ((rc = check_total(lay, e)) != 0)
+		return rc;
+	if ((rc = alloc_tables(lay, dims, e)) != 0)
+		return rc;
+	for (a = 0; a < 3; a++) {
+		int64_t x;
+
+		for (x = 0; x < dims[a]; x++) {
+			int64_t off, stride;
+
+			/* innermost: sample within a level-0 brick */
+			stride = a == 0 ? 1 : a == 1 ? w[0][0] : w[0][0] * w[0][1];
+			off = (x % w[0][a]) * stride;
+			/* level l: which level-(l-1) brick within a level-l brick */
+			for (l = 1; l < nlev; l++) {
+				int64_t r = (x / w[l - 1][a]) % lay->brick[l][a];
+
+				stride = a == 0 ? 1 : a == 1 ? lay->brick[l][0] :
+				    (int64_t)lay->brick[l][0] * lay->brick[l][1];
+				off += r * stride * vol[l - 1];
+			}
+			/* top: which outermost brick */
+			stride = a == 0 ? 1 : a == 1 ? nb[0] : nb[0] * nb[1];
+			off += (x / w[nlev - 1][a]) * stride * vol[nlev - 1];
+			lay->off[a][x] = off;
+		}
+		lay->off[a][dims[a]] = lay->off[a][dims[a] - 1];
+	}
+	return 0;
+}
+
+void
+vx_layout_string(const vx_layout *lay, char *buf, size_t n)
+{
+	size_t k;
+	int l;
+
+	if (lay->nlev == 0) {
+		snprintf(buf, n, "linear");
+		return;
+	}
+	k = (size_t)snprintf(buf, n, "bricked");
+	for (l = 0; l < lay->nlev && k < n; l++)
+		k += (size_t)snprintf(buf + k, n - k, " %dx%dx%d",
+		    lay->brick[l][0], lay->brick[l][1], lay->brick[l][2]);
+}
+
+int
+vx_layout_parse(vx_layout *lay, const int64_t dims[3], const char *s,
+    vx_err *e)
+{
+	int bricks[VX_LAYOUT_MAXLEV][3];
+	int nlev = 0, used;
+
+	if (strcmp(s, "linear") == 0)
+		return vx_layout_linear(lay, dims, e);
+	if (strncmp(s, "bricked", 7) != 0)
+		return vx_err_set(e, VX_EDATA, "layout '%.60s': expected linear "
+		    "or bricked AxBxC ...", s);
+	s += 7;
+	while (*s == ' ') {
+		while (*s == ' ')
+			s++;
+		if (*s == '\0')
+			break;
+		if (nlev == VX_LAYOUT_MAXLEV)
+			return vx_err_set(e, VX_EDATA,
+			    "layout: more than %d brick levels", VX_LAYOUT_MAXLEV);
+		if (sscanf(s, "%4dx%4dx%4d%n", &bricks[nlev][0], &bricks[nlev][1],
+		    &bricks[nlev][2], &used) != 3)
+			return vx_err_set(e, VX_EDATA,
+			    "layout: bad brick size '%.20s'", s);
+		s += used;
+		nlev++;
+	}
+	if (*s != '\0' || nlev == 0)
+		return vx_err_set(e, VX_EDATA, "layout: bad brick list");
+	return vx_layout_bricked(lay, dims, nlev, (const int (*)[3])bricks, e);
+}
+
+/* ---- grids ---- */
+
+void
+vx_grid_init(vx_grid *g)
+{
+	memset(g, 0, sizeof *g);
+	snprintf(g->name, sizeof g->name, "density");
+	g->spacing[0] = g->spacing[1] = g->spacing[2] = 1.0;
+}
+
+void
+vx_grid_free(vx_grid *g)
+{
+	if (g == NULL)
+		return;
+	free(g->data);
+	vx_layout_free(&g->lay);
+	vx_grid_init(g);
+}
+
+int
+vx_grid_alloc(vx_grid *g, const int64_t dims[3], vx_type type,
+    const char *lay_spec, vx_err *e)
+{
+	size_t ts = vx_type_size(type), nbytes;
+	int rc;
+
+	vx_grid_init(g);
+	if (ts == 0)
+		return vx_err_set(e, VX_EDATA, "unknown sample type");
+	rc = lay_spec ? vx_layout_parse(&g->lay, dims, lay_spec, e) :
+	    vx_layout_linear(&g->lay, dims, e);
+	if (rc != 0)
+		return rc;
+	g->nsample = vx_layout_nsample(&g->lay);
+	if (vx_mul_size(&nbytes, g->nsample, ts) != 0) {
+		vx_layout_free(&g->lay);
+		return vx_err_set(e, VX_EDATA, "volume size overflows");
+	}
+	if ((g->data = calloc(g->nsample, ts)) == NULL) {
+		vx_layout_free(&g->lay);
+		return vx_err_set(e, VX_ENOMEM, "cannot allocate %zu bytes for "
+		    "samples", nbytes);
+	}
+	memcpy(g->dims, dims, sizeof g->dims);
+	g->type = type;
+	return 0;
+}
+
+double
+vx_grid_get_index(const vx_grid *g, size_t i)
+{
+	switch (g->type) {
+	case VX_U8: return ((const uint8_t *)g->data)[i];
+	case VX_U16: return ((const uint16_t *)g->data)[i];
+	case VX_I16: return ((const int16_t *)g->data)[i];
+	case VX_F32: return ((const float *)g->data)[i];
+	default: return NAN;
+	}
+}
+
+double
+vx_grid_get(const vx_grid *g, int64_t x, int64_t y, int64_t z)
+{
+	return vx_grid_get_index(g, vx_grid_index(g, x, y, z));
+}
+
+void
+vx_grid_set(vx_grid *g, int64_t x, int64_t y, int64_t z, double v)
+{
+	size_t i = vx_grid_index(g, x, y, z);
+
+	switch (g->type) {
+	case VX_U8:
+		((uint8_t *)g->data)[i] = (uint8_t)(v < 0 ? 0 : v > 255 ? 255 :
+		    lrint(v));
+		break;
+	case VX_U16:
+		((uint16_t *)g->data)[i] = (uint16_t)(v < 0 ? 0 : v > 65535 ?
+		    65535 : lrint(v));
+		break;
+	case VX_I16:
+		((int16_t *)g->data)[i] = (int16_t)(v < -32768 ? -32768 :
+		    v > 32767 ? 32767 : lrint(v));
+		break;
+	case VX_F32:
+		((float *)g->data)[i] = (float)v;
+		break;
+	default:
+		break;
+	}
+}
+
+#define CELL_FETCH(T)                                                    \
+	do {                                                             \
+		const T *d = (const T *)g->data;                         \
+		c[0] = (float)d[x0 + y0 + z0]; c[1] = (float)d[x1 + y0 + z0]; \
+		c[2] = (float)d[x0 + y1 + z0]; c[3] = (float)d[x1 + y1 + z0]; \
+		c[4] = (float)d[x0 + y0 + z1]; c[5] = (float)d[x1 + y0 + z1]; \
+		c[6] = (float)d[x0 + y1 + z1]; c[7] = (float)d[x1 + y1 + z1]; \
+	} while (0)
+
+void
+vx_grid_cell(const vx_grid *g, int64_t x, int64_t y, int64_t z, float c[8])
+{
+	int64_t x0 = g->lay.off[0][x], x1 = g->lay.off[0][x + 1];
+	int64_t y0 = g->lay.off[1][y], y1 = g->lay.off[1][y + 1];
+	int64_t z0 = g->lay.off[2][z], z1 = g->lay.off[2][z + 1];
+
+	switch (g->type) {
+	case VX_U8: CELL_FETCH(uint8_t); break;
+	case VX_U16: CELL_FETCH(uint16_t); break;
+	case VX_I16: CELL_FETCH(int16_t); break;
+	case VX_F32: CELL_FETCH(float); break;
+	default: memset(c, 0, 8 * sizeof *c); break;
+	}
+}
+
+void
+vx_grid_range(vx_grid *g)
+{
+	double lo = INFINITY, hi = -INFINITY;
+	int64_t x, y, z;
+
+	for (z = 0; z < g->dims[2]; z++)
+		for (y = 0; y < g->dims[1]; y++) {
+			size_t base = (size_t)(g->lay.off[1][y] + g->lay.off[2][z]);
+
+			for (x = 0; x < g->dims[0]; x++) {
+				double v = vx_grid_get_index(g,
+				    base + (size_t)g->lay.off[0][x]);
+
+				if (!isfinite(v))
+					continue;
+				if (v < lo)
+					lo = v;
+				if (v > hi)
+					hi = v;
+			}
+		}
+	g->has_range = lo <= hi;
+	g->vmin = g->has_range ? lo : 0;
+	g->vmax = g->has_range ? hi : 0;
+}
+
+int
+vx_grid_relayout(vx_grid *dst, const vx_grid *src, const char *spec,
+    vx_err *e)
+{
+	size_t ts = vx_type_size(src->type);
+	int64_t x, y, z;
+	int rc;
+
+	if ((rc = vx_grid_alloc(dst, src->dims, src->type, spec, e)) != 0)
+		return rc;
+	memcpy(dst->name, src->name, sizeof dst->name);
+	memcpy(dst->spacing, src->spacing, sizeof dst->spacing);
+	memcpy(dst->origin, src->origin, sizeof dst->origin);
+	dst->has_range = src->has_range;
+	dst->vmin = src->vmin;
+	dst->vmax = src->vmax;
+	for (z = 0; z < src->dims[2]; z++)
+		for (y = 0; y < src->dims[1]; y++)
+			for (x = 0; x < src->dims[0]; x++)
+				memcpy((char *)dst->data +
+				    vx_grid_index(dst, x, y, z) * ts,
+				    (const char *)src->data +
+				    vx_grid_index(src, x, y, z) * ts, ts);
+	return 0;
+}
+
+/* ---- the VOLM chunk ---- */
+
+int
+vx_grid_to_chunk(const vx_grid *g, int zlevel, vx_chunk *c, vx_err *e)
+{
+	size_t ts = vx_type_size(g->type), nbytes = g->nsample * ts;
+	char lay[128];
+	vx_hdr h;
+	void *body = g->data, *tmp = NULL;
+	int rc;
+
+	vx_hdr_init(&h);
+	vx_layout_string(&g->lay, lay, sizeof lay);
+	if ((rc = vx_hdr_set(&h, "name", e, "%s", g->name)) ||
+	    (rc = vx_hdr_set(&h, "dims", e, "%lld %lld %lld",
+	    (long long)g->dims[0], (long long)g->dims[1],
+	    (long long)g->dims[2])) ||
+	    (rc = vx_hdr_set(&h, "type", e, "%s", vx_type_name(g->type))) ||
+	    (rc = vx_hdr_set(&h, "spacing", e, "%.17g %.17g %.17g",
+	    g->spacing[0], g->spacing[1], g->spacing[2])) ||
+	    (rc = vx_hdr_set(&h, "origin", e, "%.17g %.17g %.17g",
+	    g->origin[0], g->origin[1], g->origin[2])) ||
+	    (rc = vx_hdr_set(&h, "layout", e, "%s", lay)))
+		goto out;
+	if (g->has_range &&
+	    (rc = vx_hdr_set(&h, "range", e, "%.17g %.17g", g->vmin, g->vmax)))
+		goto out;
+	if (!vx_host_is_le() && ts > 1) {
+		if ((tmp = vx_malloc(nbytes, e)) == NULL) {
+			rc = VX_ENOMEM;
+			goto out;
+		}
+		memcpy(tmp, g->data, nbytes);
+		vx_swap_bytes(tmp, g->nsample, ts);
+		body = tmp;
+	}
+	rc = vx_payload_make(c, VX_CHUNK_VOLUME, &h, body, nbytes, zlevel, e);
+out:
+	free(tmp);
+	vx_hdr_free(&h);
+	return rc;
+}
+
+int
+vx_grid_from_chunk(vx_grid *g, const vx_chunk *c, vx_err *e)
+{
+	const unsigned char *body;
+	size_t bodylen, ts;
+	int64_t dims[3];
+	vx_type type;
+	const char *v;
+	vx_hdr h;
+	int rc, found;
+
+	vx_grid_init(g);
+	vx_hdr_init(&h);
+	if ((rc = vx_payload_parse(c, &h, &body, &bodylen, e)) != 0)
+		goto out;
+	if ((rc = vx_hdr_get_i64(&h, "dims", dims, 3, e)) != 0)
+		goto out;
+	if ((v = vx_hdr_get(&h, "type")) == NULL ||
+	    (type = vx_type_parse(v)) == VX_TYPE_UNKNOWN) {
+		rc = vx_err_set(e, VX_EDATA, "volume: missing or unknown type "
+		    "'%.20s'", v ? v : "");
+		goto out;
+	}
+	v = vx_hdr_get(&h, "layout");
+	if ((rc = vx_grid_alloc(g, dims, type, v ? v : "linear", e)) != 0)
+		goto out;
+	if ((v = vx_hdr_get(&h, "name")) != NULL)
+		snprintf(g->name, sizeof g->name, "%s", v);
+	if ((rc = vx_hdr_get_f64_opt(&h, "spacing", g->spacing, 3, &found,
+	    e)) != 0 ||
+	    (rc = vx_hdr_get_f64_opt(&h, "origin", g->origin, 3, &found,
+	    e)) != 0)
+		goto out;
+	for (int a = 0; a < 3; a++)
+		if (!(g->spacing[a] > 0) || !isfinite(g->spacing[a]) ||
+		    !isfinite(g->origin[a])) {
+			rc = vx_err_set(e, VX_EDATA, "volume: spacing must be "
+			    "finite and positive, origin finite");
+			goto out;
+		}
+	double r[2];
+	if ((rc = vx_hdr_get_f64_opt(&h, "range", r, 2, &found, e)) != 0)
+		goto out;
+	ts = vx_type_size(type);
+	if ((rc = vx_body_decode(&h, body, bodylen, g->data, g->nsample * ts,
+	    e)) != 0)
+		goto out;
+	if (!vx_host_is_le())
+		vx_swap_bytes(g->data, g->nsample, ts);
+	if (found) {
+		g->has_range = 1;
+		g->vmin = r[0];
+		g->vmax = r[1];
+	} else
+		vx_grid_range(g);
+out:
+	vx_hdr_free(&h);
+	if (rc != 0) {
+		vx_grid_free(g);
+		vx_err_push(e, "volume");
+	}
+	return rc;
+}
+
+int
+vx_grid_from_stream(vx_grid *g, const vx_stream *s, const char *name,
+    long *index, vx_err *e)
+{
+	long i = -1;
+	int rc;
+
+	while ((i = vx_stream_find(s, VX_CHUNK_VOLUME, (size_t)(i + 1))) >= 0) {
+		if ((rc = vx_grid_from_chunk(g, &s->chunk[i], e)) != 0)
+			return rc;
+		if (name == NULL || strcmp(g->name, name) == 0) {
+			if (index != NULL)
+				*index = i;
+			return 0;
+		}
+		vx_grid_free(g);
+	}
+	vx_grid_init(g);
+	if (name != NULL)
+		return vx_err_set(e, VX_EDATA, "no volume named '%s' in the "
+		    "stream", name);
+	return vx_err_set(e, VX_EDATA, "no volume in the stream");
+}

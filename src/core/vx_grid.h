@@ -1,0 +1,126 @@
+/* vx_grid.h: rectilinear scalar volumes and their memory layout.
+ *
+ * Every voxel access goes through per-axis offset tables (Parker et al. 1999,
+ * §3.1): index(x,y,z) = off[0][x] + off[1][y] + off[2][z].  A linear layout
+ * is the same tables with plain strides (x fastest); a bricked layout nests
+ * bricks level by level, innermost first.  So bricked and linear volumes share
+ * one code path and give bit-identical results.
+ *
+ * World coordinates: sample (i,j,k) sits at origin + (i,j,k) * spacing.  The
+ * "index space" used by the kernels has sample (i,j,k) at (i,j,k). */
+#ifndef VX_GRID_H
+#define VX_GRID_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "vx_err.h"
+#include "vx_stream.h"
+
+typedef enum vx_type {
+	VX_TYPE_UNKNOWN = 0,
+	VX_U8,
+	VX_U16,
+	VX_I16,
+	VX_F32,
+	VX_TYPE_LAST
+} vx_type;
+
+size_t vx_type_size(vx_type t);
+const char *vx_type_name(vx_type t);   /* "u8", "u16", "i16", "f32" */
+vx_type vx_type_parse(const char *s);  /* VX_TYPE_UNKNOWN if unknown */
+
+/* Largest volume a grid may hold, in samples (padded).  Protects against
+ * header words that claim absurd sizes before anything is allocated. */
+#define VX_GRID_MAX_SAMPLES ((uint64_t)1 << 36)
+#define VX_GRID_MAX_DIM     ((int64_t)1 << 20)
+#define VX_LAYOUT_MAXLEV    4
+
+typedef struct vx_layout {
+	int nlev;                          /* 0: linear */
+	int brick[VX_LAYOUT_MAXLEV][3];    /* level l brick edge, in units of
+	                                      level l-1 bricks (level 0: samples) */
+	int64_t pdims[3];                  /* padded dims (multiples of the
+	                                      outermost brick edge in samples) */
+	int64_t *off[3];                   /* offset tables, dims[a] + 1 entries
+	                                      (the last repeats the edge so a cell
+	                                      fetch at the border stays in range) */
+} vx_layout;
+
+typedef struct vx_grid {
+	char name[64];         /* "density" unless told otherwise */
+	int64_t dims[3];       /* samples per axis, each >= 1 */
+	double spacing[3];     /* world units per sample step, > 0 */
+	double origin[3];      /* world position of sample (0,0,0) */
+	vx_type type;
+	void *data;            /* samples in layout order, owned */
+	size_t nsample;        /* samples allocated (padded product) */
+	vx_layout lay;
+	int has_range;
+	double vmin, vmax;     /* finite value range (NaN/Inf ignored) */
+} vx_grid;
+
+void vx_grid_init(vx_grid *g);
+void vx_grid_free(vx_grid *g);
+
+/* vx_layout_linear / vx_layout_bricked: build tables for dims.  bricks[l] is
+ * level l's brick edge per axis; each entry must be a power of two >= 1.
+ * vx_layout_free releases the tables.  Errors: VX_EDATA for sizes out of
+ * range, VX_ENOMEM. */
+int vx_layout_linear(vx_layout *lay, const int64_t dims[3], vx_err *e);
+int vx_layout_bricked(vx_layout *lay, const int64_t dims[3], int nlev,
+    const int bricks[][3], vx_err *e);
+void vx_layout_free(vx_layout *lay);
+/* vx_layout_nsample: samples the layout needs (product of pdims). */
+size_t vx_layout_nsample(const vx_layout *lay);
+/* vx_layout_string: "linear" or "bricked 4x4x4 4x4x4" (innermost first). */
+void vx_layout_string(const vx_layout *lay, char *buf, size_t n);
+/* vx_layout_parse: inverse of vx_layout_string; builds the tables. */
+int vx_layout_parse(vx_layout *lay, const int64_t dims[3], const char *s,
+    vx_err *e);
+
+/* vx_grid_alloc: set dims and type, build a linear layout (or the given one
+ * when lay_spec is non-NULL, as in vx_layout_parse) and allocate zeroed
+ * samples.  Spacing 1, origin 0, name "density". */
+int vx_grid_alloc(vx_grid *g, const int64_t dims[3], vx_type type,
+    const char *lay_spec, vx_err *e);
+
+static inline size_t
+vx_grid_index(const vx_grid *g, int64_t x, int64_t y, int64_t z)
+{
+	return (size_t)(g->lay.off[0][x] + g->lay.off[1][y] + g->lay.off[2][z]);
+}
+
+/* vx_grid_get / vx_grid_set: one sample as double (no bounds check). */
+double vx_grid_get(const vx_grid *g, int64_t x, int64_t y, int64_t z);
+void vx_grid_set(vx_grid *g, int64_t x, int64_t y, int64_t z, double v);
+/* vx_grid_get_index: sample at a layout index as double. */
+double vx_grid_get_index(const vx_grid *g, size_t i);
+
+/* vx_grid_cell: the eight corners of cell (x,y,z) (0 <= x < dims[0]-1, ...)
+ * with six table look-ups; c[i] is corner (i&1, (i>>1)&1, (i>>2)&1). */
+void vx_grid_cell(const vx_grid *g, int64_t x, int64_t y, int64_t z,
+    float c[8]);
+
+/* vx_grid_range: compute vmin/vmax over the real (unpadded) samples,
+ * ignoring NaN and infinities; sets has_range (0 if no finite sample). */
+void vx_grid_range(vx_grid *g);
+
+/* vx_grid_relayout: copy src's samples into dst with layout spec `spec`
+ * ("linear" or "bricked ..."); dst gets src's metadata.  dst is initialized
+ * by this call. */
+int vx_grid_relayout(vx_grid *dst, const vx_grid *src, const char *spec,
+    vx_err *e);
+
+/* ---- stream form: the VOLM chunk ----
+ * Header keys: name, dims, type, spacing, origin, layout, range, encoding.
+ * Body: nsample samples, little-endian, in layout order (pads are zero). */
+int vx_grid_to_chunk(const vx_grid *g, int zlevel, vx_chunk *c, vx_err *e);
+int vx_grid_from_chunk(vx_grid *g, const vx_chunk *c, vx_err *e);
+
+/* Convenience: the first VOLM chunk in a stream (or the one whose name
+ * matches when name is non-NULL); *index gets its position. */
+int vx_grid_from_stream(vx_grid *g, const vx_stream *s, const char *name,
+    long *index, vx_err *e);
+
+#endif

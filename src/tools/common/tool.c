@@ -1,0 +1,264 @@
+/* tool.c: shared plumbing of the voxlux programs (see tool.h). */
+#include "tool.h"
+
+#include <errno.h>
+#include <math.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "vx_version.h"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+const char *tool_name = "voxlux";
+static char history[8192];
+static tool_out *live_out;   /* removed on failure exits */
+
+void
+tool_init(const char *name, int argc, char **argv)
+{
+	size_t k;
+	int i;
+
+	tool_name = name;
+	k = (size_t)snprintf(history, sizeof history, "%s %s", name, VX_VERSION);
+	for (i = 1; i < argc && k < sizeof history; i++)
+		k += (size_t)snprintf(history + k, sizeof history - k, " %s",
+		    argv[i]);
+	if (k >= sizeof history)
+		memcpy(history + sizeof history - 4, "...", 4);
+}
+
+const char *
+tool_history_line(void)
+{
+	return history;
+}
+
+static _Noreturn void
+die(int code)
+{
+	if (live_out != NULL)
+		tool_out_abort(live_out);
+	exit(code);
+}
+
+void
+tool_fail(int code, const char *fmt, ...)
+{
+	va_list ap;
+
+	fprintf(stderr, "%s: ", tool_name);
+	va_start(ap, fmt);
+	vfprintf(stderr, fmt, ap);
+	va_end(ap);
+	fputc('\n', stderr);
+	die(code);
+}
+
+void
+tool_fail_err(const vx_err *e)
+{
+	fprintf(stderr, "%s: %s\n", tool_name, e->msg[0] ? e->msg :
+	    vx_err_name(e->code));
+	die(e->code ? e->code : VX_EINTERNAL);
+}
+
+void
+tool_usage_fail(const char *usage, const char *fmt, ...)
+{
+	va_list ap;
+
+	fprintf(stderr, "%s: ", tool_name);
+	va_start(ap, fmt);
+	vfprintf(stderr, fmt, ap);
+	va_end(ap);
+	fprintf(stderr, "\nusage: %s\n", usage);
+	die(VX_EUSAGE);
+}
+
+double
+tool_parse_double(const char *opt, const char *s, double lo, double hi)
+{
+	char *end;
+	double v;
+
+	errno = 0;
+	v = strtod(s, &end);
+	if (end == s || *end != '\0' || errno == ERANGE || isnan(v))
+		tool_fail(VX_EUSAGE, "%s: '%s' is not a number", opt, s);
+	if (v < lo || v > hi)
+		tool_fail(VX_EUSAGE, "%s: %s is out of range [%g, %g]", opt, s,
+		    lo, hi);
+	return v;
+}
+
+long
+tool_parse_long(const char *opt, const char *s, long lo, long hi)
+{
+	char *end;
+	long v;
+
+	errno = 0;
+	v = strtol(s, &end, 10);
+	if (end == s || *end != '\0' || errno == ERANGE)
+		tool_fail(VX_EUSAGE, "%s: '%s' is not an integer", opt, s);
+	if (v < lo || v > hi)
+		tool_fail(VX_EUSAGE, "%s: %s is out of range [%ld, %ld]", opt, s,
+		    lo, hi);
+	return v;
+}
+
+void
+tool_parse_doubles(const char *opt, const char *s, double *out, int n)
+{
+	const char *p = s;
+	char *end;
+	int i;
+
+	for (i = 0; i < n; i++) {
+		while (*p == ' ' || *p == ',')
+			p++;
+		errno = 0;
+		out[i] = strtod(p, &end);
+		if (end == p || errno == ERANGE || !isfinite(out[i]))
+			tool_fail(VX_EUSAGE, "%s: '%s': expected %d numbers", opt,
+			    s, n);
+		p = end;
+	}
+	while (*p == ' ')
+		p++;
+	if (*p != '\0')
+		tool_fail(VX_EUSAGE, "%s: '%s': expected %d numbers", opt, s, n);
+}
+
+void
+tool_read_stream(vx_stream *s, const char *path)
+{
+	FILE *f = stdin;
+	vx_err e = { 0, "" };
+	int rc;
+
+	if (strcmp(path, "-") != 0) {
+		if ((f = fopen(path, "rb")) == NULL)
+			tool_fail(VX_ENOINPUT, "%s: %s", path, strerror(errno));
+	} else if (isatty(STDIN_FILENO))
+		tool_fail(VX_EUSAGE, "standard input is a terminal: pipe a "
+		    "voxlux stream in (see vread(1))");
+	rc = vx_stream_read(s, f, &e);
+	if (f != stdin)
+		fclose(f);
+	if (rc != 0) {
+		vx_err_push(&e, "%s", strcmp(path, "-") ? path : "<stdin>");
+		tool_fail_err(&e);
+	}
+}
+
+void
+tool_out_open(tool_out *o, const char *path)
+{
+	int fd;
+
+	memset(o, 0, sizeof *o);
+	if (strcmp(path, "-") == 0) {
+		o->f = stdout;
+		o->is_stdout = 1;
+		snprintf(o->path, sizeof o->path, "<stdout>");
+		return;
+	}
+	if (strlen(path) + 16 >= sizeof o->path)
+		tool_fail(VX_EUSAGE, "%s: path too long", path);
+	snprintf(o->path, sizeof o->path, "%s", path);
+	snprintf(o->tmp, sizeof o->tmp, "%s.tmpXXXXXX", path);
+	if ((fd = mkstemp(o->tmp)) < 0 || (o->f = fdopen(fd, "wb")) == NULL)
+		tool_fail(VX_ECANTCREAT, "%s: %s", path, strerror(errno));
+	live_out = o;
+}
+
+void
+tool_out_abort(tool_out *o)
+{
+	if (o->is_stdout || o->f == NULL)
+		return;
+	fclose(o->f);
+	o->f = NULL;
+	unlink(o->tmp);
+	if (live_out == o)
+		live_out = NULL;
+}
+
+void
+tool_out_close(tool_out *o)
+{
+	if (o->is_stdout) {
+		if (fflush(stdout) != 0 || ferror(stdout))
+			tool_fail(VX_EIO, "write <stdout>: %s", strerror(errno));
+		return;
+	}
+	live_out = NULL;
+	if (fflush(o->f) != 0 || ferror(o->f) || fsync(fileno(o->f)) != 0) {
+		int err = errno;
+
+		tool_out_abort(o);
+		tool_fail(VX_EIO, "write %s: %s", o->path, strerror(err));
+	}
+	if (fclose(o->f) != 0) {
+		int err = errno;
+
+		o->f = NULL;
+		unlink(o->tmp);
+		tool_fail(VX_EIO, "write %s: %s", o->path, strerror(err));
+	}
+	o->f = NULL;
+	if (rename(o->tmp, o->path) != 0) {
+		int err = errno;
+
+		unlink(o->tmp);
+		tool_fail(VX_ECANTCREAT, "%s: %s", o->path, strerror(err));
+	}
+}
+
+void
+tool_write_stream(vx_stream *s, const char *path)
+{
+	vx_err e = { 0, "" };
+	tool_out o;
+
+	if (vx_stream_history_add(s, history, &e) != 0)
+		tool_fail_err(&e);
+	tool_out_open(&o, path);
+	if (vx_stream_write(s, o.f, &e) != 0) {
+		tool_out_abort(&o);
+		vx_err_push(&e, "%s", o.path);
+		tool_fail_err(&e);
+	}
+	tool_out_close(&o);
+}
+
+int
+tool_finish(void)
+{
+	if (fflush(stdout) != 0 || ferror(stdout))
+		tool_fail(VX_EIO, "write <stdout>: %s", strerror(errno));
+	if (fclose(stdout) != 0)
+		tool_fail(VX_EIO, "write <stdout>: %s", strerror(errno));
+	return 0;
+}
+
+int
+tool_threads(long j)
+{
+#ifdef _OPENMP
+	if (j <= 0)
+		return omp_get_num_procs();
+	return (int)j;
+#else
+	(void)j;
+	return 1;
+#endif
+}

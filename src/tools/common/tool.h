@@ -1,0 +1,65 @@
+/* tool.h: what every voxlux program shares: error exits, option parsing
+ * helpers, reading and writing the stream (with the history line), and
+ * writing output files atomically (temporary file, then rename).
+ * Unlike the core, these functions print and exit. */
+#ifndef VX_TOOL_H
+#define VX_TOOL_H
+
+#include <stdint.h>
+#include <stdio.h>
+
+#include "vx_err.h"
+#include "vx_stream.h"
+
+extern const char *tool_name;
+
+/* tool_init: remember the program name and the command line (for history). */
+void tool_init(const char *name, int argc, char **argv);
+
+/* tool_fail: print "name: message" and exit with code. */
+_Noreturn void tool_fail(int code, const char *fmt, ...)
+	__attribute__((format(printf, 2, 3)));
+/* tool_fail_err: print "name: e->msg" and exit with e->code. */
+_Noreturn void tool_fail_err(const vx_err *e);
+/* tool_usage_fail: print the message and the usage line, exit 64. */
+_Noreturn void tool_usage_fail(const char *usage, const char *fmt, ...)
+	__attribute__((format(printf, 2, 3)));
+
+/* Option value parsers: exit 64 with "name: --opt: why" on bad input. */
+double tool_parse_double(const char *opt, const char *s, double lo, double hi);
+long tool_parse_long(const char *opt, const char *s, long lo, long hi);
+/* tool_parse_doubles: exactly n comma- or space-separated numbers. */
+void tool_parse_doubles(const char *opt, const char *s, double *out, int n);
+
+/* tool_read_stream: read a whole stream from path ("-" is stdin); exits on
+ * error.  Refuses a terminal on stdin with a usage hint. */
+void tool_read_stream(vx_stream *s, const char *path);
+
+/* tool_write_stream: append this run's history line, write the stream to
+ * path ("-" is stdout, otherwise atomically), exit on error. */
+void tool_write_stream(vx_stream *s, const char *path);
+
+/* tool_history_line: "name version arg1 arg2 ..." (static buffer). */
+const char *tool_history_line(void);
+
+/* Atomic output files: tool_out_open returns a FILE for path ("-": stdout);
+ * tool_out_close flushes, checks, closes and renames into place, or removes
+ * the temporary and exits on error.  tool_out_abort removes the temporary. */
+typedef struct tool_out {
+	FILE *f;
+	char path[4096];
+	char tmp[4096];
+	int is_stdout;
+} tool_out;
+
+void tool_out_open(tool_out *o, const char *path);
+void tool_out_close(tool_out *o);
+void tool_out_abort(tool_out *o);
+
+/* tool_finish: check stdout for write errors before exiting 0. */
+int tool_finish(void);
+
+/* tool_threads: number of threads for -j N (0: all cores). */
+int tool_threads(long j);
+
+#endif

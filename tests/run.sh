@@ -1,0 +1,48 @@
+#!/bin/sh
+# tests/run.sh: run every unit test binary and every command-line test script;
+# each speaks TAP ("ok N - name" / "not ok N - name").  Prints a summary per
+# file and ends with the line "N passed, N failed".
+#   VX_BIN       directory of the programs under test (default bin)
+#   VX_UNIT_DIR  directory of the unit test binaries (default build/tests)
+#   VX_ONLY      "unit" or "cli" to run just one kind
+#   VX_FILTER    run only files whose name contains this string
+set -u
+: "${VX_BIN:=bin}" "${VX_UNIT_DIR:=build/tests}" "${VX_ONLY:=}" "${VX_FILTER:=}"
+VX_BIN=$(cd "$VX_BIN" && pwd); export VX_BIN
+CMOCKA_MESSAGE_OUTPUT=TAP; export CMOCKA_MESSAGE_OUTPUT
+top=$(pwd)
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT INT TERM
+pass=0; fail=0; failed_files=""
+
+run_one() { # name, command...
+	name=$1; shift
+	case "$name" in *"$VX_FILTER"*) ;; *) return ;; esac
+	log="$tmp/log"
+	"$@" >"$log" 2>&1; rc=$?
+	p=$(grep -c '^ok ' "$log"); f=$(grep -c '^not ok ' "$log")
+	if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then f=1; fi
+	pass=$((pass + p)); fail=$((fail + f))
+	if [ "$f" -gt 0 ]; then
+		failed_files="$failed_files $name"
+		printf '%-36s %4d passed, %d FAILED (exit %d)\n' "$name" "$p" "$f" "$rc"
+		grep -v '^ok ' "$log" | sed 's/^/    /' | head -40
+	else
+		printf '%-36s %4d passed\n' "$name" "$p"
+	fi
+}
+
+if [ "$VX_ONLY" != cli ]; then
+	for t in "$VX_UNIT_DIR"/test_*; do
+		[ -x "$t" ] || continue
+		run_one "unit/$(basename "$t")" "$t"
+	done
+fi
+if [ "$VX_ONLY" != unit ]; then
+	for t in tests/cli/test_*.sh; do
+		[ -e "$t" ] || continue
+		run_one "cli/$(basename "$t" .sh)" sh "$t"
+	done
+fi
+[ -n "$failed_files" ] && echo "failed:$failed_files"
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]

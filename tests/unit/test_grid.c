@@ -1,0 +1,210 @@
+/* test_grid.c: layouts (linear and bricked offset tables), sample access,
+ * ranges, and the VOLM chunk round trip. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <math.h>
+#include <cmocka.h>
+
+#include "vx_grid.h"
+
+/* Every (x,y,z) maps to a distinct index below nsample: the layout is a
+ * bijection onto its range, for awkward dims that do not divide the bricks. */
+static void
+layouts_injective(void **state)
+{
+	static const struct { int64_t d[3]; const char *spec; } t[] = {
+		{ { 1, 1, 1 }, "linear" },
+		{ { 7, 5, 3 }, "linear" },
+		{ { 7, 5, 3 }, "bricked 4x4x4" },
+		{ { 17, 9, 33 }, "bricked 4x4x4 4x4x4" },
+		{ { 16, 16, 16 }, "bricked 4x4x2 8x8x8" },
+		{ { 5, 40, 3 }, "bricked 1x1x1 2x2x2 2x2x2" },
+		{ { 3, 3, 3 }, "bricked 16x16x16" },
+	};
+	size_t i;
+
+	(void)state;
+	for (i = 0; i < sizeof t / sizeof t[0]; i++) {
+		vx_layout lay;
+		vx_err e = { 0, "" };
+		size_t n;
+		unsigned char *seen;
+		int64_t x, y, z;
+
+		assert_int_equal(vx_layout_parse(&lay, t[i].d, t[i].spec, &e), 0);
+		n = vx_layout_nsample(&lay);
+		seen = calloc(n, 1);
+		for (z = 0; z < t[i].d[2]; z++)
+			for (y = 0; y < t[i].d[1]; y++)
+				for (x = 0; x < t[i].d[0]; x++) {
+					int64_t k = lay.off[0][x] + lay.off[1][y] +
+					    lay.off[2][z];
+					assert_true(k >= 0 && (size_t)k < n);
+					assert_int_equal(seen[k], 0);
+					seen[k] = 1;
+				}
+		/* the guard entry repeats the edge */
+		for (int a = 0; a < 3; a++)
+			assert_int_equal(lay.off[a][t[i].d[a]],
+			    lay.off[a][t[i].d[a] - 1]);
+		char s[128];
+		vx_layout_string(&lay, s, sizeof s);
+		assert_string_equal(s, t[i].spec);
+		free(seen);
+		vx_layout_free(&lay);
+	}
+}
+
+static void
+bricked_inner_contiguous(void **state)
+{
+	/* Within one 4x4x4 brick of a u8 volume the 64 samples are contiguous
+	 * (one cache line), x fastest. */
+	int64_t d[3] = { 32, 32, 32 };
+	vx_layout lay;
+	vx_err e = { 0, "" };
+
+	(void)state;
+	assert_int_equal(vx_layout_parse(&lay, d, "bricked 4x4x4 4x4x4", &e), 0);
+	int64_t base = lay.off[0][4] + lay.off[1][8] + lay.off[2][12];
+	for (int z = 0; z < 4; z++)
+		for (int y = 0; y < 4; y++)
+			for (int x = 0; x < 4; x++)
+				assert_int_equal(lay.off[0][4 + x] + lay.off[1][8 + y] +
+				    lay.off[2][12 + z], base + x + 4 * y + 16 * z);
+	vx_layout_free(&lay);
+}
+
+static void
+bad_layouts(void **state)
+{
+	static const struct { int64_t d[3]; const char *spec; } t[] = {
+		{ { 0, 5, 5 }, "linear" },
+		{ { -3, 5, 5 }, "linear" },
+		{ { 5, 5, 5 }, "bricked 3x4x4" },
+		{ { 5, 5, 5 }, "bricked" },
+		{ { 5, 5, 5 }, "bricked 4x4" },
+		{ { 5, 5, 5 }, "tiled" },
+		{ { (int64_t)1 << 20, (int64_t)1 << 20, 1 << 10 }, "linear" },
+		{ { (int64_t)1 << 40, 1, 1 }, "linear" },
+		{ { 5, 5, 5 }, "bricked 1x1x1 1x1x1 1x1x1 1x1x1 1x1x1" },
+	};
+	size_t i;
+
+	(void)state;
+	for (i = 0; i < sizeof t / sizeof t[0]; i++) {
+		vx_layout lay;
+		vx_err e = { 0, "" };
+
+		if (vx_layout_parse(&lay, t[i].d, t[i].spec, &e) != VX_EDATA)
+			fail_msg("case %zu (%s) accepted", i, t[i].spec);
+	}
+}
+
+static void
+chunk_roundtrip(void **state)
+{
+	static const vx_type types[] = { VX_U8, VX_U16, VX_I16, VX_F32 };
+	static const char *specs[] = { "linear", "bricked 2x2x2 2x2x2" };
+	int64_t d[3] = { 5, 6, 7 };
+
+	(void)state;
+	for (size_t ti = 0; ti < 4; ti++)
+		for (size_t si = 0; si < 2; si++)
+			for (int z = 0; z <= 6; z += 6) {
+				vx_grid g, h;
+				vx_chunk c;
+				vx_err e = { 0, "" };
+				int64_t x, y, k;
+
+				assert_int_equal(vx_grid_alloc(&g, d, types[ti],
+				    specs[si], &e), 0);
+				for (k = 0; k < 7; k++)
+					for (y = 0; y < 6; y++)
+						for (x = 0; x < 5; x++)
+							vx_grid_set(&g, x, y, k,
+							    (double)(x + 3 * y + 11 * k));
+				g.spacing[2] = 2.5;
+				vx_grid_range(&g);
+				assert_true(g.vmin == 0 && g.vmax == 4 + 15 + 66);
+				assert_int_equal(vx_grid_to_chunk(&g, z, &c, &e), 0);
+				assert_int_equal(vx_grid_from_chunk(&h, &c, &e), 0);
+				assert_int_equal(h.type, g.type);
+				assert_true(h.spacing[2] == 2.5);
+				for (k = 0; k < 7; k++)
+					for (y = 0; y < 6; y++)
+						for (x = 0; x < 5; x++)
+							assert_true(vx_grid_get(&h, x, y, k) ==
+							    (double)(x + 3 * y + 11 * k));
+				float cell[8];
+				vx_grid_cell(&h, 1, 2, 3, cell);
+				for (int i = 0; i < 8; i++)
+					assert_true(cell[i] == (float)((1 + (i & 1)) +
+					    3 * (2 + ((i >> 1) & 1)) + 11 * (3 + (i >> 2))));
+				vx_chunk_free(&c);
+				vx_grid_free(&g);
+				vx_grid_free(&h);
+			}
+}
+
+static void
+range_ignores_nonfinite(void **state)
+{
+	int64_t d[3] = { 2, 2, 2 };
+	vx_grid g;
+	vx_err e = { 0, "" };
+
+	(void)state;
+	assert_int_equal(vx_grid_alloc(&g, d, VX_F32, NULL, &e), 0);
+	vx_grid_set(&g, 0, 0, 0, NAN);
+	vx_grid_set(&g, 1, 0, 0, INFINITY);
+	vx_grid_set(&g, 0, 1, 0, -3);
+	vx_grid_set(&g, 1, 1, 1, 7);
+	vx_grid_range(&g);
+	assert_true(g.has_range && g.vmin == -3 && g.vmax == 7);
+	vx_grid_free(&g);
+}
+
+static void
+relayout_identical(void **state)
+{
+	int64_t d[3] = { 9, 10, 11 };
+	vx_grid g, b;
+	vx_err e = { 0, "" };
+
+	(void)state;
+	assert_int_equal(vx_grid_alloc(&g, d, VX_I16, NULL, &e), 0);
+	for (int64_t z = 0; z < 11; z++)
+		for (int64_t y = 0; y < 10; y++)
+			for (int64_t x = 0; x < 9; x++)
+				vx_grid_set(&g, x, y, z, (double)((x * 31 + y * 17 + z * 5) % 200 - 100));
+	assert_int_equal(vx_grid_relayout(&b, &g, "bricked 4x4x2 2x2x4", &e), 0);
+	for (int64_t z = 0; z + 1 < 11; z++)
+		for (int64_t y = 0; y + 1 < 10; y++)
+			for (int64_t x = 0; x + 1 < 9; x++) {
+				float c1[8], c2[8];
+				vx_grid_cell(&g, x, y, z, c1);
+				vx_grid_cell(&b, x, y, z, c2);
+				assert_memory_equal(c1, c2, sizeof c1);
+			}
+	vx_grid_free(&g);
+	vx_grid_free(&b);
+}
+
+int
+main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(layouts_injective),
+		cmocka_unit_test(bricked_inner_contiguous),
+		cmocka_unit_test(bad_layouts),
+		cmocka_unit_test(chunk_roundtrip),
+		cmocka_unit_test(range_ignores_nonfinite),
+		cmocka_unit_test(relayout_identical),
+	};
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
