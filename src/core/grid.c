@@ -220,12 +220,26 @@ vx_layout_string(const vx_layout *lay, char *buf, size_t n)
 		    lay->brick[l][0], lay->brick[l][1], lay->brick[l][2]);
 }
 
+/* brick_edge: a decimal integer of 1 to 4 digits at *s, advancing *s;
+ * -1 if there is none (no sign, no space: the grammar of formats/stream.md). */
+static int
+brick_edge(const char **s)
+{
+	int v = 0, k;
+
+	for (k = 0; k < 4 && **s >= '0' && **s <= '9'; k++, (*s)++)
+		v = v * 10 + (**s - '0');
+	if (k == 0 || (**s >= '0' && **s <= '9'))
+		return -1;
+	return v;
+}
+
 int
 vx_layout_parse(vx_layout *lay, const int64_t dims[3], const char *s,
     vx_err *e)
 {
 	int bricks[VX_LAYOUT_MAXLEV][3];
-	int nlev = 0, used;
+	int nlev = 0, a;
 
 	if (strcmp(s, "linear") == 0)
 		return vx_layout_linear(lay, dims, e);
@@ -233,19 +247,22 @@ vx_layout_parse(vx_layout *lay, const int64_t dims[3], const char *s,
 		return vx_err_set(e, VX_EDATA, "layout '%.60s': expected linear "
 		    "or bricked AxBxC ...", s);
 	s += 7;
+	/* "bricked" then one or more " AxBxC", innermost level first */
 	while (*s == ' ') {
-		while (*s == ' ')
-			s++;
-		if (*s == '\0')
-			break;
+		const char *w = ++s;
+
 		if (nlev == VX_LAYOUT_MAXLEV)
 			return vx_err_set(e, VX_EDATA,
 			    "layout: more than %d brick levels", VX_LAYOUT_MAXLEV);
-		if (sscanf(s, "%4dx%4dx%4d%n", &bricks[nlev][0], &bricks[nlev][1],
-		    &bricks[nlev][2], &used) != 3)
+		for (a = 0; a < 3; a++) {
+			if (a > 0 && *s++ != 'x')
+				break;
+			if ((bricks[nlev][a] = brick_edge(&s)) < 0)
+				break;
+		}
+		if (a < 3 || (*s != ' ' && *s != '\0'))
 			return vx_err_set(e, VX_EDATA,
-			    "layout: bad brick size '%.20s'", s);
-		s += used;
+			    "layout: bad brick size '%.20s'", w);
 		nlev++;
 	}
 	if (*s != '\0' || nlev == 0)
@@ -436,6 +453,8 @@ vx_grid_to_chunk(const vx_grid *g, int zlevel, vx_chunk *c, vx_err *e)
 	int rc;
 
 	vx_hdr_init(&h);
+	if (g->name[0] == '\0')
+		return vx_err_set(e, VX_EDATA, "volume: empty name");
 	vx_layout_string(&g->lay, lay, sizeof lay);
 	if ((rc = vx_hdr_set(&h, "name", e, "%s", g->name)) ||
 	    (rc = vx_hdr_set(&h, "dims", e, "%lld %lld %lld",
@@ -471,12 +490,14 @@ int
 vx_grid_from_chunk(vx_grid *g, const vx_chunk *c, vx_err *e)
 {
 	const unsigned char *body;
-	size_t bodylen, ts;
+	size_t bodylen, ts, nbytes;
 	int64_t dims[3];
+	double r[2];
+	vx_layout lay;
 	vx_type type;
-	const char *v;
+	const char *v, *lay_spec;
 	vx_hdr h;
-	int rc, found;
+	int rc, found, a;
 
 	vx_grid_init(g);
 	vx_hdr_init(&h);
@@ -486,33 +507,52 @@ vx_grid_from_chunk(vx_grid *g, const vx_chunk *c, vx_err *e)
 		goto out;
 	if ((v = vx_hdr_get(&h, "type")) == NULL ||
 	    (type = vx_type_parse(v)) == VX_TYPE_UNKNOWN) {
-		rc = vx_err_set(e, VX_EDATA, "volume: missing or unknown type "
-		    "'%.20s'", v ? v : "");
+		rc = vx_err_set(e, VX_EDATA, "missing or unknown type '%.20s'",
+		    v ? v : "");
 		goto out;
 	}
-	v = vx_hdr_get(&h, "layout");
-	if ((rc = vx_grid_alloc(g, dims, type, v ? v : "linear", e)) != 0)
+	ts = vx_type_size(type);
+	lay_spec = vx_hdr_get(&h, "layout");
+	if (lay_spec == NULL)
+		lay_spec = "linear";
+	/* size the body from the header, and check the data can back it,
+	 * before allocating anything on the header's word */
+	if ((rc = vx_layout_parse(&lay, dims, lay_spec, e)) != 0)
 		goto out;
-	if ((v = vx_hdr_get(&h, "name")) != NULL)
+	nbytes = vx_layout_nsample(&lay) * ts;  /* <= 2^38: no overflow */
+	vx_layout_free(&lay);
+	if ((rc = vx_body_fits(&h, bodylen, nbytes, e)) != 0)
+		goto out;
+	if ((v = vx_hdr_get(&h, "name")) != NULL &&
+	    (v[0] == '\0' || strlen(v) >= sizeof g->name)) {
+		rc = vx_err_set(e, VX_EDATA, "name must have 1 to %zu bytes",
+		    sizeof g->name - 1);
+		goto out;
+	}
+	if ((rc = vx_grid_alloc(g, dims, type, lay_spec, e)) != 0)
+		goto out;
+	if (v != NULL)
 		snprintf(g->name, sizeof g->name, "%s", v);
 	if ((rc = vx_hdr_get_f64_opt(&h, "spacing", g->spacing, 3, &found,
 	    e)) != 0 ||
 	    (rc = vx_hdr_get_f64_opt(&h, "origin", g->origin, 3, &found,
 	    e)) != 0)
 		goto out;
-	for (int a = 0; a < 3; a++)
+	for (a = 0; a < 3; a++)
 		if (!(g->spacing[a] > 0) || !isfinite(g->spacing[a]) ||
 		    !isfinite(g->origin[a])) {
-			rc = vx_err_set(e, VX_EDATA, "volume: spacing must be "
-			    "finite and positive, origin finite");
+			rc = vx_err_set(e, VX_EDATA, "spacing must be finite and "
+			    "positive, origin finite");
 			goto out;
 		}
-	double r[2];
 	if ((rc = vx_hdr_get_f64_opt(&h, "range", r, 2, &found, e)) != 0)
 		goto out;
-	ts = vx_type_size(type);
-	if ((rc = vx_body_decode(&h, body, bodylen, g->data, g->nsample * ts,
-	    e)) != 0)
+	if (found && !(isfinite(r[0]) && isfinite(r[1]) && r[0] <= r[1])) {
+		rc = vx_err_set(e, VX_EDATA, "range must be two finite numbers, "
+		    "min <= max");
+		goto out;
+	}
+	if ((rc = vx_body_decode(&h, body, bodylen, g->data, nbytes, e)) != 0)
 		goto out;
 	if (!vx_host_is_le())
 		vx_swap_bytes(g->data, g->nsample, ts);

@@ -1,12 +1,17 @@
 /* stream.c: read and write the chunked voxlux stream; text headers; bodies. */
 #include "vx_stream.h"
 
-#include <ctype.h>
 #include <errno.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <zlib.h>
+
+/* zlib counts bytes in uInt; bodies are fed to it in pieces of at most
+ * ZPIECE bytes each way.  Small on purpose: the unit tests cross piece
+ * boundaries in both directions with bodies of a few MiB. */
+#define ZPIECE ((size_t)1 << 20)
 
 /* ---- byte order ---- */
 
@@ -117,7 +122,7 @@ vx_chunk_crc(const char *type, const void *data, size_t len)
 
 	crc = crc32(crc, (const Bytef *)type, 4);
 	while (len > 0) {   /* zlib's crc32 takes a uInt length */
-		uInt k = len > 0x40000000u ? 0x40000000u : (uInt)len;
+		uInt k = (uInt)(len > ZPIECE ? ZPIECE : len);
 		crc = crc32(crc, p, k);
 		p += k;
 		len -= k;
@@ -463,6 +468,19 @@ vx_stream_write(const vx_stream *s, FILE *f, vx_err *e)
 	size_t i;
 	int rc;
 
+	/* refuse what no reader would take back */
+	for (i = 0; i < s->n; i++) {
+		const vx_chunk *c = &s->chunk[i];
+
+		if (!vx_chunk_type_valid(c->type) ||
+		    memcmp(c->type, VX_CHUNK_END, 4) == 0)
+			return vx_err_set(e, VX_EINTERNAL, "chunk %zu: type '%.4s' "
+			    "cannot be written", i, c->type);
+		if ((uint64_t)c->len > VX_CHUNK_MAX)
+			return vx_err_set(e, VX_EINTERNAL, "chunk %.4s: %zu bytes "
+			    "exceed the limit %llu", c->type, c->len,
+			    (unsigned long long)VX_CHUNK_MAX);
+	}
 	errno = 0;
 	if ((rc = put(f, VX_SIGNATURE, VX_SIGNATURE_LEN, e)) != 0)
 		return rc;
@@ -522,6 +540,43 @@ vx_stream_history(const vx_stream *s, size_t *len)
 	return (const char *)s->chunk[i].data;
 }
 
+/* ---- UTF-8 ---- */
+
+size_t
+vx_utf8_check(const void *buf, size_t n)
+{
+	const unsigned char *p = buf;
+	size_t i = 0;
+
+	while (i < n) {
+		unsigned c = p[i], need, min, cp, k;
+
+		if (c < 0x80) {
+			i++;
+			continue;
+		}
+		if (c >= 0xc2 && c <= 0xdf) {
+			need = 1; min = 0x80; cp = c & 0x1f;
+		} else if (c >= 0xe0 && c <= 0xef) {
+			need = 2; min = 0x800; cp = c & 0x0f;
+		} else if (c >= 0xf0 && c <= 0xf4) {
+			need = 3; min = 0x10000; cp = c & 0x07;
+		} else
+			return i;      /* continuation byte, C0, C1 or F5..FF lead */
+		if (n - i <= need)
+			return i;
+		for (k = 1; k <= need; k++) {
+			if ((p[i + k] & 0xc0) != 0x80)
+				return i;
+			cp = cp << 6 | (p[i + k] & 0x3f);
+		}
+		if (cp < min || cp > 0x10ffff || (cp >= 0xd800 && cp <= 0xdfff))
+			return i;      /* overlong, beyond Unicode, surrogate */
+		i += need + 1;
+	}
+	return n;
+}
+
 /* ---- text headers ---- */
 
 void
@@ -557,6 +612,14 @@ vx_hdr_get(const vx_hdr *h, const char *key)
 	return NULL;
 }
 
+/* key_char: the key alphabet, [a-z0-9_-], whatever the C locale says. */
+static int
+key_char(unsigned char c)
+{
+	return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' ||
+	    c == '-';
+}
+
 static int
 hdr_put(vx_hdr *h, const char *key, size_t klen, const char *val,
     size_t vlen, int replace, vx_err *e)
@@ -565,8 +628,8 @@ hdr_put(vx_hdr *h, const char *key, size_t klen, const char *val,
 	char *v;
 
 	for (i = 0; i < h->n; i++)
-		if (strlen(h->key[i]) == klen &&
-		    memcmp(h->key[i], key, klen) == 0) {
+		if (strncmp(h->key[i], key, klen) == 0 &&
+		    h->key[i][klen] == '\0') {
 			if (!replace)
 				return vx_err_set(e, VX_EDATA,
 				    "header: duplicate key '%.*s'", (int)klen, key);
@@ -605,6 +668,7 @@ vx_hdr_set(vx_hdr *h, const char *key, vx_err *e, const char *fmt, ...)
 {
 	char buf[4096];
 	va_list ap;
+	size_t i;
 	int n;
 
 	va_start(ap, fmt);
@@ -613,9 +677,16 @@ vx_hdr_set(vx_hdr *h, const char *key, vx_err *e, const char *fmt, ...)
 	if (n < 0 || (size_t)n >= sizeof buf)
 		return vx_err_set(e, VX_EINTERNAL, "header: value of '%s' too long",
 		    key);
+	for (i = 0; key[i] != '\0' && key_char((unsigned char)key[i]); i++)
+		;
+	if (i == 0 || key[i] != '\0')
+		return vx_err_set(e, VX_EINTERNAL, "header: bad key '%.40s'", key);
 	if (strchr(buf, '\n') != NULL)
 		return vx_err_set(e, VX_EINTERNAL,
 		    "header: value of '%s' contains a newline", key);
+	if (vx_utf8_check(buf, (size_t)n) != (size_t)n)
+		return vx_err_set(e, VX_EDATA,
+		    "header: value of '%s' is not valid UTF-8", key);
 	return hdr_put(h, key, strlen(key), buf, (size_t)n, 1, e);
 }
 
@@ -627,7 +698,7 @@ vx_hdr_parse(vx_hdr *h, const unsigned char *p, size_t n, size_t *body,
 	int rc;
 
 	while (i < lim) {
-		size_t ls = i, ks, ke, vs, le;
+		size_t ls = i, ke, vs, le;
 
 		while (i < lim && p[i] != '\n') {
 			if (p[i] == '\0')
@@ -642,18 +713,21 @@ vx_hdr_parse(vx_hdr *h, const unsigned char *p, size_t n, size_t *body,
 			*body = i;
 			return 0;
 		}
-		ks = ls;
-		for (ke = ks; ke < le && (islower(p[ke]) || isdigit(p[ke]) ||
-		    p[ke] == '_' || p[ke] == '-'); ke++)
+		for (ke = ls; ke < le && key_char(p[ke]); ke++)
 			;
-		if (ke == ks || ke + 1 >= le + 1 || p[ke] != ':' ||
+		/* "key:" then either the end of the line or one space */
+		if (ke == ls || ke == le || p[ke] != ':' ||
 		    (ke + 1 < le && p[ke + 1] != ' '))
 			return vx_err_set(e, VX_EDATA,
-			    "header: line %.*s: expected 'key: value'",
+			    "header: line '%.*s': expected 'key: value'",
 			    (int)((le - ls) > 60 ? 60 : (le - ls)),
 			    (const char *)p + ls);
 		vs = ke + 1 < le ? ke + 2 : le;
-		if ((rc = hdr_put(h, (const char *)p + ks, ke - ks,
+		if (vx_utf8_check(p + vs, le - vs) != le - vs)
+			return vx_err_set(e, VX_EDATA,
+			    "header: value of '%.*s' is not valid UTF-8",
+			    (int)(ke - ls), (const char *)p + ls);
+		if ((rc = hdr_put(h, (const char *)p + ls, ke - ls,
 		    (const char *)p + vs, le - vs, 0, e)) != 0)
 			return rc;
 	}
@@ -663,11 +737,46 @@ vx_hdr_parse(vx_hdr *h, const unsigned char *p, size_t n, size_t *body,
 	return vx_err_set(e, VX_EDATA, "header: no empty line ends it");
 }
 
+/* number_end: the end of the number token at s, or NULL if the token (up
+ * to a space, a tab or the end) is not in the grammar of formats/stream.md:
+ *   integer  [+-]?[0-9]+
+ *   real     [+-]?([0-9]+(\.[0-9]*)?|\.[0-9]+)([eE][+-]?[0-9]+)?
+ * strtod alone would also take hex, "inf", "nan" and the locale's comma. */
+static const char *
+number_end(const char *s, int isint)
+{
+	size_t d = 0;
+
+	if (*s == '+' || *s == '-')
+		s++;
+	for (; *s >= '0' && *s <= '9'; s++)
+		d++;
+	if (!isint) {
+		if (*s == '.')
+			for (s++; *s >= '0' && *s <= '9'; s++)
+				d++;
+		if (d > 0 && (*s == 'e' || *s == 'E')) {
+			size_t x = 0;
+
+			s++;
+			if (*s == '+' || *s == '-')
+				s++;
+			for (; *s >= '0' && *s <= '9'; s++)
+				x++;
+			if (x == 0)
+				return NULL;
+		}
+	}
+	if (d == 0 || (*s != '\0' && *s != ' ' && *s != '\t'))
+		return NULL;
+	return s;
+}
+
 static int
 hdr_numbers(const vx_hdr *h, const char *key, size_t count, int isint,
     int64_t *oi, double *of, int *found, vx_err *e)
 {
-	const char *v = vx_hdr_get(h, key), *s;
+	const char *v = vx_hdr_get(h, key), *s, *t;
 	char *end;
 	size_t i;
 
@@ -680,20 +789,19 @@ hdr_numbers(const vx_hdr *h, const char *key, size_t count, int isint,
 	}
 	s = v;
 	for (i = 0; i < count; i++) {
+		while (*s == ' ' || *s == '\t')
+			s++;
+		if ((t = number_end(s, isint)) == NULL)
+			goto bad;
 		errno = 0;
-		if (isint) {
-			long long x = strtoll(s, &end, 10);
-
-			if (end == s || errno == ERANGE)
-				goto bad;
-			oi[i] = x;
-		} else {
-			double x = strtod(s, &end);
-
-			if (end == s || errno == ERANGE)
-				goto bad;
-			of[i] = x;
-		}
+		if (isint)
+			oi[i] = strtoll(s, &end, 10);
+		else
+			of[i] = strtod(s, &end);
+		/* overflow is an error; underflow rounds towards zero, so a
+		 * subnormal written with %.17g reads back */
+		if (end != t || (errno == ERANGE && (isint || isinf(of[i]))))
+			goto bad;
 		s = end;
 	}
 	while (*s == ' ' || *s == '\t')
@@ -731,6 +839,55 @@ vx_hdr_get_f64_opt(const vx_hdr *h, const char *key, double *out,
 
 /* ---- payloads ---- */
 
+/* deflate_body: compress n bytes into a new buffer *out (*outn bytes), a
+ * zlib (RFC 1950) stream.  Input and output are fed to zlib in pieces, since
+ * its counters are uInt; the output buffer is deflateBound's worst case. */
+static int
+deflate_body(const void *body, size_t n, int level, unsigned char **out,
+    size_t *outn, vx_err *e)
+{
+	const unsigned char *src = body;
+	size_t in_left = n, out_left, bound;
+	unsigned char *z;
+	z_stream zs;
+	int zr;
+
+	*out = NULL;
+	*outn = 0;
+	memset(&zs, 0, sizeof zs);
+	if ((uint64_t)n > (uint64_t)(uLong)-1)
+		return vx_err_set(e, VX_EINTERNAL, "body too large for zlib");
+	if (deflateInit(&zs, level > 9 ? 9 : level) != Z_OK)
+		return vx_err_set(e, VX_EINTERNAL, "zlib: deflateInit failed");
+	bound = (size_t)deflateBound(&zs, (uLong)n);
+	if ((z = malloc(bound ? bound : 1)) == NULL) {
+		deflateEnd(&zs);
+		return vx_err_set(e, VX_ENOMEM, "cannot allocate %zu bytes", bound);
+	}
+	out_left = bound;
+	zs.next_in = (Bytef *)(uintptr_t)src;
+	zs.next_out = z;
+	do {
+		uInt ki = (uInt)(in_left > ZPIECE ? ZPIECE : in_left);
+		uInt ko = (uInt)(out_left > ZPIECE ? ZPIECE : out_left);
+
+		zs.avail_in = ki;
+		zs.avail_out = ko;
+		/* Z_FINISH once the last piece of input is in, and from then on */
+		zr = deflate(&zs, in_left == ki ? Z_FINISH : Z_NO_FLUSH);
+		in_left -= ki - zs.avail_in;
+		out_left -= ko - zs.avail_out;
+	} while (zr == Z_OK);
+	*outn = bound - out_left;
+	deflateEnd(&zs);
+	if (zr != Z_STREAM_END || in_left != 0) {
+		free(z);
+		return vx_err_set(e, VX_EINTERNAL, "zlib: deflate failed");
+	}
+	*out = z;
+	return 0;
+}
+
 int
 vx_payload_make(vx_chunk *c, const char *type, vx_hdr *h, const void *body,
     size_t n, int level, vx_err *e)
@@ -741,41 +898,8 @@ vx_payload_make(vx_chunk *c, const char *type, vx_hdr *h, const void *body,
 
 	memset(c, 0, sizeof *c);
 	if (level > 0) {
-		uLongf bound = compressBound((uLong)n);
-		z_stream zs;
-
-		if ((uint64_t)n > (uint64_t)(uLong)-1)
-			return vx_err_set(e, VX_EINTERNAL, "body too large for zlib");
-		if ((z = malloc(bound ? bound : 1)) == NULL)
-			return vx_err_set(e, VX_ENOMEM, "cannot allocate %lu bytes",
-			    (unsigned long)bound);
-		memset(&zs, 0, sizeof zs);
-		if (deflateInit(&zs, level > 9 ? 9 : level) != Z_OK) {
-			free(z);
-			return vx_err_set(e, VX_EINTERNAL, "zlib: deflateInit failed");
-		}
-		/* Feed in pieces: avail_in is a uInt. */
-		const unsigned char *src = body;
-		size_t left = n;
-		zs.next_out = z;
-		zs.avail_out = (uInt)(bound > 0xffffffffu ? 0xffffffffu : bound);
-		int zr;
-		do {
-			uInt k = left > 0x40000000u ? 0x40000000u : (uInt)left;
-			zs.next_in = (Bytef *)(uintptr_t)src;
-			zs.avail_in = k;
-			src += k;
-			left -= k;
-			zr = deflate(&zs, left ? Z_NO_FLUSH : Z_FINISH);
-		} while (left > 0 && zr == Z_OK);
-		while (zr == Z_OK)
-			zr = deflate(&zs, Z_FINISH);
-		zn = zs.total_out;
-		deflateEnd(&zs);
-		if (zr != Z_STREAM_END) {
-			free(z);
-			return vx_err_set(e, VX_EINTERNAL, "zlib: deflate failed");
-		}
+		if ((rc = deflate_body(body, n, level, &z, &zn, e)) != 0)
+			return rc;
 		if ((rc = vx_hdr_set(h, "encoding", e, "zlib")) != 0) {
 			free(z);
 			return rc;
@@ -785,6 +909,11 @@ vx_payload_make(vx_chunk *c, const char *type, vx_hdr *h, const void *body,
 	for (i = 0; i < h->n; i++)
 		hl += strlen(h->key[i]) + 2 + strlen(h->val[i]) + 1;
 	hl += 1;
+	if (hl > VX_HDR_MAX) {
+		free(z);
+		return vx_err_set(e, VX_EINTERNAL, "header of %zu bytes is longer "
+		    "than %zu", hl, VX_HDR_MAX);
+	}
 	if (vx_add_size(&total, hl, level > 0 ? zn : n) != 0 ||
 	    (p = malloc(total)) == NULL) {
 		free(z);
@@ -820,8 +949,7 @@ vx_payload_parse(const vx_chunk *c, vx_hdr *h, const unsigned char **body,
 }
 
 int
-vx_body_decode(const vx_hdr *h, const unsigned char *body, size_t n,
-    void *out, size_t expect, vx_err *e)
+vx_body_fits(const vx_hdr *h, size_t n, size_t expect, vx_err *e)
 {
 	const char *enc = vx_hdr_get(h, "encoding");
 
@@ -829,42 +957,66 @@ vx_body_decode(const vx_hdr *h, const unsigned char *body, size_t n,
 		if (n != expect)
 			return vx_err_set(e, VX_EDATA,
 			    "body has %zu bytes, header implies %zu", n, expect);
+		return 0;
+	}
+	if (strcmp(enc, "zlib") == 0) {
+		/* deflate's best ratio is 1032:1 (a 258-byte match in two bits) */
+		if (expect / VX_ZLIB_MAX_RATIO > n)
+			return vx_err_set(e, VX_EDATA, "zlib body of %zu bytes cannot "
+			    "hold the %zu bytes the header implies", n, expect);
+		return 0;
+	}
+	return vx_err_set(e, VX_EDATA, "unknown encoding '%.40s'", enc);
+}
+
+int
+vx_body_decode(const vx_hdr *h, const unsigned char *body, size_t n,
+    void *out, size_t expect, vx_err *e)
+{
+	const char *enc = vx_hdr_get(h, "encoding");
+	int rc;
+
+	if ((rc = vx_body_fits(h, n, expect, e)) != 0)
+		return rc;
+	if (enc == NULL || strcmp(enc, "raw") == 0) {
 		if (n > 0)
 			memcpy(out, body, n);
 		return 0;
 	}
-	if (strcmp(enc, "zlib") == 0) {
-		z_stream zs;
-		int zr;
-		size_t left_in = n, left_out = expect;
-		unsigned char *o = out;
+	z_stream zs;
+	int zr;
+	size_t left_in = n, left_out = expect;
+	unsigned char dummy, *o = expect > 0 ? out : &dummy;
 
-		memset(&zs, 0, sizeof zs);
-		if (inflateInit(&zs) != Z_OK)
-			return vx_err_set(e, VX_EINTERNAL, "zlib: inflateInit failed");
-		zs.next_in = (Bytef *)(uintptr_t)body;
-		zs.next_out = o;
-		do {
-			uInt ki = left_in > 0x40000000u ? 0x40000000u : (uInt)left_in;
-			uInt ko = left_out > 0x40000000u ? 0x40000000u : (uInt)left_out;
-			zs.avail_in = ki;
-			zs.avail_out = ko;
-			zr = inflate(&zs, Z_NO_FLUSH);
-			left_in -= ki - zs.avail_in;
-			left_out -= ko - zs.avail_out;
-			if (zr == Z_BUF_ERROR && (left_in == 0 || left_out == 0))
-				break;
-		} while (zr == Z_OK);
-		inflateEnd(&zs);
-		if (zr == Z_STREAM_END && left_out == 0 && left_in == 0)
-			return 0;
-		if (zr == Z_STREAM_END || zr == Z_OK || zr == Z_BUF_ERROR)
-			return vx_err_set(e, VX_EDATA,
-			    "zlib body decodes to %s than the %zu bytes the header "
-			    "implies", left_out == 0 ? "more (or trailing data)" :
-			    "fewer", expect);
-		return vx_err_set(e, VX_EDATA, "zlib body is corrupt: %s",
-		    zs.msg ? zs.msg : "inflate error");
-	}
-	return vx_err_set(e, VX_EDATA, "unknown encoding '%.40s'", enc);
+	memset(&zs, 0, sizeof zs);
+	if (inflateInit(&zs) != Z_OK)
+		return vx_err_set(e, VX_EINTERNAL, "zlib: inflateInit failed");
+	zs.next_in = (Bytef *)(uintptr_t)body;
+	zs.next_out = o;
+	do {
+		uInt ki = (uInt)(left_in > ZPIECE ? ZPIECE : left_in);
+		uInt ko = (uInt)(left_out > ZPIECE ? ZPIECE : left_out);
+
+		zs.avail_in = ki;
+		zs.avail_out = ko;
+		zr = inflate(&zs, Z_NO_FLUSH);
+		left_in -= ki - zs.avail_in;
+		left_out -= ko - zs.avail_out;
+	} while (zr == Z_OK);
+	inflateEnd(&zs);
+	if (zr == Z_STREAM_END && left_out == 0 && left_in == 0)
+		return 0;
+	if (zr == Z_STREAM_END && left_out > 0)
+		return vx_err_set(e, VX_EDATA, "zlib body decodes to fewer than "
+		    "the %zu bytes the header implies", expect);
+	if (zr == Z_STREAM_END)
+		return vx_err_set(e, VX_EDATA, "zlib body: %zu bytes of trailing "
+		    "data", left_in);
+	if (zr == Z_BUF_ERROR && left_in == 0)
+		return vx_err_set(e, VX_EDATA, "zlib body is truncated");
+	if (zr == Z_BUF_ERROR)
+		return vx_err_set(e, VX_EDATA, "zlib body decodes to more than "
+		    "the %zu bytes the header implies", expect);
+	return vx_err_set(e, VX_EDATA, "zlib body is corrupt: %s",
+	    zs.msg ? zs.msg : "inflate error");
 }

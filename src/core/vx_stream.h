@@ -68,7 +68,9 @@ int vx_stream_read_fn(vx_stream *s, vx_read_fn fn, void *ctx, vx_err *e);
 int vx_stream_read_mem(vx_stream *s, const void *buf, size_t n, vx_err *e);
 
 /* vx_stream_write: write signature, all chunks, end chunk.  Does not close f
- * but does fflush it and checks ferror. */
+ * but does fflush it and checks ferror.  A chunk with an invalid type, a VEND
+ * chunk in the list or one longer than VX_CHUNK_MAX is VX_EINTERNAL, checked
+ * before anything is written. */
 int vx_stream_write(const vx_stream *s, FILE *f, vx_err *e);
 
 /* vx_chunk_is_critical: 1 if the type's first letter is upper case. */
@@ -115,19 +117,23 @@ void vx_hdr_init(vx_hdr *h);
 void vx_hdr_free(vx_hdr *h);
 
 /* vx_hdr_parse: parse the header at the start of a payload.  Keys are
- * [a-z0-9_-]+, a line is "key: value" (value may be empty), the header ends
- * at the first empty line; *body gets the offset of the byte after it.
- * Duplicate keys, lines without ": ", NUL bytes, a header longer than
- * VX_HDR_MAX and a missing empty line are errors (VX_EDATA). */
+ * [a-z0-9_-]+, a line is "key: value" or "key:" (empty value), values are
+ * UTF-8; the header ends at the first empty line; *body gets the offset of
+ * the byte after it.  Duplicate keys, lines without ": ", invalid UTF-8, NUL
+ * bytes, a header (empty line included) longer than VX_HDR_MAX and a missing
+ * empty line are errors (VX_EDATA). */
 int vx_hdr_parse(vx_hdr *h, const unsigned char *p, size_t n, size_t *body,
     vx_err *e);
 /* vx_hdr_get: value for key or NULL. */
 const char *vx_hdr_get(const vx_hdr *h, const char *key);
-/* vx_hdr_set: set key to a formatted value (replacing an existing one). */
+/* vx_hdr_set: set key to a formatted value (replacing an existing one).
+ * A key outside [a-z0-9_-]+ or a value with a newline is VX_EINTERNAL (a
+ * bug in the caller), a value that is not UTF-8 is VX_EDATA. */
 int vx_hdr_set(vx_hdr *h, const char *key, vx_err *e, const char *fmt, ...)
 	__attribute__((format(printf, 4, 5)));
 
-/* Typed getters: parse exactly `count` whitespace-separated numbers.  A
+/* Typed getters: parse exactly `count` numbers separated by spaces or tabs,
+ * in the grammar of formats/stream.md (decimal only: no hex, inf or nan).  A
  * missing key is an error unless the getter is *_opt (then returns 0 and
  * leaves out untouched, *found = 0). */
 int vx_hdr_get_i64(const vx_hdr *h, const char *key, int64_t *out,
@@ -143,7 +149,8 @@ enum { VX_ENC_UNKNOWN = 0, VX_ENC_RAW, VX_ENC_ZLIB, VX_ENC_LAST };
 
 /* vx_payload_make: fill chunk c (type, data, len) with h's text, an empty
  * line and body (n bytes), compressing with zlib at `level` (1..9) or raw when
- * level is 0; sets the "encoding" key in h accordingly. */
+ * level is 0; sets the "encoding" key in h accordingly.  A header longer
+ * than VX_HDR_MAX is VX_EINTERNAL. */
 int vx_payload_make(vx_chunk *c, const char *type, vx_hdr *h,
     const void *body, size_t n, int level, vx_err *e);
 
@@ -151,11 +158,23 @@ int vx_payload_make(vx_chunk *c, const char *type, vx_hdr *h,
 int vx_payload_parse(const vx_chunk *c, vx_hdr *h, const unsigned char **body,
     size_t *bodylen, vx_err *e);
 
+/* vx_body_fits: 0 if a body of n bytes in h's encoding can decode to
+ * exactly `expect` bytes: raw must have that length, zlib at least
+ * expect / VX_ZLIB_MAX_RATIO bytes; otherwise VX_EDATA (also for an unknown
+ * encoding).  Call it before allocating `expect` bytes on a header's word. */
+#define VX_ZLIB_MAX_RATIO 1032
+int vx_body_fits(const vx_hdr *h, size_t n, size_t expect, vx_err *e);
+
 /* vx_body_decode: decode a body whose header says encoding raw or zlib into
  * out, which must receive exactly `expect` bytes (an expect computed by the
  * caller from the header's dims, never from the compressed size). */
 int vx_body_decode(const vx_hdr *h, const unsigned char *body, size_t n,
     void *out, size_t expect, vx_err *e);
+
+/* vx_utf8_check: length of the longest prefix of p[0..n) that is valid
+ * UTF-8 (RFC 3629: no overlong forms, no surrogates, at most U+10FFFF);
+ * equals n when all of it is. */
+size_t vx_utf8_check(const void *p, size_t n);
 
 /* Little-endian helpers and host order. */
 int vx_host_is_le(void);

@@ -92,6 +92,17 @@ bad_layouts(void **state)
 		{ { (int64_t)1 << 20, (int64_t)1 << 20, 1 << 10 }, "linear" },
 		{ { (int64_t)1 << 40, 1, 1 }, "linear" },
 		{ { 5, 5, 5 }, "bricked 1x1x1 1x1x1 1x1x1 1x1x1 1x1x1" },
+		/* the grammar is exact: one space before each level, digits */
+		{ { 5, 5, 5 }, "bricked 4x4x4 " },
+		{ { 5, 5, 5 }, "bricked  4x4x4" },
+		{ { 5, 5, 5 }, "bricked 4x 4x4" },
+		{ { 5, 5, 5 }, "bricked +4x4x4" },
+		{ { 5, 5, 5 }, "bricked 4x4x4x4" },
+		{ { 5, 5, 5 }, "bricked 4X4X4" },
+		{ { 5, 5, 5 }, "bricked 10244x4x4" },
+		{ { 5, 5, 5 }, "bricked 2048x4x4" },
+		{ { 5, 5, 5 }, "bricked\t4x4x4" },
+		{ { 5, 5, 5 }, "linear " },
 	};
 	size_t i;
 
@@ -151,6 +162,73 @@ chunk_roundtrip(void **state)
 			}
 }
 
+/* make_volm: a VOLM payload from header text and a raw body. */
+static void
+make_volm(vx_chunk *c, const char *hdr, const void *body, size_t n)
+{
+	size_t hl = strlen(hdr);
+
+	memset(c, 0, sizeof *c);
+	memcpy(c->type, "VOLM", 5);
+	c->len = hl + n;
+	c->data = malloc(c->len + 1);
+	memcpy(c->data, hdr, hl);
+	if (n > 0)
+		memcpy(c->data + hl, body, n);
+}
+
+/* VOLM headers a reader must refuse, each with its message; the first case
+ * is the valid baseline.  Oracle: formats/stream.md, "VOLM". */
+static void
+volm_errors(void **state)
+{
+	static const struct { const char *hdr; size_t n; const char *msg; } t[] = {
+		{ "dims: 2 2 2\ntype: u8\n\n", 8, NULL },
+		{ "dims: 2 2 2\ntype: u8\nname: \n\n", 8, "name must" },
+		{ "dims: 2 2 2\ntype: u8\nname: "
+		  "0123456789012345678901234567890123456789012345678901234567890123"
+		  "\n\n", 8, "name must" },
+		{ "dims: 2 2 2\ntype: u8\nrange: 5 1\n\n", 8, "range must" },
+		{ "dims: 2 2 2\ntype: u8\nrange: nan 1\n\n", 8, "range" },
+		{ "dims: 2 2 2\ntype: u8\nspacing: 0x1p0 1 1\n\n", 8, "spacing" },
+		{ "dims: 2 2 2\ntype: u8\nspacing: 1 0 1\n\n", 8, "spacing" },
+		{ "dims: 2 2 2\ntype: u8\n\n", 7, "body has 7 bytes" },
+		{ "dims: 2 2 2\ntype: u8\n\n", 9, "body has 9 bytes" },
+		{ "dims: 2 2 2\ntype: f64\n\n", 8, "unknown type" },
+		{ "dims: 2 2\ntype: u8\n\n", 8, "dims" },
+		{ "dims: 2 2 2\ntype: u8\nlayout: bricked 4x4x4\n\n", 8,
+		  "body has 8 bytes, header implies 64" },
+		{ "dims: 1024 1024 1024\ntype: f32\nencoding: zlib\n\n", 8,
+		  "cannot hold" },
+		{ "dims: 2 2 2\ntype: u8\nencoding: lz4\n\n", 8,
+		  "unknown encoding" },
+	};
+	static const unsigned char body[16] = { 1, 2, 3, 4, 5, 6, 7, 8 };
+	size_t i;
+
+	(void)state;
+	for (i = 0; i < sizeof t / sizeof t[0]; i++) {
+		vx_chunk c;
+		vx_grid g;
+		vx_err e = { 0, "" };
+		int rc;
+
+		make_volm(&c, t[i].hdr, body, t[i].n);
+		rc = vx_grid_from_chunk(&g, &c, &e);
+		if (t[i].msg == NULL) {
+			if (rc != 0)
+				fail_msg("case %zu: %s", i, e.msg);
+			assert_true(g.vmin == 1 && g.vmax == 8);
+			assert_string_equal(g.name, "density");
+		} else if (rc != VX_EDATA || strstr(e.msg, t[i].msg) == NULL ||
+		    strncmp(e.msg, "volume: ", 8) != 0)
+			fail_msg("case %zu: got %d '%s', want '%s'", i, rc, e.msg,
+			    t[i].msg);
+		vx_grid_free(&g);
+		vx_chunk_free(&c);
+	}
+}
+
 static void
 range_ignores_nonfinite(void **state)
 {
@@ -203,6 +281,7 @@ main(void)
 		cmocka_unit_test(bricked_inner_contiguous),
 		cmocka_unit_test(bad_layouts),
 		cmocka_unit_test(chunk_roundtrip),
+		cmocka_unit_test(volm_errors),
 		cmocka_unit_test(range_ignores_nonfinite),
 		cmocka_unit_test(relayout_identical),
 	};
