@@ -1,0 +1,198 @@
+/* vx_image.h: float images, their stream chunk (IMAG), and PNG / PFM files.
+ *
+ * An image is w x h pixels of nc float channels, row-major, top row first,
+ * channels interleaved:  px[(y * w + x) * nc + c].
+ *
+ *   nc 1  gray            nc 3  RGB
+ *   nc 2  gray + alpha    nc 4  RGBA
+ *
+ * Convention for images in a stream (formats/image.md): color values are
+ * linear (scene-referred radiance, "colorspace: linear"), and when there is an
+ * alpha channel (coverage) the color is premultiplied by it ("associated"
+ * alpha): a pixel half covered by a surface of radiance 0.8 stores color 0.4,
+ * alpha 0.5.  That is what a renderer's pixel filter sums naturally and what
+ * averages correctly.  Auxiliary images travel in the same stream under other
+ * names: "depth" (nc 1, +inf where nothing was hit), "normal" (nc 3).
+ *
+ * PNG and PFM files are read and written here too; tone mapping (linear to
+ * display values) lives in vx_tonemap.h. */
+#ifndef VX_IMAGE_H
+#define VX_IMAGE_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "vx_err.h"
+#include "vx_stream.h"
+
+/* Size limits: each side at most VX_IMAGE_MAX_DIM pixels, at most
+ * VX_IMAGE_MAX_PIXELS pixels in all (a 16384 x 16384 image; 4 GiB as RGBA
+ * floats).  Checked before anything is allocated. */
+#define VX_IMAGE_MAX_DIM    65536
+#define VX_IMAGE_MAX_PIXELS ((size_t)1 << 28)
+
+typedef struct vx_image {
+	int w, h, nc;          /* width, height, channels (1..4) */
+	float *px;             /* w * h * nc values, owned; NULL when empty */
+	char name[64];         /* "image" unless told otherwise */
+} vx_image;
+
+/* A key/value pair for PNG text chunks (tEXt). */
+typedef struct vx_text {
+	const char *key;       /* 1..79 printable Latin-1 characters */
+	const char *value;
+} vx_text;
+
+/* vx_image_init: an empty image (no pixels, name "image"). */
+void vx_image_init(vx_image *img);
+
+/* vx_image_alloc: (re)initialize img as w x h x nc zeroed pixels, name
+ * "image".  Errors: VX_EDATA for sizes out of the limits above or nc outside
+ * 1..4, VX_ENOMEM.  On error img is empty.  Free with vx_image_free. */
+int vx_image_alloc(vx_image *img, int w, int h, int nc, vx_err *e);
+
+/* vx_image_free: release the pixels; img becomes empty.  Accepts an empty or
+ * NULL image. */
+void vx_image_free(vx_image *img);
+
+/* vx_image_copy: dst (initialized by this call) gets a deep copy of src. */
+int vx_image_copy(vx_image *dst, const vx_image *src, vx_err *e);
+
+/* vx_image_nvalue: w * h * nc (fits size_t by the limits). */
+size_t vx_image_nvalue(const vx_image *img);
+
+/* vx_image_pixel: pointer to pixel (x, y)'s nc values (no bounds check). */
+static inline float *
+vx_image_pixel(const vx_image *img, int x, int y)
+{
+	return img->px + ((size_t)y * (size_t)img->w + (size_t)x) *
+	    (size_t)img->nc;
+}
+
+/* vx_image_get / vx_image_set: one value (no bounds check). */
+static inline float
+vx_image_get(const vx_image *img, int x, int y, int c)
+{
+	return vx_image_pixel(img, x, y)[c];
+}
+
+static inline void
+vx_image_set(vx_image *img, int x, int y, int c, float v)
+{
+	vx_image_pixel(img, x, y)[c] = v;
+}
+
+/* vx_image_has_alpha: 1 for nc 2 and 4.  vx_image_ncolor: 1 or 3. */
+static inline int
+vx_image_has_alpha(const vx_image *img)
+{
+	return img->nc == 2 || img->nc == 4;
+}
+
+static inline int
+vx_image_ncolor(const vx_image *img)
+{
+	return img->nc <= 2 ? 1 : 3;
+}
+
+/* vx_quantize: the nearest code in 0..maxv for a display value v in [0,1]:
+ * values below 0 and NaN give 0, values above 1 give maxv, ties round up
+ * (floor(v * maxv + 0.5)).  The one rounding rule of PNG output. */
+static inline unsigned
+vx_quantize(double v, unsigned maxv)
+{
+	if (!(v > 0))
+		return 0;
+	if (v >= 1)
+		return maxv;
+	return (unsigned)(v * maxv + 0.5);
+}
+
+/* vx_image_quantize: replace every value by vx_quantize(v, 2^bits - 1) /
+ * (2^bits - 1), bits 1..16: what a PNG of that depth would hold. */
+void vx_image_quantize(vx_image *img, int bits);
+
+/* ---- stream form: the IMAG chunk (formats/image.md) ----
+ * Header keys: name, width, height, channels, colorspace (linear), alpha
+ * (premultiplied; only with nc 2 or 4), encoding.  Body: w*h*nc f32 LE,
+ * top row first.  zlevel 0 writes the body raw, 1..9 zlib-compressed. */
+int vx_image_to_chunk(const vx_image *img, int zlevel, vx_chunk *c,
+    vx_err *e);
+/* vx_image_from_chunk: decode c into img (initialized by this call).  The
+ * allocation is bounded by the limits above and by the body actually present
+ * (raw: exact size; zlib: at most 1032 times the compressed size, deflate's
+ * largest ratio).  Unknown colorspace or alpha values are errors. */
+int vx_image_from_chunk(vx_image *img, const vx_chunk *c, vx_err *e);
+/* vx_image_from_stream: the first IMAG chunk whose name is `name` (any name
+ * when NULL); *index (if not NULL) gets its chunk index.  Only the chosen
+ * chunk's body is decoded.  VX_EDATA when there is none. */
+int vx_image_from_stream(vx_image *img, const vx_stream *s, const char *name,
+    long *index, vx_err *e);
+
+/* ---- whole files in memory ---- */
+
+enum {
+	VX_IMGFMT_UNKNOWN = 0,
+	VX_IMGFMT_STREAM,      /* voxlux stream signature */
+	VX_IMGFMT_PFM,         /* "PF" or "Pf" then whitespace */
+	VX_IMGFMT_PNG,         /* PNG signature */
+	VX_IMGFMT_LAST
+};
+
+/* vx_image_sniff: which format the first bytes announce. */
+int vx_image_sniff(const void *buf, size_t n);
+
+/* vx_file_read_all: read f to its end into *buf (malloc'ed, caller frees),
+ * *n bytes.  Memory grows only as bytes arrive; more than max bytes is an
+ * error (VX_EDATA).  VX_EIO on read errors. */
+int vx_file_read_all(FILE *f, size_t max, unsigned char **buf, size_t *n,
+    vx_err *e);
+
+/* ---- PNG (libpng) ---- */
+
+/* vx_image_png_write: write img as an 8- or 16-bit PNG (gray, gray+alpha,
+ * RGB, RGBA for nc 1..4) with ntext tEXt chunks.  The values are display
+ * values in [0,1], already encoded (see vx_tonemap.h): each is clamped to
+ * [0,1] (NaN gives 0) and rounded to the nearest code, round(v * (2^bits-1)).
+ * No color-space chunk is written (viewers then assume sRGB).  Does not close
+ * f; flushes it and checks for write errors.  Errors: VX_EUSAGE for a bad bit
+ * depth or text key, VX_EIO for write errors, VX_EDATA from libpng. */
+int vx_image_png_write(const vx_image *img, FILE *f, int bits,
+    const vx_text *text, size_t ntext, vx_err *e);
+
+/* vx_image_png_write_gamma: as vx_image_png_write, and say how the values are
+ * encoded: gamma 0 writes an sRGB chunk (with the gAMA and cHRM values the
+ * PNG spec recommends alongside), gamma G > 0 a gAMA chunk of 1/G (1 for
+ * linear values). */
+int vx_image_png_write_gamma(const vx_image *img, FILE *f, int bits,
+    double gamma, const vx_text *text, size_t ntext, vx_err *e);
+
+/* vx_image_png_read_mem: decode a PNG of any color type and bit depth into
+ * img (initialized by this call): palette images become RGB (RGBA with
+ * tRNS), gray below 8 bits is expanded, tRNS becomes an alpha channel.
+ * Values are the stored codes divided by 2^depth - 1, in [0,1]: they are not
+ * decoded from sRGB or gamma (the PNG's encoding is left as it is).
+ * *bits (if not NULL) gets the bit depth after expansion, 8 or 16.  The
+ * allocation is bounded by the size limits and by n (deflate's largest ratio
+ * is 1032:1).  Errors: VX_EDATA for bad or truncated data. */
+int vx_image_png_read_mem(vx_image *img, const void *buf, size_t n,
+    int *bits, vx_err *e);
+
+/* ---- PFM (portable float map) ----
+ * "PF" (RGB) or "Pf" (gray), whitespace, width, whitespace, height,
+ * whitespace, scale, one whitespace byte, then w*h*nc f32 values.  A
+ * negative scale means little-endian, positive big-endian; |scale| is not
+ * applied.  Rows are stored bottom row first. */
+
+/* vx_pfm_read_mem: decode a PFM into img (initialized by this call), rows
+ * flipped to top first.  Dimensions are checked against the limits and the
+ * bytes present before allocating; the data must fill the rest of the
+ * buffer exactly.  Errors: VX_EDATA. */
+int vx_pfm_read_mem(vx_image *img, const void *buf, size_t n, vx_err *e);
+
+/* vx_pfm_write: write img (nc 1 or 3) as "Pf" / "PF", little-endian (scale
+ * -1), bottom row first.  Other channel counts are VX_EUSAGE: flatten first.
+ * Flushes f and checks for write errors (VX_EIO). */
+int vx_pfm_write(const vx_image *img, FILE *f, vx_err *e);
+
+#endif
