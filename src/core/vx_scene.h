@@ -1,0 +1,257 @@
+/* vx_scene.h: the scene description (formats/scene.md is the spec): camera
+ * and image size, background, ambient term, lights, surfaces with their
+ * materials per isovalue, the effects wanted, and reserved directives that
+ * later renderers will compute (environment and sky lights, interreflection,
+ * irradiance or SH lookup, DVR transfer functions, the medium).
+ *
+ * A scene is a plain struct of fixed size: it owns no memory, so it can be
+ * copied by assignment.  Text in, text out: vx_scene_parse reads the
+ * line-oriented format, vx_scene_format writes it, and
+ * parse(format(s)) equals s (vx_scene_equal) with every double exact.
+ * Renderers derive a plan from a scene (vx_plan.h) and compute only what it
+ * calls for. */
+#ifndef VX_SCENE_H
+#define VX_SCENE_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "vx_camera.h"
+#include "vx_err.h"
+#include "vx_stream.h"
+
+#define VX_SCENE_VERSION      1
+#define VX_SCENE_MAX_LIGHTS   16
+#define VX_SCENE_MAX_SURFACES 16
+#define VX_SCENE_MAX_TF       64        /* points per transfer function list */
+#define VX_SCENE_MAX_EXT      16        /* x- extension lines kept */
+#define VX_SCENE_EXT_LEN      256       /* bytes per kept extension line */
+#define VX_SCENE_NAME_MAX     64        /* volume names, as vx_grid.name */
+#define VX_SCENE_PATH_MAX     1024      /* file names */
+#define VX_SCENE_LINE_MAX     16384     /* bytes per line */
+#define VX_SCENE_TEXT_MAX     ((size_t)1 << 20)   /* bytes per scene */
+
+/* Effects: bits of vx_scene.effects.  The first four are computed by the
+ * ray-cast isosurface renderer; the others are reserved (parsed, stored,
+ * reported as not supported yet). */
+enum {
+	VX_FX_SHADOWS            = 1u << 0,
+	VX_FX_SPECULAR           = 1u << 1,
+	VX_FX_TRANSPARENCY       = 1u << 2,
+	VX_FX_TEXTURE            = 1u << 3,
+	VX_FX_INTERREFLECTION    = 1u << 4,   /* reserved */
+	VX_FX_VOLUMETRIC_SHADOWS = 1u << 5,   /* reserved */
+	VX_FX_SCATTERING         = 1u << 6,   /* reserved */
+	VX_FX_ALL                = (1u << 7) - 1,
+	/* the set a scene has when it has no effects line */
+	VX_FX_DEFAULT = VX_FX_SHADOWS | VX_FX_SPECULAR | VX_FX_TRANSPARENCY |
+	    VX_FX_TEXTURE
+};
+
+typedef enum vx_light_type {
+	VX_LIGHT_UNKNOWN = 0,
+	VX_LIGHT_POINT,
+	VX_LIGHT_DIRECTIONAL,
+	VX_LIGHT_HEADLIGHT,       /* at the camera: a point light at the eye, or
+	                             along forward for orthographic cameras */
+	VX_LIGHT_ENVIRONMENT,     /* reserved: HDR environment map */
+	VX_LIGHT_SKY,             /* reserved: constant sky */
+	VX_LIGHT_LAST
+} vx_light_type;
+
+typedef enum vx_falloff {
+	VX_FALLOFF_UNKNOWN = 0,
+	VX_FALLOFF_NONE,
+	VX_FALLOFF_INVERSE_SQUARE,
+	VX_FALLOFF_LAST
+} vx_falloff;
+
+typedef struct vx_light {
+	vx_light_type type;
+	double color[3];          /* linear RGB, >= 0 */
+	double intensity;         /* >= 0, scales color */
+	double position[3];       /* point */
+	double direction[3];      /* directional: the way the light travels,
+	                             nonzero, not normalized */
+	vx_falloff falloff;       /* point and headlight */
+	int shadows;              /* 1: casts shadows when the effect is on */
+	char file[VX_SCENE_PATH_MAX];  /* environment: image file (reserved) */
+	double rotation[3];       /* environment: degrees about x, then y, then z
+	                             (reserved) */
+} vx_light;
+
+typedef enum vx_colormap {
+	VX_COLORMAP_UNKNOWN = 0,
+	VX_COLORMAP_GRAY,
+	VX_COLORMAP_HOT,
+	VX_COLORMAP_COOLWARM,
+	VX_COLORMAP_VIRIDIS,
+	VX_COLORMAP_LAST
+} vx_colormap;
+
+typedef struct vx_material {
+	double color[3];          /* diffuse albedo, linear RGB in [0,1] */
+	double opacity;           /* 1 opaque; < 1 a transparent layer; [0,1] */
+	double kd, ks;            /* diffuse and specular weights, >= 0 */
+	double shininess;         /* Blinn-Phong exponent, >= 0 */
+	char texture[VX_SCENE_NAME_MAX];   /* volume mapped as color; "" none */
+	vx_colormap colormap;     /* texture's color map */
+	int has_window;           /* 0: the texture volume's value range */
+	double window[2];         /* texture values mapped to 0 and 1, lo < hi */
+} vx_material;
+
+typedef struct vx_surface {
+	double iso;               /* isovalue, finite */
+	vx_material m;
+} vx_surface;
+
+/* Reserved: illumination lookup from a precomputed volume. */
+typedef enum vx_illum {
+	VX_ILLUM_UNKNOWN = 0,
+	VX_ILLUM_LOCAL,           /* lights evaluated at the hit (the default) */
+	VX_ILLUM_IRRADIANCE,      /* irradiance volume (IRRV) */
+	VX_ILLUM_SH,              /* SH transfer volume (SHTV) and lighting */
+	VX_ILLUM_LAST
+} vx_illum;
+
+typedef enum vx_interp {
+	VX_INTERP_UNKNOWN = 0,
+	VX_INTERP_NEAREST,
+	VX_INTERP_TRILINEAR,
+	VX_INTERP_TRICUBIC,
+	VX_INTERP_NEAREST_ISO,
+	VX_INTERP_LAST
+} vx_interp;
+
+typedef enum vx_phase {
+	VX_PHASE_UNKNOWN = 0,
+	VX_PHASE_ISOTROPIC,
+	VX_PHASE_HENYEY_GREENSTEIN,
+	VX_PHASE_LAST
+} vx_phase;
+
+typedef struct vx_scene {
+	vx_camera camera;         /* includes the image size (camera.w, .h) */
+	char volume[VX_SCENE_NAME_MAX];   /* isosurface volume; "" the first */
+	double background[3];
+	double ambient[3];        /* ambient light color */
+	double ambient_intensity;
+	unsigned effects;         /* VX_FX_* bits */
+
+	int default_lights;       /* 1: lights are the defaults (a headlight);
+	                             the first light line replaces them */
+	int nlight;
+	vx_light light[VX_SCENE_MAX_LIGHTS];
+	int nsurface;
+	vx_surface surface[VX_SCENE_MAX_SURFACES];
+
+	/* ---- reserved: parsed and stored, computed by no renderer yet ---- */
+	int has_interreflection;
+	int bounces, samples;     /* interreflection: bounces >= 0, samples >= 1 */
+	int has_illumination;
+	vx_illum illumination;
+	int sh_order;             /* SH: order n >= 1 (n^2 coefficients) */
+	vx_interp interp;
+	int ntf_opacity;          /* DVR transfer function: value, opacity */
+	double tf_opacity[VX_SCENE_MAX_TF][2];
+	int ntf_color;            /* value, r, g, b */
+	double tf_color[VX_SCENE_MAX_TF][4];
+	int has_medium;
+	vx_phase phase;
+	double phase_g;           /* Henyey-Greenstein asymmetry, (-1, 1) */
+	double albedo[3];         /* scattering albedo, [0,1] */
+
+	/* ---- extension lines (x-...) kept verbatim, written back ---- */
+	int next;
+	char ext[VX_SCENE_MAX_EXT][VX_SCENE_EXT_LEN];
+} vx_scene;
+
+/* vx_scene_init: the default scene: auto camera (front view, perspective,
+ * fov 30, distance 1.1), 512 x 512, black background, ambient white at 0.1,
+ * one headlight (white, intensity 1, no falloff, no shadows), no surfaces,
+ * effects VX_FX_DEFAULT, nothing reserved set. */
+void vx_scene_init(vx_scene *s);
+/* vx_surface_init: a surface at iso with the default material: color 0.8,
+ * opacity 1, kd 1, ks 0.2, shininess 32, no texture, colormap gray. */
+void vx_surface_init(vx_surface *sf, double iso);
+/* vx_light_init: a light of this type with the defaults: white, intensity 1,
+ * falloff none, shadows on for point and directional lights, off for
+ * headlight, environment and sky lights. */
+void vx_light_init(vx_light *l, vx_light_type type);
+
+/* vx_scene_parse: initialize s to the defaults and apply text (n bytes; need
+ * not be NUL-terminated).  Errors: VX_EDATA with "line N: ..." naming the
+ * first bad line; s is then left at the defaults.  Needs no NUL at text[n]. */
+int vx_scene_parse(vx_scene *s, const char *text, size_t n, vx_err *e);
+
+/* vx_scene_read: vx_scene_parse of everything f holds (at most
+ * VX_SCENE_TEXT_MAX bytes; VX_EIO on a read error). */
+int vx_scene_read(vx_scene *s, FILE *f, vx_err *e);
+
+/* vx_scene_format: the canonical text of s, with every double printed so it
+ * reads back exactly.  *text is malloc'd, NUL-terminated, owned by the
+ * caller; *n gets its length (without the NUL). */
+int vx_scene_format(const vx_scene *s, char **text, size_t *n, vx_err *e);
+
+/* vx_scene_equal: 1 if a and b describe the same scene: every field that the
+ * description uses (for its camera kind and light types) bit-identical;
+ * derived camera fields are ignored. */
+int vx_scene_equal(const vx_scene *a, const vx_scene *b);
+
+/* ---- overrides from the command line ----
+ * All apply on top of s, as if the line were appended to the scene file, and
+ * leave s unchanged on error (VX_EUSAGE, the message names the option). */
+
+/* vx_scene_apply: one directive line ("surface iso 90 opacity 0.5"). */
+int vx_scene_apply(vx_scene *s, const char *line, vx_err *e);
+
+/* vx_scene_set_iso: make the surfaces exactly iso[0..n-1] (1 <= n <=
+ * VX_SCENE_MAX_SURFACES): surface k keeps the material of the scene's
+ * surface k if it has one, else takes the last one's (or the default). */
+int vx_scene_set_iso(vx_scene *s, const double *iso, int n, vx_err *e);
+
+/* vx_scene_set_view: switch to auto framing from a named view; projection,
+ * fov, distance factor and a given up vector are kept.  v may be
+ * VX_VIEW_ANGLES (then azimuth and elevation are used). */
+int vx_scene_set_view(vx_scene *s, vx_view v, double azimuth,
+    double elevation, vx_err *e);
+
+/* vx_scene_option: the command-line options tools share, by name:
+ *   set LINE         vx_scene_apply
+ *   iso V[,V...]     vx_scene_set_iso
+ *   size WxH         image size
+ *   view NAME|AZ,EL  vx_scene_set_view (named view or degrees)
+ *   light SPEC       append "light SPEC" (e.g. "directional direction 0 1 -1")
+ *   lights none      remove every light
+ *   effects WORDS    "effects WORDS" ("-shadows", "shadows specular", "none")
+ *   background R,G,B background color
+ *   fov DEG          camera field of view
+ * Unknown names are VX_EINTERNAL (a bug in the tool). */
+int vx_scene_option(vx_scene *s, const char *name, const char *value,
+    vx_err *e);
+
+/* ---- stream form: the SCNE chunk ----
+ * Payload: a text header ("version: 1", "length: N" bytes of scene text,
+ * "encoding: raw|zlib"), an empty line, then the scene text (formats/scene.md,
+ * "In a stream"). */
+int vx_scene_to_chunk(const vx_scene *s, int zlevel, vx_chunk *c, vx_err *e);
+int vx_scene_from_chunk(vx_scene *s, const vx_chunk *c, vx_err *e);
+/* vx_scene_from_stream: the first SCNE chunk of st; *index gets its position,
+ * or -1 when the stream has none (then s gets the defaults and 0 is
+ * returned).  index may be NULL. */
+int vx_scene_from_stream(vx_scene *s, const vx_stream *st, long *index,
+    vx_err *e);
+/* vx_scene_to_stream: replace st's first SCNE chunk by s, or append one. */
+int vx_scene_to_stream(const vx_scene *s, vx_stream *st, vx_err *e);
+
+/* ---- names and helpers ---- */
+const char *vx_light_type_name(vx_light_type t);   /* "point", ... */
+const char *vx_colormap_name(vx_colormap m);       /* "gray", ... */
+vx_colormap vx_colormap_parse(const char *s);
+/* vx_effect_name: the name of one VX_FX_ bit ("shadows"), or NULL. */
+const char *vx_effect_name(unsigned bit);
+/* vx_colormap_eval: color for t (clamped to [0,1]) under map m; unknown
+ * maps give gray.  The maps are piecewise linear (formats/scene.md). */
+void vx_colormap_eval(vx_colormap m, double t, double rgb[3]);
+
+#endif
