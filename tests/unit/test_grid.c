@@ -79,6 +79,37 @@ bricked_inner_contiguous(void **state)
 	vx_layout_free(&lay);
 }
 
+/* The worked examples of formats/stream.md, section 9.4; oracle: the
+ * offset formula evaluated by hand there. */
+static void
+layout_worked_examples(void **state)
+{
+	static const int64_t fx[8] = { 0, 1, 8, 9, 32, 33, 40, 41 };
+	static const int64_t fy[4] = { 0, 2, 64, 66 };
+	static const int64_t fz[4] = { 0, 4, 16, 20 };
+	int64_t d1[3] = { 5, 3, 2 }, d2[3] = { 8, 4, 4 };
+	vx_layout lay;
+	vx_err e = { 0, "" };
+	int i;
+
+	(void)state;
+	assert_int_equal(vx_layout_parse(&lay, d1, "bricked 2x2x2", &e), 0);
+	assert_true(lay.pdims[0] == 6 && lay.pdims[1] == 4 && lay.pdims[2] == 2);
+	assert_int_equal(vx_layout_nsample(&lay), 48);
+	assert_int_equal(lay.off[0][3] + lay.off[1][1] + lay.off[2][1], 15);
+	assert_int_equal(lay.off[0][4] + lay.off[1][2] + lay.off[2][1], 44);
+	vx_layout_free(&lay);
+	assert_int_equal(vx_layout_parse(&lay, d2, "bricked 2x2x2 2x1x2", &e), 0);
+	assert_true(lay.pdims[0] == 8 && lay.pdims[1] == 4 && lay.pdims[2] == 4);
+	for (i = 0; i < 8; i++)
+		assert_int_equal(lay.off[0][i], fx[i]);
+	for (i = 0; i < 4; i++) {
+		assert_int_equal(lay.off[1][i], fy[i]);
+		assert_int_equal(lay.off[2][i], fz[i]);
+	}
+	vx_layout_free(&lay);
+}
+
 static void
 bad_layouts(void **state)
 {
@@ -229,6 +260,61 @@ volm_errors(void **state)
 	}
 }
 
+/* The example stream of formats/stream.md, section 1, byte for byte; oracle:
+ * the hex dump there (CRCs from python3's zlib.crc32). */
+static void
+spec_example_bytes(void **state)
+{
+	static const char hdr[] = "name: density\ndims: 2 2 1\ntype: u8\n"
+	    "spacing: 1 1 2.5\norigin: 0 0 0\nlayout: linear\nrange: 1 4\n"
+	    "encoding: raw\n\n";
+	unsigned char want[189], *w = want;
+	int64_t d[3] = { 2, 2, 1 };
+	vx_grid g;
+	vx_stream s;
+	vx_chunk c;
+	vx_err e = { 0, "" };
+	char *out = NULL;
+	size_t outn = 0;
+	FILE *f;
+
+	(void)state;
+	memcpy(w, "\x89VXL\r\n\x1a\nhist\x16\0\0\0\0\0\0\0", 20);
+	w += 20;
+	memcpy(w, "vread 0.1.0 --synth x\n\x10\xc2\xe1\xf1", 26);
+	w += 26;
+	memcpy(w, "VOLM\x6f\0\0\0\0\0\0\0", 12);
+	w += 12;
+	assert_int_equal(strlen(hdr), 107);
+	memcpy(w, hdr, 107);
+	w += 107;
+	memcpy(w, "\x01\x02\x03\x04\x9b\xb7\x7f\x80", 8);
+	w += 8;
+	memcpy(w, "VEND\0\0\0\0\0\0\0\0\x4b\x27\x38\xa6", 16);
+	w += 16;
+	assert_int_equal(w - want, 189);
+
+	assert_int_equal(vx_grid_alloc(&g, d, VX_U8, NULL, &e), 0);
+	vx_grid_set(&g, 0, 0, 0, 1);
+	vx_grid_set(&g, 1, 0, 0, 2);
+	vx_grid_set(&g, 0, 1, 0, 3);
+	vx_grid_set(&g, 1, 1, 0, 4);
+	g.spacing[2] = 2.5;
+	vx_grid_range(&g);
+	vx_stream_init(&s);
+	assert_int_equal(vx_grid_to_chunk(&g, 0, &c, &e), 0);
+	assert_int_equal(vx_stream_append(&s, &c, &e), 0);
+	assert_int_equal(vx_stream_history_add(&s, "vread 0.1.0 --synth x", &e), 0);
+	f = open_memstream(&out, &outn);
+	assert_int_equal(vx_stream_write(&s, f, &e), 0);
+	fclose(f);
+	assert_int_equal(outn, sizeof want);
+	assert_memory_equal(out, want, sizeof want);
+	free(out);
+	vx_stream_free(&s);
+	vx_grid_free(&g);
+}
+
 static void
 range_ignores_nonfinite(void **state)
 {
@@ -279,9 +365,11 @@ main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(layouts_injective),
 		cmocka_unit_test(bricked_inner_contiguous),
+		cmocka_unit_test(layout_worked_examples),
 		cmocka_unit_test(bad_layouts),
 		cmocka_unit_test(chunk_roundtrip),
 		cmocka_unit_test(volm_errors),
+		cmocka_unit_test(spec_example_bytes),
 		cmocka_unit_test(range_ignores_nonfinite),
 		cmocka_unit_test(relayout_identical),
 	};
