@@ -1,0 +1,470 @@
+/* cell.c: ray vs trilinear cell: cubic coefficients, robust first root,
+ * exact maximum, crack-free face values, gradient and normals. */
+#include "vx_cell.h"
+
+#include <math.h>
+#include <string.h>
+
+static const char *const solver_names[] = { "exact", "neubauer", "linear" };
+
+const char *
+vx_cell_solver_name(int solver)
+{
+	if (solver < 0 || solver >= VX_CELL_SOLVER_LAST)
+		return "unknown";
+	return solver_names[solver];
+}
+
+int
+vx_cell_solver_parse(const char *s)
+{
+	int i;
+
+	for (i = 0; i < VX_CELL_SOLVER_LAST; i++)
+		if (strcmp(s, solver_names[i]) == 0)
+			return i;
+	return -1;
+}
+
+int
+vx_cell_finite(const float c[8])
+{
+	int i;
+
+	for (i = 0; i < 8; i++)
+		if (!isfinite(c[i]))
+			return 0;
+	return 1;
+}
+
+static inline double
+lerp(double a, double b, double s)
+{
+	return a + (b - a) * s;
+}
+
+double
+vx_cell_trilinear(const float c[8], const double p[3])
+{
+	double e0 = lerp(c[0], c[1], p[0]), e1 = lerp(c[2], c[3], p[0]);
+	double e2 = lerp(c[4], c[5], p[0]), e3 = lerp(c[6], c[7], p[0]);
+
+	return lerp(lerp(e0, e1, p[1]), lerp(e2, e3, p[1]), p[2]);
+}
+
+/* The cubic along the ray.  Derived here again (Parker et al. 1999,
+ * Appendix A, is garbled in our copy: its fractions lost their bars, so
+ * "x_1 - x_a x_1 - x_0" is (x_1 - x_a)/(x_1 - x_0), and the signs of b_0 and
+ * b_1 are swapped: u_0 = (x_1 - x)/(x_1 - x_0) decreases along the ray, so
+ * b_0 = -x_b/(x_1 - x_0) and b_1 = +x_b/(x_1 - x_0)).  Its sum over
+ * (u_i^a + t u_i^b)(v_j^a + t v_j^b)(w_k^a + t w_k^b) rho_ijk is the same
+ * polynomial as the nested interpolation used here, which is cheaper and
+ * better conditioned for o near the cell:
+ *   x(t) = o_x + t d_x, and likewise y(t), z(t);
+ *   edge along x at (y,z) = (j&1, j>>1):  e_j(t) = c[2j] + (c[2j+1] - c[2j]) x(t)
+ *     = A_j + B_j t,  A_j = c[2j] + D_j o_x,  B_j = D_j d_x,  D_j = c[2j+1] - c[2j];
+ *   face z = s:  P_s(t) = e_{2s} + (e_{2s+1} - e_{2s}) y(t)
+ *     = (A_{2s} + dA o_y) + (B_{2s} + dA d_y + dB o_y) t + dB d_y t^2
+ *     with dA = A_{2s+1} - A_{2s}, dB = B_{2s+1} - B_{2s};
+ *   cell:  f(t) = P_0 + (P_1 - P_0) z(t) - iso, with Q = P_1 - P_0:
+ *     k0 = P_0[0] + Q[0] o_z - iso
+ *     k1 = P_0[1] + Q[0] d_z + Q[1] o_z
+ *     k2 = P_0[2] + Q[1] d_z + Q[2] o_z
+ *     k3 = Q[2] d_z.
+ * Expanded, k3 = (c7 - c6 - c5 + c4 - c3 + c2 + c1 - c0) d_x d_y d_z: Parker's
+ * A.  Every step is linear in (c, iso), so 2^k scaling is exact. */
+void
+vx_cell_poly(const float c[8], const double o[3], const double d[3],
+    double iso, double k[4])
+{
+	double A[4], B[4], P[2][3], Q[3];
+	int j, s;
+
+	for (j = 0; j < 4; j++) {
+		double D = (double)c[2 * j + 1] - (double)c[2 * j];
+
+		A[j] = c[2 * j] + D * o[0];
+		B[j] = D * d[0];
+	}
+	for (s = 0; s < 2; s++) {
+		double dA = A[2 * s + 1] - A[2 * s], dB = B[2 * s + 1] - B[2 * s];
+
+		P[s][0] = A[2 * s] + dA * o[1];
+		P[s][1] = B[2 * s] + dA * d[1] + dB * o[1];
+		P[s][2] = dB * d[1];
+	}
+	for (j = 0; j < 3; j++)
+		Q[j] = P[1][j] - P[0][j];
+	k[0] = (P[0][0] + Q[0] * o[2]) - iso;
+	k[1] = P[0][1] + Q[0] * d[2] + Q[1] * o[2];
+	k[2] = P[0][2] + Q[1] * d[2] + Q[2] * o[2];
+	k[3] = Q[2] * d[2];
+}
+
+double
+vx_cell_poly_eval(const double k[4], double t)
+{
+	return ((k[3] * t + k[2]) * t + k[1]) * t + k[0];
+}
+
+/* f and f' together. */
+static inline double
+eval2(const double k[4], double t, double *df)
+{
+	*df = (3 * k[3] * t + 2 * k[2]) * t + k[1];
+	return ((k[3] * t + k[2]) * t + k[1]) * t + k[0];
+}
+
+/* Sum of the terms' magnitudes at t: the scale of f's rounding error. */
+static inline double
+terms(const double k[4], double t)
+{
+	double a = fabs(t);
+
+	return fabs(k[0]) + a * (fabs(k[1]) + a * (fabs(k[2]) + a * fabs(k[3])));
+}
+
+double
+vx_cell_face_value(const float c[8], int axis, int side, double u, double v)
+{
+	/* in-face axes: the other two, in increasing order */
+	static const int ua[3] = { 1, 0, 0 }, va[3] = { 2, 2, 1 };
+	int base, bu, bv;
+	double c00, c10, c01, c11, lo, hi, r;
+
+	if (axis < 0 || axis > 2)
+		return NAN;
+	base = (side ? 1 : 0) << axis;
+	bu = 1 << ua[axis];
+	bv = 1 << va[axis];
+	c00 = c[base];
+	c10 = c[base | bu];
+	c01 = c[base | bv];
+	c11 = c[base | bu | bv];
+	/* clamps written so that NaN passes through */
+	u = u < 0 ? 0 : u > 1 ? 1 : u;
+	v = v < 0 ? 0 : v > 1 ? 1 : v;
+	r = lerp(lerp(c00, c10, u), lerp(c01, c11, u), v);
+	lo = fmin(fmin(c00, c10), fmin(c01, c11));
+	hi = fmax(fmax(c00, c10), fmax(c01, c11));
+	if (isnan(c00 + c10 + c01 + c11))
+		return NAN;
+	return r < lo ? lo : r > hi ? hi : r;
+}
+
+/* Critical points of the cubic strictly inside (t0, t1), ascending: the
+ * zeros of f' = a t^2 + b t + c (a = 3 k3, b = 2 k2, c = k1) by the stable
+ * quadratic formula, the discriminant by Kahan's fma difference of products
+ * (accurate when the two critical points nearly coincide).  a == 0 (or tiny)
+ * needs no special case beyond a == 0 exactly: the large root then leaves
+ * the interval and the small one is c/q.  Returns their number (0..2). */
+static int
+crit_points(const double k[4], double t0, double t1, double r[2])
+{
+	double a = 3 * k[3], b = 2 * k[2], c = k[1];
+	double x[2];
+	int n = 0, m = 0, i;
+
+	if (a == 0) {
+		if (b == 0)
+			return 0;
+		x[n++] = -c / b;
+	} else {
+		double w = 4 * a * c;
+		double e = fma(-4 * a, c, w);
+		double disc = fma(b, b, -w) + e;
+
+		if (disc < 0)
+			return 0;
+		if (disc == 0) {
+			x[n++] = -b / (2 * a);
+		} else {
+			double q = -0.5 * (b + copysign(sqrt(disc), b));
+
+			x[n++] = q / a;
+			x[n++] = c / q;
+		}
+	}
+	for (i = 0; i < n; i++)
+		if (x[i] > t0 && x[i] < t1)   /* false for NaN */
+			r[m++] = x[i];
+	if (m == 2 && r[0] > r[1]) {
+		double s = r[0];
+		r[0] = r[1];
+		r[1] = s;
+	}
+	if (m == 2 && r[0] == r[1])
+		m = 1;
+	return m;
+}
+
+/* Normalize k (and f0, f1) by a power of two when their magnitude could
+ * overflow or underflow the squares taken below.  Exact, so it changes no
+ * result that was computable without it. */
+static void
+normalize(double k[4], double *f0, double *f1)
+{
+	double m = fmax(fmax(fabs(k[0]), fabs(k[1])), fmax(fabs(k[2]), fabs(k[3])));
+	int e, i;
+
+	if (m == 0 || (m < 0x1p400 && m > 0x1p-400))
+		return;
+	e = ilogb(m);
+	for (i = 0; i < 4; i++)
+		k[i] = ldexp(k[i], -e);
+	*f0 = ldexp(*f0, -e);
+	*f1 = ldexp(*f1, -e);
+}
+
+/* Refinement inside a bracket [a, b] where pos(fa) != pos(fb) (pos(x) is
+ * x >= 0) and f is monotone strictly inside.  *n counts evaluations. */
+static double
+refine_exact(const double k[4], double a, double b, double fa, double fb,
+    double tol, int *n)
+{
+	int sa = fa >= 0;
+	double x, f, df, step, dx, dxold;
+
+	/* start at the secant point: |fa - fb| >= max(|fa|, |fb|) > 0 */
+	x = a + (b - a) * (fa / (fa - fb));
+	if (!(x > a && x < b))
+		x = a + 0.5 * (b - a);
+	dx = dxold = b - a;
+	while (*n < VX_CELL_MAXITER) {
+		f = eval2(k, x, &df);
+		(*n)++;
+		if (f == 0)
+			return x;
+		if ((f >= 0) == sa)
+			a = x;
+		else
+			b = x;
+		if (b - a <= tol)
+			break;
+		/* Newton if it stays strictly inside and at least halves the
+		 * step before last (Numerical Recipes' rtsafe); else bisect */
+		dxold = dx;
+		step = f / df;
+		double xn = x - step;
+		if (!(xn > a && xn < b) || fabs(2 * step) > fabs(dxold)) {
+			dx = 0.5 * (b - a);
+			xn = a + dx;
+		} else {
+			dx = step;
+		}
+		if (xn == x)
+			break;
+		x = xn;
+	}
+	return x < a ? a : x > b ? b : x;
+}
+
+/* Regula falsi, `steps` times, then one last interpolation. */
+static double
+refine_linear(const double k[4], double a, double b, double fa, double fb,
+    int steps, int *n)
+{
+	int sa = fa >= 0, i;
+	double x;
+
+	for (i = 0; i < steps; i++) {
+		double f;
+
+		x = a + (b - a) * (fa / (fa - fb));
+		if (!(x > a && x < b))
+			break;
+		f = vx_cell_poly_eval(k, x);
+		(*n)++;
+		if (f == 0)
+			return x;
+		if ((f >= 0) == sa) {
+			a = x;
+			fa = f;
+		} else {
+			b = x;
+			fb = f;
+		}
+	}
+	x = a + (b - a) * (fa / (fa - fb));
+	return x < a ? a : x > b ? b : x;
+}
+
+int
+vx_cell_first_root(const double k[4], double t0, double t1, double f0,
+    double f1, int solver, double *t, int *iters)
+{
+	double kk[4], r[2], p[4], v[4], tol;
+	int m, i, n = 0;
+
+	if (iters)
+		*iters = 0;
+	if (!(isfinite(k[0]) && isfinite(k[1]) && isfinite(k[2]) &&
+	    isfinite(k[3]) && isfinite(t0) && isfinite(t1) && isfinite(f0) &&
+	    isfinite(f1)) || t0 > t1)
+		return VX_CELL_MISS;
+	if (t0 == t1) {
+		if ((f0 >= 0) == (f1 >= 0))
+			return VX_CELL_MISS;
+		*t = t0;
+		return VX_CELL_CROSS;
+	}
+	memcpy(kk, k, sizeof kk);
+	normalize(kk, &f0, &f1);
+	m = crit_points(kk, t0, t1, r);
+	p[0] = t0;
+	v[0] = f0;
+	for (i = 0; i < m; i++) {
+		p[i + 1] = r[i];
+		v[i + 1] = vx_cell_poly_eval(kk, r[i]);
+	}
+	p[m + 1] = t1;
+	v[m + 1] = f1;
+	for (i = 0; i <= m; i++) {
+		if ((v[i] >= 0) != (v[i + 1] >= 0)) {
+			double a = p[i], b = p[i + 1];
+
+			switch (solver) {
+			case VX_CELL_LINEAR:
+				*t = refine_linear(kk, a, b, v[i], v[i + 1], 0, &n);
+				break;
+			case VX_CELL_NEUBAUER:
+				*t = refine_linear(kk, a, b, v[i], v[i + 1],
+				    VX_CELL_NEUBAUER_ITERS, &n);
+				break;
+			default:
+				tol = 4 * 0x1p-52 * fmax(fabs(t0), fabs(t1));
+				*t = refine_exact(kk, a, b, v[i], v[i + 1], tol, &n);
+				break;
+			}
+			if (iters)
+				*iters = n;
+			return VX_CELL_CROSS;
+		}
+		if (i + 1 <= m &&
+		    fabs(v[i + 1]) <= VX_CELL_TOUCH_TOL * terms(kk, p[i + 1])) {
+			*t = p[i + 1];
+			return VX_CELL_TOUCH;
+		}
+	}
+	return VX_CELL_MISS;
+}
+
+int
+vx_cell_max(const double k[4], double t0, double t1, double *tmax,
+    double *fmax)
+{
+	double kk[4], r[2], bt, bf, f, g0 = 0, g1 = 0;
+	int m, i;
+
+	*tmax = 0;
+	*fmax = -INFINITY;
+	if (!(isfinite(k[0]) && isfinite(k[1]) && isfinite(k[2]) &&
+	    isfinite(k[3]) && isfinite(t0) && isfinite(t1)) || t0 > t1)
+		return 0;
+	memcpy(kk, k, sizeof kk);
+	normalize(kk, &g0, &g1);
+	bt = t0;
+	bf = vx_cell_poly_eval(kk, t0);
+	m = crit_points(kk, t0, t1, r);
+	for (i = 0; i < m; i++) {
+		f = vx_cell_poly_eval(kk, r[i]);
+		if (f > bf) {
+			bf = f;
+			bt = r[i];
+		}
+	}
+	f = vx_cell_poly_eval(kk, t1);
+	if (f > bf) {
+		bf = f;
+		bt = t1;
+	}
+	/* back to the caller's scale (the identity unless normalized) */
+	*tmax = bt;
+	*fmax = vx_cell_poly_eval(k, bt);
+	if (!isfinite(*fmax)) {
+		*tmax = 0;
+		*fmax = -INFINITY;
+		return 0;
+	}
+	return 1;
+}
+
+void
+vx_cell_gradient(const float c[8], const double p[3], double g[3])
+{
+	double dx[4], dy[4], dz[4];
+	int j;
+
+	/* edge differences along each axis, indexed by the other two axes'
+	 * bits in increasing order */
+	for (j = 0; j < 4; j++) {
+		int ix = 2 * j;                          /* x = 0, (y,z) = j */
+		int iy = (j & 1) | ((j >> 1) << 2);      /* y = 0, (x,z) = j */
+		int iz = j;                              /* z = 0, (x,y) = j */
+
+		dx[j] = (double)c[ix + 1] - c[ix];
+		dy[j] = (double)c[iy + 2] - c[iy];
+		dz[j] = (double)c[iz + 4] - c[iz];
+	}
+	g[0] = lerp(lerp(dx[0], dx[1], p[1]), lerp(dx[2], dx[3], p[1]), p[2]);
+	g[1] = lerp(lerp(dy[0], dy[1], p[0]), lerp(dy[2], dy[3], p[0]), p[2]);
+	g[2] = lerp(lerp(dz[0], dz[1], p[0]), lerp(dz[2], dz[3], p[0]), p[1]);
+}
+
+/* n = s * g / |g| if that is finite and |g| > thresh; returns 1 if so. */
+static int
+unit(const double g[3], double s, double thresh, double n[3])
+{
+	double m = fmax(fmax(fabs(g[0]), fabs(g[1])), fabs(g[2]));
+	double x, y, z, len;
+
+	if (!(isfinite(g[0]) && isfinite(g[1]) && isfinite(g[2])) ||
+	    !(m > thresh) || m == 0)
+		return 0;
+	/* divide by the largest component first: no overflow in the squares */
+	x = g[0] / m;
+	y = g[1] / m;
+	z = g[2] / m;
+	len = sqrt(x * x + y * y + z * z);
+	n[0] = s * x / len;
+	n[1] = s * y / len;
+	n[2] = s * z / len;
+	return 1;
+}
+
+int
+vx_cell_normal(const float c[8], const double p[3], const double d[3],
+    double n[3])
+{
+	static const double centre[3] = { 0.5, 0.5, 0.5 };
+	double g[3], lo = c[0], hi = c[0], thresh;
+	int i;
+
+	for (i = 1; i < 8; i++) {
+		lo = fmin(lo, c[i]);
+		hi = fmax(hi, c[i]);
+	}
+	thresh = 0x1p-40 * (hi - lo);   /* fmin/fmax skip NaN; unit() checks */
+	if (isfinite(thresh)) {
+		vx_cell_gradient(c, p, g);
+		if (unit(g, 1, thresh, g)) {
+			if (g[0] * d[0] + g[1] * d[1] + g[2] * d[2] > 0)
+				for (i = 0; i < 3; i++)
+					g[i] = -g[i];
+			memcpy(n, g, sizeof g);
+			return VX_NORMAL_GRADIENT;
+		}
+		vx_cell_gradient(c, centre, g);
+		if (unit(g, 1, thresh, g)) {
+			if (g[0] * d[0] + g[1] * d[1] + g[2] * d[2] > 0)
+				for (i = 0; i < 3; i++)
+					g[i] = -g[i];
+			memcpy(n, g, sizeof g);
+			return VX_NORMAL_CENTER;
+		}
+	}
+	if (unit(d, -1, 0, n))
+		return VX_NORMAL_RAY;
+	n[0] = n[1] = n[2] = 0;
+	return VX_NORMAL_NONE;
+}

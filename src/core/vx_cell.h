@@ -1,0 +1,165 @@
+/* vx_cell.h: ray vs trilinear cell: the cubic along a ray, its first root,
+ * its exact maximum, crack-free face values, analytic gradient and normals.
+ *
+ * Conventions (shared by every function here):
+ * - A cell's corners c[8] are floats; c[i] is the value at local corner
+ *   (i&1, (i>>1)&1, (i>>2)&1) of the unit cube, as vx_grid_cell returns them.
+ *   The field inside is the trilinear interpolation of the corners.
+ * - Points are in cell-local index units: corner 0 at (0,0,0), corner 7 at
+ *   (1,1,1).  A ray is p(t) = o + t d; o is relative to corner 0, d need not
+ *   be normalized, t is the caller's ray parameter (shared across cells).
+ * - All arithmetic is in double.  Every function is pure (no state, no
+ *   allocation, thread-safe); callers count calls for --stats.
+ * - Sign convention: f >= 0 is "inside" (sign(0) = +).  The isosurface is
+ *   the boundary of the closed set {value >= iso}; a hit is a change of that
+ *   sign along the ray (or a touch of zero, see vx_cell_first_root).
+ *
+ * Typical use by a renderer, per cell whose [min, max] brackets iso:
+ *     if (!vx_cell_finite(c)) skip the cell;
+ *     f0 = vx_cell_face_value(c, entry face, u, v) - iso;   (same for f1)
+ *     vx_cell_poly(c, o, d, iso, k);
+ *     if (vx_cell_first_root(k, t0, t1, f0, f1, VX_CELL_EXACT, &t, NULL))
+ *         hit at t; vx_cell_normal(c, o + t d, d, n);
+ * Accuracy: the coefficients are exact up to rounding in the basis of t,
+ * so the root is as accurate as the cubic is well conditioned on [t0, t1].
+ * When |t| is much larger than t1 - t0 (an eye far from the cell), measure
+ * t from a point near the cell instead: o' = o + t0 d (rounded), solve on
+ * [0, t1 - t0], add t0 back.  The face values f0, f1 do not depend on t. */
+#ifndef VX_CELL_H
+#define VX_CELL_H
+
+/* Root solvers: the accuracy knob of vx_cell_first_root.  All three isolate
+ * the first root identically (same hit or miss decision, same bracket);
+ * they differ only in how the bracket is refined.  0 is EXACT, the default. */
+typedef enum vx_cell_solver {
+	VX_CELL_EXACT = 0,     /* safeguarded Newton/bisection to full precision */
+	VX_CELL_NEUBAUER = 1,  /* Marmitt et al. 2004: repeated linear
+	                          interpolation, VX_CELL_NEUBAUER_ITERS steps */
+	VX_CELL_LINEAR = 2,    /* one linear interpolation (secant) step */
+	VX_CELL_SOLVER_LAST
+} vx_cell_solver;
+
+/* Regula falsi steps of VX_CELL_NEUBAUER before its final interpolation. */
+#define VX_CELL_NEUBAUER_ITERS 3
+/* Iteration cap of VX_CELL_EXACT (bisection alone needs at most ~60). */
+#define VX_CELL_MAXITER 100
+/* Touch tolerance: a critical point t_c of f inside (t0, t1) with
+ * |f(t_c)| <= VX_CELL_TOUCH_TOL * (|k0| + |k1 t_c| + |k2| t_c^2 + |k3| |t_c|^3)
+ * counts as a hit at t_c.  2^-40 (about 9.1e-13): over 1000 times Horner's
+ * rounding bound for a cubic (6u times that sum), so a true double root is
+ * never lost to rounding, and far below anything visible.  Relative to the
+ * terms, so scaling values and iso by 2^k changes no decision. */
+#define VX_CELL_TOUCH_TOL 0x1p-40
+
+/* Return values of vx_cell_first_root. */
+enum {
+	VX_CELL_MISS = 0,
+	VX_CELL_CROSS = 1,  /* f changes sign at *t */
+	VX_CELL_TOUCH = 2   /* f touches zero at a critical point *t */
+};
+
+/* Paths taken by vx_cell_normal. */
+enum {
+	VX_NORMAL_NONE = 0,      /* d was zero or not finite: n = (0,0,0) */
+	VX_NORMAL_GRADIENT = 1,  /* the analytic gradient at p */
+	VX_NORMAL_CENTER = 2,    /* gradient vanished: central differences of
+	                            the face averages (the gradient at the cell
+	                            centre) */
+	VX_NORMAL_RAY = 3        /* both vanished: -d normalized */
+};
+
+/* vx_cell_solver_name: "exact", "neubauer", "linear" ("unknown" otherwise).
+ * vx_cell_solver_parse: the inverse; -1 for an unknown name. */
+const char *vx_cell_solver_name(int solver);
+int vx_cell_solver_parse(const char *s);
+
+/* vx_cell_finite: 1 if all eight corners are finite, else 0.  A cell with a
+ * NaN or infinite corner has no surface: callers skip it (the functions
+ * below also never report a hit or a maximum from such a cell). */
+int vx_cell_finite(const float c[8]);
+
+/* vx_cell_trilinear: the trilinear value at p (any p; outside the unit cube
+ * it extrapolates).  Nested linear interpolation along x, then y, then z. */
+double vx_cell_trilinear(const float c[8], const double p[3]);
+
+/* vx_cell_poly: coefficients of f(t) = trilinear(o + t d) - iso
+ * = k[0] + k[1] t + k[2] t^2 + k[3] t^3.  Exact up to rounding; linear in
+ * (c, iso), so scaling both by 2^k scales k exactly.  k[3] is 0 when any
+ * component of d is 0 (axis-parallel rays: k[2] too when two are 0).
+ * Non-finite corners give non-finite k (vx_cell_first_root then misses). */
+void vx_cell_poly(const float c[8], const double o[3], const double d[3],
+    double iso, double k[4]);
+
+/* vx_cell_poly_eval: f(t) by Horner's rule. */
+double vx_cell_poly_eval(const double k[4], double t);
+
+/* vx_cell_face_value: the bilinear value on face (axis, side) (axis 0..2,
+ * side 0 or 1: the face where coordinate `axis` is `side`) at in-face
+ * coordinates (u, v), u along the lower and v along the higher of the other
+ * two axes.  Crack-free contract: the result depends only on the 4 corners
+ * of that face, taken in an order fixed by their in-face position, and on
+ * (u, v); so two cells sharing a face give bit-identical values for the same
+ * (u, v).  u and v are clamped into [0, 1] and the result into [min, max]
+ * of the 4 corners.  NaN u or v, or a NaN or infinite corner, give a
+ * non-finite result (vx_cell_first_root then misses). */
+double vx_cell_face_value(const float c[8], int axis, int side, double u,
+    double v);
+
+/* vx_cell_first_root: the first t in [t0, t1] where f (coefficients k)
+ * changes sign or touches zero.  f0 and f1 are the caller's values at t0 and
+ * t1 (face values minus iso, so neighbouring cells agree on the sign at
+ * their shared face; f(t0) and f(t1) from k are never used).
+ * Method: the sign sequence f0, f(c_1), ..., f(c_m), f1 over the critical
+ * points c_i of f strictly inside (t0, t1) (zeros of f', stable quadratic
+ * formula) decides: the first segment whose ends differ in sign holds the
+ * first crossing (f is monotone there, so exactly one), and a critical point
+ * within VX_CELL_TOUCH_TOL of zero before it is a touch.  A leading
+ * coefficient that is zero or tiny needs no special case.  The bracket is
+ * then refined by `solver`:
+ *   VX_CELL_EXACT: Newton steps kept inside the bracket, bisection when they
+ *     leave it or converge slowly, until the bracket is 4 ulp of
+ *     max(|t0|,|t1|) wide or f(t) == 0: the root of the computed cubic to
+ *     full precision (error about rounding(f) / |f'(t)| beyond that).
+ *   VX_CELL_NEUBAUER: VX_CELL_NEUBAUER_ITERS steps of regula falsi, then a
+ *     final linear interpolation; error at most the width of the last
+ *     bracket (measured: see examples/bench/cellbench.c).
+ *   VX_CELL_LINEAR: one linear interpolation between the bracket's ends;
+ *     error at most the bracket width, second order in it.
+ * Every result is clamped into the isolated bracket, so within [t0, t1].
+ * Touch hits are the critical point itself for every solver.
+ * Returns VX_CELL_MISS (0, *t untouched), VX_CELL_CROSS or VX_CELL_TOUCH.
+ * No hit when t0 > t1, or when any input is not finite.  k all zero (all
+ * corners equal the isovalue, or a ray in a face at the isovalue): f is 0,
+ * i.e. inside, along the whole segment: no hit, unless f0 and f1 differ in
+ * sign (then the hit is the sign change, as for any cubic).  Rationale: the
+ * surface is the boundary of {f >= 0}; the cell lies inside that set, and
+ * where the set ends, the neighbouring cell sees f go from negative to 0 at
+ * the shared face and reports the hit there (once).
+ * With t0 == t1 the answer is t0 if f0 and f1 differ in sign.
+ * iters (may be NULL) gets the number of polynomial evaluations spent in
+ * refinement (0 for a touch or a miss). */
+int vx_cell_first_root(const double k[4], double t0, double t1, double f0,
+    double f1, int solver, double *t, int *iters);
+
+/* vx_cell_max: the exact maximum of the cubic k on [t0, t1]: the larger of
+ * the ends and the critical points inside (stable quadratic formula), ties
+ * broken by the smallest t.  Returns 1 and sets *tmax, *fmax; returns 0 (no
+ * value: *tmax = 0, *fmax = -INFINITY) if any input is not finite or
+ * t0 > t1.  For maximum-intensity projection pass iso = 0 to vx_cell_poly. */
+int vx_cell_max(const double k[4], double t0, double t1, double *tmax,
+    double *fmax);
+
+/* vx_cell_gradient: the analytic gradient of the trilinear field at p, in
+ * index units (value per cell edge): g[a] is the bilinear interpolation of
+ * the four edge differences along axis a. */
+void vx_cell_gradient(const float c[8], const double p[3], double g[3]);
+
+/* vx_cell_normal: unit normal at p with n . d <= 0 (facing the ray).
+ * Uses the gradient at p; if it is not finite or |g| <= 2^-40 times the
+ * corners' range, the gradient at the cell centre (central differences of
+ * the face averages); if that vanishes too, -d normalized.  Returns the path
+ * taken (VX_NORMAL_*); n is never NaN. */
+int vx_cell_normal(const float c[8], const double p[3], const double d[3],
+    double n[3]);
+
+#endif
