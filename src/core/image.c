@@ -298,3 +298,28 @@ vx_image_quantize(vx_image *img, int bits)
 	for (i = 0; i < n; i++)
 		img->px[i] = (float)((double)vx_quantize(img->px[i], maxv) / maxv);
 }
+
+int
+vx_image_flatten(vx_image *dst, const vx_image *src, double scale,
+    const double bg[3], vx_err *e)
+{
+	int ncol = vx_image_ncolor(src), alpha = vx_image_has_alpha(src), rc;
+	double gbg = 0.2126 * bg[0] + 0.7152 * bg[1] + 0.0722 * bg[2];
+	size_t i, n = (size_t)src->w * (size_t)src->h;
+
+	if ((rc = vx_image_alloc(dst, src->w, src->h, ncol, e)) != 0)
+		return rc;
+	memcpy(dst->name, src->name, sizeof dst->name);
+	for (i = 0; i < n; i++) {
+		const float *s = src->px + i * (size_t)src->nc;
+		float *d = dst->px + i * (size_t)ncol;
+		double a = alpha ? s[ncol] : 1;
+
+		for (int c = 0; c < ncol; c++) {
+			double b = ncol == 1 ? gbg : bg[c];
+
+			d[c] = (float)(s[c] * scale + (alpha ? (1 - a) * b : 0));
+		}
+	}
+	return 0;
+}

@@ -112,6 +112,14 @@ vx_quantize(double v, unsigned maxv)
  * (2^bits - 1), bits 1..16: what a PNG of that depth would hold. */
 void vx_image_quantize(vx_image *img, int bits);
 
+/* vx_image_flatten: dst (initialized by this call) gets src's color times
+ * `scale`, composited over the linear background bg: premultiplied color +
+ * (1 - alpha) * bg, without the alpha channel (gray images use bg's Rec. 709
+ * luminance).  nc 1 or 3 images are only scaled.  Values are not repaired:
+ * NaN, inf and negative values pass through. */
+int vx_image_flatten(vx_image *dst, const vx_image *src, double scale,
+    const double bg[3], vx_err *e);
+
 /* ---- stream form: the IMAG chunk (formats/image.md) ----
  * Header keys: name, width, height, channels, colorspace (linear), alpha
  * (premultiplied; only with nc 2 or 4), encoding.  Body: w*h*nc f32 LE,
