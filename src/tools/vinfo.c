@@ -1,0 +1,737 @@
+/* vinfo.c: print what a voxlux stream holds: every chunk, the headers of
+ * content chunks, statistics of volumes and images recomputed from their
+ * samples, and the history; as text or as one JSON object. */
+#include <getopt.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tool.h"
+#include "vx_grid.h"
+#include "vx_image.h"
+#include "vx_stats.h"
+#include "vx_stream.h"
+
+static const char usage[] =
+    "vinfo [--json] [--histogram N] [--chunks] [FILE|-]";
+
+#define MAX_BINS 1000
+#define BAR_WIDTH 40
+
+typedef struct opts {
+	int json;
+	int chunks_only;
+	long bins;
+	const char *in;
+} opts;
+
+/* What vinfo learned about one volume chunk. */
+typedef struct vol_info {
+	vx_grid g;
+	vx_stats st;
+	int hdr_range;          /* the header has a range key */
+	double hr[2];
+	int agrees;             /* header range (if any) equals the samples' */
+	uint64_t *hist;         /* bins counts, NULL when bins is 0 */
+	size_t bodylen;
+} vol_info;
+
+/* What vinfo learned about one image chunk. */
+typedef struct img_info {
+	vx_image img;
+	double min[4], max[4];  /* over finite values; NaN when none */
+	uint64_t nnan, ninf;
+} img_info;
+
+/* The errors found while decoding chunks, reported at the end. */
+static int first_code;
+static int nerrors;
+
+static void
+chunk_error(const vx_chunk *c, const vx_err *e)
+{
+	fprintf(stderr, "%s: chunk %s at %llu: %s\n", tool_name, c->type,
+	    (unsigned long long)c->offset, e->msg);
+	if (first_code == 0)
+		first_code = e->code ? e->code : VX_EINTERNAL;
+	nerrors++;
+}
+
+static void
+parse_args(opts *o, int argc, char **argv)
+{
+	static const struct option lo[] = {
+		{ "json", no_argument, NULL, 'j' },
+		{ "histogram", required_argument, NULL, 'H' },
+		{ "chunks", no_argument, NULL, 'c' },
+		{ "help", no_argument, NULL, 'h' },
+		{ NULL, 0, NULL, 0 },
+	};
+	int ch;
+
+	memset(o, 0, sizeof *o);
+	o->bins = 16;
+	o->in = "-";
+	while ((ch = getopt_long(argc, argv, "", lo, NULL)) != -1) {
+		switch (ch) {
+		case 'j':
+			o->json = 1;
+			break;
+		case 'H':
+			o->bins = tool_parse_long("--histogram", optarg, 0,
+			    MAX_BINS);
+			break;
+		case 'c':
+			o->chunks_only = 1;
+			break;
+		case 'h':
+			printf("usage: %s\n", usage);
+			exit(tool_finish());
+		default:
+			tool_usage_fail(usage, "unknown option");
+		}
+	}
+	if (argc - optind > 1)
+		tool_usage_fail(usage, "at most one input");
+	if (argc - optind == 1)
+		o->in = argv[optind];
+}
+
+/* ---- text output helpers ---- */
+
+/* put_text: n bytes as printable text: valid UTF-8 as is, control
+ * characters and invalid bytes as \xNN (a stream is untrusted input; this
+ * keeps a terminal safe). */
+static void
+put_text(const unsigned char *p, size_t n)
+{
+	size_t i = 0;
+
+	while (i < n) {
+		size_t ok = vx_utf8_check(p + i, n - i), k;
+
+		for (k = 0; k < ok; k++) {
+			unsigned char c = p[i + k];
+
+			if ((c < 0x20 && c != '\t') || c == 0x7f)
+				printf("\\x%02x", c);
+			else
+				putchar(c);
+		}
+		i += ok;
+		if (i < n)
+			printf("\\x%02x", p[i++]);
+	}
+}
+
+static void
+put_str(const char *s)
+{
+	put_text((const unsigned char *)s, strlen(s));
+}
+
+/* ---- JSON output helpers ---- */
+
+/* json_text: n bytes as a JSON string; bytes that are not UTF-8 become
+ * U+FFFD, so the output is always valid JSON. */
+static void
+json_text(const unsigned char *p, size_t n)
+{
+	size_t i = 0;
+
+	putchar('"');
+	while (i < n) {
+		size_t ok = vx_utf8_check(p + i, n - i), k;
+
+		for (k = 0; k < ok; k++) {
+			unsigned char c = p[i + k];
+
+			if (c == '"' || c == '\\')
+				printf("\\%c", c);
+			else if (c == '\n')
+				fputs("\\n", stdout);
+			else if (c == '\t')
+				fputs("\\t", stdout);
+			else if (c == '\r')
+				fputs("\\r", stdout);
+			else if (c < 0x20)
+				printf("\\u%04x", c);
+			else
+				putchar(c);
+		}
+		i += ok;
+		if (i < n) {
+			fputs("\\ufffd", stdout);
+			i++;
+		}
+	}
+	putchar('"');
+}
+
+static void
+json_str(const char *s)
+{
+	json_text((const unsigned char *)s, strlen(s));
+}
+
+/* json_num: a double, or null when it has no JSON spelling. */
+static void
+json_num(double v)
+{
+	if (isfinite(v))
+		printf("%.17g", v);
+	else
+		fputs("null", stdout);
+}
+
+static void
+json_nums(const double *v, int n)
+{
+	int i;
+
+	putchar('[');
+	for (i = 0; i < n; i++) {
+		if (i)
+			putchar(',');
+		json_num(v[i]);
+	}
+	putchar(']');
+}
+
+/* ---- decoding ---- */
+
+static int
+is_content(const char *type)
+{
+	return vx_chunk_is_critical(type) && vx_chunk_is_known(type) &&
+	    memcmp(type, VX_CHUNK_END, 4) != 0;
+}
+
+static int
+decode_volume(const vx_chunk *c, const opts *o, vol_info *v, vx_err *e)
+{
+	const unsigned char *body;
+	vx_hdr h;
+	int rc, found;
+
+	memset(v, 0, sizeof *v);
+	vx_hdr_init(&h);
+	if ((rc = vx_grid_from_chunk(&v->g, c, e)) != 0)
+		return rc;
+	/* the header's range, as written (vx_grid_from_chunk takes it as is) */
+	if ((rc = vx_payload_parse(c, &h, &body, &v->bodylen, e)) == 0)
+		rc = vx_hdr_get_f64_opt(&h, "range", v->hr, 2, &found, e);
+	vx_hdr_free(&h);
+	if (rc != 0)
+		return rc;
+	v->hdr_range = found;
+	vx_grid_stats(&v->g, &v->st);
+	if (found)
+		v->agrees = v->st.has_range && v->hr[0] == v->st.vmin &&
+		    v->hr[1] == v->st.vmax;
+	else
+		v->agrees = 1;
+	if (o->bins > 0 && v->st.has_range) {
+		if ((v->hist = vx_calloc((size_t)o->bins, sizeof *v->hist,
+		    e)) == NULL)
+			return VX_ENOMEM;
+		if ((rc = vx_grid_histogram(&v->g, v->st.vmin, v->st.vmax,
+		    (size_t)o->bins, v->hist, e)) != 0)
+			return rc;
+	}
+	return 0;
+}
+
+static void
+free_volume(vol_info *v)
+{
+	vx_grid_free(&v->g);
+	free(v->hist);
+	v->hist = NULL;
+}
+
+static int
+decode_image(const vx_chunk *c, img_info *m, vx_err *e)
+{
+	size_t i, n;
+	int rc, ch;
+
+	memset(m, 0, sizeof *m);
+	if ((rc = vx_image_from_chunk(&m->img, c, e)) != 0)
+		return rc;
+	for (ch = 0; ch < 4; ch++) {
+		m->min[ch] = INFINITY;
+		m->max[ch] = -INFINITY;
+	}
+	n = vx_image_nvalue(&m->img);
+	for (i = 0; i < n; i++) {
+		double v = m->img.px[i];
+
+		ch = (int)(i % (size_t)m->img.nc);
+		if (isnan(v))
+			m->nnan++;
+		else if (isinf(v))
+			m->ninf++;
+		else {
+			if (v < m->min[ch])
+				m->min[ch] = v;
+			if (v > m->max[ch])
+				m->max[ch] = v;
+		}
+	}
+	for (ch = 0; ch < m->img.nc; ch++)
+		if (m->min[ch] > m->max[ch])
+			m->min[ch] = m->max[ch] = NAN;
+	return 0;
+}
+
+/* decode_text_body: a content chunk whose body is text of `length` bytes
+ * (SCNE): *text gets a malloc'ed copy, *n its length.  No length key: no
+ * text, no error. */
+static int
+decode_text_body(const vx_chunk *c, unsigned char **text, size_t *n,
+    vx_err *e)
+{
+	const unsigned char *body;
+	size_t bodylen;
+	int64_t len;
+	vx_hdr h;
+	int rc, found = 0;
+
+	*text = NULL;
+	*n = 0;
+	vx_hdr_init(&h);
+	if ((rc = vx_payload_parse(c, &h, &body, &bodylen, e)) != 0)
+		goto out;
+	if (vx_hdr_get(&h, "length") == NULL)
+		goto out;
+	found = 1;
+	if ((rc = vx_hdr_get_i64(&h, "length", &len, 1, e)) != 0)
+		goto out;
+	if (len < 0 || (uint64_t)len > SIZE_MAX) {
+		rc = vx_err_set(e, VX_EDATA, "length %lld", (long long)len);
+		goto out;
+	}
+	if ((rc = vx_body_fits(&h, bodylen, (size_t)len, e)) != 0)
+		goto out;
+	if ((*text = vx_malloc((size_t)len + 1, e)) == NULL) {
+		rc = VX_ENOMEM;
+		goto out;
+	}
+	if ((rc = vx_body_decode(&h, body, bodylen, *text, (size_t)len, e))) {
+		free(*text);
+		*text = NULL;
+		goto out;
+	}
+	*n = (size_t)len;
+out:
+	(void)found;
+	vx_hdr_free(&h);
+	return rc;
+}
+
+/* ---- text report ---- */
+
+static void
+text_histogram(const vol_info *v, long bins)
+{
+	double lo = v->st.vmin, hi = v->st.vmax, w = (hi - lo) / (double)bins;
+	uint64_t top = 0;
+	long b;
+
+	for (b = 0; b < bins; b++)
+		if (v->hist[b] > top)
+			top = v->hist[b];
+	printf("    histogram: %ld bins of width %.6g over [%.9g, %.9g]\n",
+	    bins, w, lo, hi);
+	for (b = 0; b < bins; b++) {
+		char label[64];
+		int bar = top ? (int)((v->hist[b] * BAR_WIDTH + top - 1) / top) : 0;
+
+		snprintf(label, sizeof label, "[%.6g, %.6g%c", lo + w * (double)b,
+		    b + 1 == bins ? hi : lo + w * (double)(b + 1),
+		    b + 1 == bins ? ']' : ')');
+		printf("      %-26s %12llu%s%.*s\n", label,
+		    (unsigned long long)v->hist[b], bar ? " " : "", bar,
+		    "########################################");
+	}
+}
+
+static void
+text_volume(const vol_info *v, long bins)
+{
+	const vx_grid *g = &v->g;
+	const vx_stats *st = &v->st;
+	char lay[128];
+
+	vx_layout_string(&g->lay, lay, sizeof lay);
+	printf("  volume: ");
+	put_str(g->name);
+	printf("\n    dims: %lld x %lld x %lld %s (%llu samples)\n",
+	    (long long)g->dims[0], (long long)g->dims[1],
+	    (long long)g->dims[2], vx_type_name(g->type),
+	    (unsigned long long)st->count);
+	printf("    spacing: %.17g %.17g %.17g\n", g->spacing[0], g->spacing[1],
+	    g->spacing[2]);
+	printf("    origin: %.17g %.17g %.17g\n", g->origin[0], g->origin[1],
+	    g->origin[2]);
+	printf("    layout: %s (%zu samples stored, %llu padding)\n", lay,
+	    g->nsample, (unsigned long long)(g->nsample - st->count));
+	printf("    body: %zu bytes for %zu decoded\n", v->bodylen,
+	    g->nsample * vx_type_size(g->type));
+	if (st->has_range)
+		printf("    range: %.9g %.9g", st->vmin, st->vmax);
+	else
+		printf("    range: none (no finite sample)");
+	if (!v->hdr_range)
+		printf(" (recomputed; the header has none)\n");
+	else if (v->agrees)
+		printf(" (recomputed; the header agrees)\n");
+	else
+		printf(" (recomputed; DIFFERS from the header's %.17g %.17g)\n",
+		    v->hr[0], v->hr[1]);
+	if (st->has_range)
+		printf("    mean: %.9g\n", st->mean);
+	printf("    non-finite: %llu NaN, %llu +Inf, %llu -Inf\n",
+	    (unsigned long long)st->nnan, (unsigned long long)st->nposinf,
+	    (unsigned long long)st->nneginf);
+	printf("    crc32: %08x (samples in x-fastest order, little-endian)\n",
+	    (unsigned)st->crc);
+	if (v->hist != NULL)
+		text_histogram(v, bins);
+}
+
+static void
+text_image(const img_info *m)
+{
+	int ch;
+
+	printf("  image: ");
+	put_str(m->img.name);
+	printf("\n    size: %d x %d, %d channel%s\n", m->img.w, m->img.h,
+	    m->img.nc, m->img.nc == 1 ? "" : "s");
+	for (ch = 0; ch < m->img.nc; ch++)
+		printf("    channel %d: min %.9g max %.9g\n", ch, m->min[ch],
+		    m->max[ch]);
+	printf("    non-finite: %llu NaN, %llu Inf\n",
+	    (unsigned long long)m->nnan, (unsigned long long)m->ninf);
+}
+
+/* text_lines: payload text, one indented line per LF-ended line. */
+static void
+text_lines(const unsigned char *p, size_t n, const char *indent)
+{
+	size_t i = 0;
+
+	while (i < n) {
+		const unsigned char *nl = memchr(p + i, '\n', n - i);
+		size_t k = nl ? (size_t)(nl - (p + i)) : n - i;
+
+		fputs(indent, stdout);
+		put_text(p + i, k);
+		putchar('\n');
+		i += k + 1;
+	}
+}
+
+static void
+text_chunk(size_t idx, const vx_chunk *c, const opts *o)
+{
+	vx_err e = { 0, "" };
+	int rc;
+
+	printf("chunk %zu: %s at %llu, length %zu, %s, %s\n", idx, c->type,
+	    (unsigned long long)c->offset, c->len,
+	    vx_chunk_is_critical(c->type) ? "critical" : "ancillary",
+	    vx_chunk_is_known(c->type) ? "known" : "unknown");
+	if (o->chunks_only)
+		return;
+	if (memcmp(c->type, VX_CHUNK_HISTORY, 4) == 0) {
+		printf("  history:\n");
+		text_lines(c->data, c->len, "    ");
+		return;
+	}
+	if (memcmp(c->type, VX_CHUNK_NOTE, 4) == 0) {
+		printf("  note:\n");
+		text_lines(c->data, c->len, "    ");
+		return;
+	}
+	if (!is_content(c->type))
+		return;
+	{
+		const unsigned char *body;
+		size_t bodylen, i;
+		vx_hdr h;
+
+		vx_hdr_init(&h);
+		if ((rc = vx_payload_parse(c, &h, &body, &bodylen, &e)) != 0) {
+			printf("  error: %s\n", e.msg);
+			chunk_error(c, &e);
+			vx_hdr_free(&h);
+			return;
+		}
+		printf("  header:\n");
+		for (i = 0; i < h.n; i++) {
+			printf("    %s: ", h.key[i]);
+			put_str(h.val[i]);
+			putchar('\n');
+		}
+		vx_hdr_free(&h);
+	}
+	if (memcmp(c->type, VX_CHUNK_VOLUME, 4) == 0) {
+		vol_info v;
+
+		if ((rc = decode_volume(c, o, &v, &e)) != 0) {
+			printf("  error: %s\n", e.msg);
+			chunk_error(c, &e);
+		} else {
+			text_volume(&v, o->bins);
+			if (!v.agrees) {
+				vx_err_set(&e, VX_EDATA, "volume: the header's "
+				    "range differs from the samples'");
+				chunk_error(c, &e);
+			}
+		}
+		free_volume(&v);
+	} else if (memcmp(c->type, VX_CHUNK_IMAGE, 4) == 0) {
+		img_info m;
+
+		if ((rc = decode_image(c, &m, &e)) != 0) {
+			printf("  error: %s\n", e.msg);
+			chunk_error(c, &e);
+		} else
+			text_image(&m);
+		vx_image_free(&m.img);
+	} else if (memcmp(c->type, VX_CHUNK_SCENE, 4) == 0) {
+		unsigned char *text;
+		size_t n;
+
+		if ((rc = decode_text_body(c, &text, &n, &e)) != 0) {
+			printf("  error: %s\n", e.msg);
+			chunk_error(c, &e);
+		} else if (text != NULL) {
+			printf("  scene:\n");
+			text_lines(text, n, "    ");
+		}
+		free(text);
+	}
+}
+
+/* ---- JSON report ---- */
+
+static void
+json_volume(const vol_info *v, long bins)
+{
+	const vx_grid *g = &v->g;
+	const vx_stats *st = &v->st;
+	char lay[128];
+	long b;
+
+	vx_layout_string(&g->lay, lay, sizeof lay);
+	printf(",\"volume\":{\"name\":");
+	json_str(g->name);
+	printf(",\"dims\":[%lld,%lld,%lld],\"type\":\"%s\",\"spacing\":",
+	    (long long)g->dims[0], (long long)g->dims[1],
+	    (long long)g->dims[2], vx_type_name(g->type));
+	json_nums(g->spacing, 3);
+	printf(",\"origin\":");
+	json_nums(g->origin, 3);
+	printf(",\"layout\":\"%s\",\"samples\":%llu,\"stored\":%zu,"
+	    "\"body_bytes\":%zu,\"range\":", lay,
+	    (unsigned long long)st->count, g->nsample, v->bodylen);
+	if (st->has_range) {
+		double r[2] = { st->vmin, st->vmax };
+
+		json_nums(r, 2);
+	} else
+		fputs("null", stdout);
+	printf(",\"header_range\":");
+	if (v->hdr_range)
+		json_nums(v->hr, 2);
+	else
+		fputs("null", stdout);
+	printf(",\"range_agrees\":%s,\"mean\":", v->agrees ? "true" : "false");
+	if (st->has_range)
+		json_num(st->mean);
+	else
+		fputs("null", stdout);
+	printf(",\"nan\":%llu,\"posinf\":%llu,\"neginf\":%llu,"
+	    "\"crc32\":\"%08x\"", (unsigned long long)st->nnan,
+	    (unsigned long long)st->nposinf, (unsigned long long)st->nneginf,
+	    (unsigned)st->crc);
+	if (v->hist != NULL) {
+		printf(",\"histogram\":{\"bins\":%ld,\"lo\":", bins);
+		json_num(st->vmin);
+		printf(",\"hi\":");
+		json_num(st->vmax);
+		printf(",\"counts\":[");
+		for (b = 0; b < bins; b++)
+			printf("%s%llu", b ? "," : "",
+			    (unsigned long long)v->hist[b]);
+		printf("]}");
+	}
+	putchar('}');
+}
+
+static void
+json_image(const img_info *m)
+{
+	printf(",\"image\":{\"name\":");
+	json_str(m->img.name);
+	printf(",\"width\":%d,\"height\":%d,\"channels\":%d,\"min\":",
+	    m->img.w, m->img.h, m->img.nc);
+	json_nums(m->min, m->img.nc);
+	printf(",\"max\":");
+	json_nums(m->max, m->img.nc);
+	printf(",\"nan\":%llu,\"inf\":%llu}", (unsigned long long)m->nnan,
+	    (unsigned long long)m->ninf);
+}
+
+/* json_lines: LF-ended lines as a JSON array of strings. */
+static void
+json_lines(const unsigned char *p, size_t n)
+{
+	size_t i = 0;
+
+	putchar('[');
+	while (i < n) {
+		const unsigned char *nl = memchr(p + i, '\n', n - i);
+		size_t k = nl ? (size_t)(nl - (p + i)) : n - i;
+
+		if (i)
+			putchar(',');
+		json_text(p + i, k);
+		i += k + 1;
+	}
+	putchar(']');
+}
+
+static void
+json_error(const vx_chunk *c, const vx_err *e)
+{
+	printf(",\"error\":");
+	json_str(e->msg);
+	chunk_error(c, e);
+}
+
+static void
+json_chunk(size_t idx, const vx_chunk *c, const opts *o)
+{
+	vx_err e = { 0, "" };
+
+	printf("%s{\"index\":%zu,\"type\":", idx ? "," : "", idx);
+	json_text((const unsigned char *)c->type, 4);
+	printf(",\"offset\":%llu,\"length\":%zu,\"critical\":%s,\"known\":%s",
+	    (unsigned long long)c->offset, c->len,
+	    vx_chunk_is_critical(c->type) ? "true" : "false",
+	    vx_chunk_is_known(c->type) ? "true" : "false");
+	if (o->chunks_only)
+		goto done;
+	if (memcmp(c->type, VX_CHUNK_HISTORY, 4) == 0) {
+		printf(",\"history\":");
+		json_lines(c->data, c->len);
+		goto done;
+	}
+	if (memcmp(c->type, VX_CHUNK_NOTE, 4) == 0) {
+		printf(",\"text\":");
+		json_text(c->data, c->len);
+		goto done;
+	}
+	if (!is_content(c->type))
+		goto done;
+	{
+		const unsigned char *body;
+		size_t bodylen, i;
+		vx_hdr h;
+
+		vx_hdr_init(&h);
+		if (vx_payload_parse(c, &h, &body, &bodylen, &e) != 0) {
+			vx_hdr_free(&h);
+			json_error(c, &e);
+			goto done;
+		}
+		printf(",\"header\":{");
+		for (i = 0; i < h.n; i++) {
+			if (i)
+				putchar(',');
+			json_str(h.key[i]);
+			putchar(':');
+			json_str(h.val[i]);
+		}
+		putchar('}');
+		vx_hdr_free(&h);
+	}
+	if (memcmp(c->type, VX_CHUNK_VOLUME, 4) == 0) {
+		vol_info v;
+
+		if (decode_volume(c, o, &v, &e) != 0)
+			json_error(c, &e);
+		else {
+			json_volume(&v, o->bins);
+			if (!v.agrees) {
+				vx_err_set(&e, VX_EDATA, "volume: the header's "
+				    "range differs from the samples'");
+				chunk_error(c, &e);
+			}
+		}
+		free_volume(&v);
+	} else if (memcmp(c->type, VX_CHUNK_IMAGE, 4) == 0) {
+		img_info m;
+
+		if (decode_image(c, &m, &e) != 0)
+			json_error(c, &e);
+		else
+			json_image(&m);
+		vx_image_free(&m.img);
+	} else if (memcmp(c->type, VX_CHUNK_SCENE, 4) == 0) {
+		unsigned char *text;
+		size_t n;
+
+		if (decode_text_body(c, &text, &n, &e) != 0)
+			json_error(c, &e);
+		else if (text != NULL) {
+			printf(",\"text\":");
+			json_text(text, n);
+		}
+		free(text);
+	}
+done:
+	putchar('}');
+}
+
+int
+main(int argc, char **argv)
+{
+	vx_stream s;
+	uint64_t total = VX_SIGNATURE_LEN + 16;   /* signature, end chunk */
+	size_t i;
+	opts o;
+
+	tool_init("vinfo", argc, argv);
+	parse_args(&o, argc, argv);
+	vx_stream_init(&s);
+	tool_read_stream(&s, o.in);
+	for (i = 0; i < s.n; i++)
+		total += 16 + (uint64_t)s.chunk[i].len;
+	if (o.json) {
+		printf("{\"input\":");
+		json_str(strcmp(o.in, "-") ? o.in : "<stdin>");
+		printf(",\"bytes\":%llu,\"chunks\":[", (unsigned long long)total);
+		for (i = 0; i < s.n; i++)
+			json_chunk(i, &s.chunk[i], &o);
+		printf("]}\n");
+	} else {
+		printf("stream: ");
+		put_str(strcmp(o.in, "-") ? o.in : "<stdin>");
+		printf(": %llu bytes, %zu chunk%s and the end chunk\n",
+		    (unsigned long long)total, s.n, s.n == 1 ? "" : "s");
+		for (i = 0; i < s.n; i++)
+			text_chunk(i, &s.chunk[i], &o);
+	}
+	vx_stream_free(&s);
+	tool_finish();
+	if (nerrors > 0)
+		exit(first_code);
+	return 0;
+}
