@@ -157,13 +157,16 @@ vx_cell_face_value(const float c[8], int axis, int side, double u, double v)
  * quadratic formula, the discriminant by Kahan's fma difference of products
  * (accurate when the two critical points nearly coincide).  a == 0 (or tiny)
  * needs no special case beyond a == 0 exactly: the large root then leaves
- * the interval and the small one is c/q.  Returns their number (0..2). */
+ * the interval and the small one is c/q.  ext[i] is 1 for an extremum (f'
+ * changes sign), 0 for the inflection of a double zero of f' (discriminant
+ * exactly 0: f is monotone through it, so it is no touch).  Returns their
+ * number (0..2). */
 static int
-crit_points(const double k[4], double t0, double t1, double r[2])
+crit_points(const double k[4], double t0, double t1, double r[2], int ext[2])
 {
 	double a = 3 * k[3], b = 2 * k[2], c = k[1];
 	double x[2];
-	int n = 0, m = 0, i;
+	int n = 0, m = 0, i, e2 = 1;
 
 	if (a == 0) {
 		if (b == 0)
@@ -178,6 +181,7 @@ crit_points(const double k[4], double t0, double t1, double r[2])
 			return 0;
 		if (disc == 0) {
 			x[n++] = -b / (2 * a);
+			e2 = 0;
 		} else {
 			double q = -0.5 * (b + copysign(sqrt(disc), b));
 
@@ -186,8 +190,10 @@ crit_points(const double k[4], double t0, double t1, double r[2])
 		}
 	}
 	for (i = 0; i < n; i++)
-		if (x[i] > t0 && x[i] < t1)   /* false for NaN */
+		if (x[i] > t0 && x[i] < t1) {   /* false for NaN */
+			ext[m] = e2;
 			r[m++] = x[i];
+		}
 	if (m == 2 && r[0] > r[1]) {
 		double s = r[0];
 		r[0] = r[1];
@@ -294,7 +300,7 @@ vx_cell_first_root(const double k[4], double t0, double t1, double f0,
     double f1, int solver, double *t, int *iters)
 {
 	double kk[4], r[2], p[4], v[4], tol;
-	int m, i, n = 0;
+	int ext[2], m, i, n = 0;
 
 	if (iters)
 		*iters = 0;
@@ -310,7 +316,7 @@ vx_cell_first_root(const double k[4], double t0, double t1, double f0,
 	}
 	memcpy(kk, k, sizeof kk);
 	normalize(kk, &f0, &f1);
-	m = crit_points(kk, t0, t1, r);
+	m = crit_points(kk, t0, t1, r, ext);
 	p[0] = t0;
 	v[0] = f0;
 	for (i = 0; i < m; i++) {
@@ -320,9 +326,25 @@ vx_cell_first_root(const double k[4], double t0, double t1, double f0,
 	p[m + 1] = t1;
 	v[m + 1] = f1;
 	for (i = 0; i <= m; i++) {
+		/* a touch first: an extremum within tolerance of zero ends this
+		 * segment; if f also changes sign on the way, the crossing is
+		 * within the same rounding ambiguity of it (|t - t_c| about
+		 * sqrt(2 |f(t_c)| / |f''(t_c)|)), and the extremum is the
+		 * better answer for a true double root */
+		if (i + 1 <= m && ext[i] &&
+		    fabs(v[i + 1]) <= VX_CELL_TOUCH_TOL * terms(kk, p[i + 1])) {
+			*t = p[i + 1];
+			return VX_CELL_TOUCH;
+		}
 		if ((v[i] >= 0) != (v[i + 1] >= 0)) {
 			double a = p[i], b = p[i + 1];
 
+			/* a zero at either end is the root itself (f(a) = 0 is
+			 * "+", so f leaves zero at a; f(b) = 0: f reaches it) */
+			if (v[i] == 0 || v[i + 1] == 0) {
+				*t = v[i] == 0 ? a : b;
+				return VX_CELL_CROSS;
+			}
 			switch (solver) {
 			case VX_CELL_LINEAR:
 				*t = refine_linear(kk, a, b, v[i], v[i + 1], 0, &n);
@@ -340,11 +362,6 @@ vx_cell_first_root(const double k[4], double t0, double t1, double f0,
 				*iters = n;
 			return VX_CELL_CROSS;
 		}
-		if (i + 1 <= m &&
-		    fabs(v[i + 1]) <= VX_CELL_TOUCH_TOL * terms(kk, p[i + 1])) {
-			*t = p[i + 1];
-			return VX_CELL_TOUCH;
-		}
 	}
 	return VX_CELL_MISS;
 }
@@ -354,7 +371,7 @@ vx_cell_max(const double k[4], double t0, double t1, double *tmax,
     double *fmax)
 {
 	double kk[4], r[2], bt, bf, f, g0 = 0, g1 = 0;
-	int m, i;
+	int ext[2], m, i;
 
 	*tmax = 0;
 	*fmax = -INFINITY;
@@ -365,7 +382,7 @@ vx_cell_max(const double k[4], double t0, double t1, double *tmax,
 	normalize(kk, &g0, &g1);
 	bt = t0;
 	bf = vx_cell_poly_eval(kk, t0);
-	m = crit_points(kk, t0, t1, r);
+	m = crit_points(kk, t0, t1, r, ext);
 	for (i = 0; i < m; i++) {
 		f = vx_cell_poly_eval(kk, r[i]);
 		if (f > bf) {

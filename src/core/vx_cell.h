@@ -112,8 +112,13 @@ double vx_cell_face_value(const float c[8], int axis, int side, double u,
  * Method: the sign sequence f0, f(c_1), ..., f(c_m), f1 over the critical
  * points c_i of f strictly inside (t0, t1) (zeros of f', stable quadratic
  * formula) decides: the first segment whose ends differ in sign holds the
- * first crossing (f is monotone there, so exactly one), and a critical point
- * within VX_CELL_TOUCH_TOL of zero before it is a touch.  A leading
+ * first crossing (f is monotone there, so exactly one).  An extremum whose
+ * |f| is within VX_CELL_TOUCH_TOL (see there) ending a segment at or before
+ * that one is a touch, reported at the extremum, even when rounding puts f
+ * slightly across zero there (the crossing is then within sqrt(2 |f(c)| /
+ * |f''(c)|) of it: the root is that ill-conditioned anyway, and for a true
+ * double root the extremum is the exact answer).  An inflection where f'
+ * has a double zero (e.g. a triple root) is no touch.  A leading
  * coefficient that is zero or tiny needs no special case.  The bracket is
  * then refined by `solver`:
  *   VX_CELL_EXACT: Newton steps kept inside the bracket, bisection when they
@@ -126,7 +131,9 @@ double vx_cell_face_value(const float c[8], int axis, int side, double u,
  *   VX_CELL_LINEAR: one linear interpolation between the bracket's ends;
  *     error at most the bracket width, second order in it.
  * Every result is clamped into the isolated bracket, so within [t0, t1].
- * Touch hits are the critical point itself for every solver.
+ * Touch hits are the critical point itself for every solver, and a bracket
+ * end where the sequence is exactly 0 is returned as is (a surface through
+ * a shared face is hit exactly there, and only once along the ray).
  * Returns VX_CELL_MISS (0, *t untouched), VX_CELL_CROSS or VX_CELL_TOUCH.
  * No hit when t0 > t1, or when any input is not finite.  k all zero (all
  * corners equal the isovalue, or a ray in a face at the isovalue): f is 0,

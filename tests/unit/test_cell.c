@@ -16,6 +16,10 @@
 
 #include "vx_cell.h"
 
+#ifndef RANDOM_N
+#define RANDOM_N 200   /* cases of random_roots (raise for a stress run) */
+#endif
+
 /* The issue's double-root cell: corner (1,1,1) = 27, the others 0; along
  * o = (0,0,1), d = (1,1,-1): p(t) = (t, t, 1-t), so f = 27 t^2 (1-t) - iso. */
 static const float dbl_cell[8] = { 0, 0, 0, 0, 0, 0, 0, 27 };
@@ -67,11 +71,916 @@ double_root(void **state)
 		    VX_CELL_MISS);
 }
 
+
+/* Touches: the double-root cell seen along other parametrizations of the
+ * same line, touched from below and from above, and just beside the
+ * touching isovalue.  Oracle: f = s 27 t'^2 (1-t') - iso with t' the
+ * position along the line (factorization as above; Viete for the crossing). */
+static void
+touches(void **state)
+{
+	static const float neg[8] = { 0, 0, 0, 0, 0, 0, 0, -27 };
+	static const struct {
+		const float *c;
+		double o[3], d[3], t0, t1, iso;
+		int r;
+		double t, tol;
+	} tc[] = {
+		{ dbl_cell, { 0, 0, 1 }, { 1, 1, -1 }, 0, 1, 4, VX_CELL_TOUCH, 2.0 / 3, 1e-12 },
+		/* reversed: t' = 1 - t */
+		{ dbl_cell, { 1, 1, 0 }, { -1, -1, 1 }, 0, 1, 4, VX_CELL_TOUCH, 1.0 / 3, 1e-12 },
+		/* t measured from 5 cells before the cell */
+		{ dbl_cell, { -5, -5, 6 }, { 1, 1, -1 }, 5, 6, 4, VX_CELL_TOUCH, 5 + 2.0 / 3, 1e-12 },
+		/* d not normalized: t' = 3t */
+		{ dbl_cell, { 0, 0, 1 }, { 3, 3, -3 }, 0, 1.0 / 3, 4, VX_CELL_TOUCH, 2.0 / 9, 1e-12 },
+		/* touched from above: f = 4 - 27 t^2 (1-t) >= 0, zero at 2/3 */
+		{ neg, { 0, 0, 1 }, { 1, 1, -1 }, 0, 1, -4, VX_CELL_TOUCH, 2.0 / 3, 1e-12 },
+		/* within the touch tolerance */
+		{ dbl_cell, { 0, 0, 1 }, { 1, 1, -1 }, 0, 1, 4 * (1 + 1e-14), VX_CELL_TOUCH, 2.0 / 3, 1e-12 },
+		{ neg, { 0, 0, 1 }, { 1, 1, -1 }, 0, 1, -4 * (1 + 1e-14), VX_CELL_TOUCH, 2.0 / 3, 1e-12 },
+		/* beyond it: a miss, and two crossings 2.4e-5 apart */
+		{ dbl_cell, { 0, 0, 1 }, { 1, 1, -1 }, 0, 1, 4 * (1 + 1e-9), VX_CELL_MISS, 0, 0 },
+		{ dbl_cell, { 0, 0, 1 }, { 1, 1, -1 }, 0, 1, 4 * (1 - 1e-9), VX_CELL_CROSS, -1, 1e-9 },
+	};
+	double k[4], t;
+
+	(void)state;
+	for (size_t i = 0; i < sizeof tc / sizeof tc[0]; i++) {
+		double p0[3], p1[3], f0, f1, want = tc[i].t;
+
+		for (int a = 0; a < 3; a++) {
+			p0[a] = tc[i].o[a] + tc[i].t0 * tc[i].d[a];
+			p1[a] = tc[i].o[a] + tc[i].t1 * tc[i].d[a];
+		}
+		f0 = vx_cell_trilinear(tc[i].c, p0) - tc[i].iso;
+		f1 = vx_cell_trilinear(tc[i].c, p1) - tc[i].iso;
+		if (want < 0)
+			want = (double)viete(tc[i].iso, 1);
+		vx_cell_poly(tc[i].c, tc[i].o, tc[i].d, tc[i].iso, k);
+		for (int s = 0; s < VX_CELL_SOLVER_LAST; s++) {
+			int r = vx_cell_first_root(k, tc[i].t0, tc[i].t1, f0, f1, s,
+			    &t, NULL);
+			if (r != tc[i].r)
+				fail_msg("touch case %zu solver %d: r %d", i, s, r);
+			if (r && s == VX_CELL_EXACT && !(fabs(t - want) <= tc[i].tol))
+				fail_msg("touch case %zu: t %.17g want %.17g", i, t, want);
+		}
+	}
+}
+
+/* ---- helpers ---- */
+
+/* Hash-based randomness (splitmix64 finalizer): no rand(), reproducible. */
+static uint64_t
+mix(uint64_t x)
+{
+	x += 0x9e3779b97f4a7c15ULL;
+	x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+	x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+	return x ^ (x >> 31);
+}
+
+/* uniform in [0, 1) from (seed, i, j) */
+static double
+uni(uint64_t seed, uint64_t i, uint64_t j)
+{
+	return (double)(mix(seed ^ mix(i ^ mix(j))) >> 11) * 0x1p-53;
+}
+
+/* Oracle field: the trilinear interpolation as the sum of the 8 corner
+ * weights (the textbook form, Parker's eq. (1)), in long double.  Shares no
+ * code or arrangement with the nested interpolation of cell.c. */
+static long double
+tri_l(const float c[8], long double x, long double y, long double z)
+{
+	long double s = 0;
+
+	for (int i = 0; i < 8; i++) {
+		long double w = ((i & 1) ? x : 1 - x) * ((i & 2) ? y : 1 - y) *
+		    ((i & 4) ? z : 1 - z);
+		s += w * c[i];
+	}
+	return s;
+}
+
+typedef struct ray_case {
+	float c[8];
+	double iso, o[3], d[3], t0, t1, f0, f1;
+} ray_case;
+
+static long double
+F(const ray_case *rc, long double t)
+{
+	return tri_l(rc->c, rc->o[0] + t * rc->d[0], rc->o[1] + t * rc->d[1],
+	    rc->o[2] + t * rc->d[2]) - rc->iso;
+}
+
+/* Dense-sampling oracle for the first root: sample F at n+1 points, the
+ * ends taking the caller's signs (f0, f1), find the first sign change and
+ * bisect it in long double.  Returns 0 if no sign change is seen. */
+static int
+oracle_first_root(const ray_case *rc, int n, long double *t)
+{
+	long double t0 = rc->t0, t1 = rc->t1, a = t0, b;
+	int sa = rc->f0 >= 0, sb;
+
+	for (int i = 1; i <= n; i++) {
+		b = t0 + (t1 - t0) * i / n;
+		sb = i == n ? rc->f1 >= 0 : F(rc, b) >= 0;
+		if (sb != sa) {
+			for (int j = 0; j < 80; j++) {
+				long double m = a + (b - a) / 2;
+				if ((F(rc, m) >= 0) == sa)
+					a = m;
+				else
+					b = m;
+			}
+			*t = a + (b - a) / 2;
+			return 1;
+		}
+		a = b;
+	}
+	return 0;
+}
+
+/* A random ray through a random cell.  Corners: uniform in [-1,1], u8-like
+ * integers with iso on or between them, or mixed magnitudes.  The ray joins
+ * random points P, Q on the cube's surface (sometimes on the same face: a
+ * ray in a face plane), parametrized so t runs over [t0, t0 + L], with f0
+ * and f1 the face values at P and Q, as a renderer computes them. */
+static void
+gen_case(uint64_t seed, uint64_t i, ray_case *rc)
+{
+	int kind = (int)(mix(seed ^ mix(i)) % 3);
+	double lo = INFINITY, hi = -INFINITY, P[3], Q[3];
+	int ap, sp, aq, sq;
+	double up, vp, uq, vq, L, t0;
+
+	for (int j = 0; j < 8; j++) {
+		double x = uni(seed, i, j);
+		switch (kind) {
+		case 0: rc->c[j] = (float)(2 * x - 1); break;
+		case 1: rc->c[j] = (float)floor(x * 256); break;
+		default: rc->c[j] = (float)((2 * x - 1) *
+		    pow(10, 6 * uni(seed, i, 20 + j) - 3)); break;
+		}
+		lo = fmin(lo, rc->c[j]);
+		hi = fmax(hi, rc->c[j]);
+	}
+	ap = (int)(uni(seed, i, 11) * 3);
+	sp = uni(seed, i, 12) < 0.5;
+	aq = (int)(uni(seed, i, 13) * 3);
+	sq = uni(seed, i, 14) < 0.5;
+	if (uni(seed, i, 15) < 0.1) {   /* same face: a ray in a face plane */
+		aq = ap;
+		sq = sp;
+	} else if (aq == ap && sq == sp) {
+		sq = !sp;
+	}
+	up = uni(seed, i, 16);
+	vp = uni(seed, i, 17);
+	uq = uni(seed, i, 18);
+	vq = uni(seed, i, 19);
+	{
+		static const int ua[3] = { 1, 0, 0 }, va[3] = { 2, 2, 1 };
+		P[ap] = sp; P[ua[ap]] = up; P[va[ap]] = vp;
+		Q[aq] = sq; Q[ua[aq]] = uq; Q[va[aq]] = vq;
+	}
+	L = uni(seed, i, 30) < 0.5 ? 1 : 3;
+	t0 = uni(seed, i, 31) < 0.5 ? 0 : 1.5;
+	for (int a = 0; a < 3; a++) {
+		rc->d[a] = (Q[a] - P[a]) / L;
+		rc->o[a] = P[a] - t0 * rc->d[a];
+	}
+	rc->t0 = t0;
+	rc->t1 = t0 + L;
+	/* the isovalue: within the corners' range, or (half the time) the
+	 * field at a random point of the ray, so that many rays hit */
+	rc->iso = lo + (hi - lo) * uni(seed, i, 8);
+	if (uni(seed, i, 32) < 0.5) {
+		rc->iso = 0;
+		rc->iso = (double)F(rc, t0 + L * uni(seed, i, 33));
+	}
+	if (kind == 1 && uni(seed, i, 9) < 0.5)
+		rc->iso = floor(rc->iso) + (uni(seed, i, 10) < 0.5 ? 0.5 : 0);
+	rc->f0 = vx_cell_face_value(rc->c, ap, sp, up, vp) - rc->iso;
+	rc->f1 = vx_cell_face_value(rc->c, aq, sq, uq, vq) - rc->iso;
+}
+
+static double
+corner_scale(const float c[8], double iso)
+{
+	double s = fabs(iso);
+
+	for (int i = 0; i < 8; i++)
+		s = fmax(s, fabs(c[i]));
+	return s;
+}
+
+/* ---- the hard cases ---- */
+
+/* A checkerboard cell, corners (-1)^(x+y+z): the field is
+ * (1-2x)(1-2y)(1-2z) (each factor is 1 at 0 and -1 at 1, and a product of
+ * linear factors is trilinear).  Along the main diagonal p = (t,t,t):
+ * f = (1-2t)^3 - iso = 1 - 6t + 12t^2 - 8t^3 - iso; for iso = 0 a triple
+ * root at t = 1/2 (f' = -6(1-2t)^2 has a double root there: the
+ * discriminant is exactly 0).  Oracle: 1-2t = cbrt(iso). */
+static void
+triple_root(void **state)
+{
+	static const float cb[8] = { 1, -1, -1, 1, -1, 1, 1, -1 };
+	static const double o[3] = { 0, 0, 0 }, d[3] = { 1, 1, 1 };
+	/* tol: the root's condition, about u * sum|k_j t^j| / |f'(t)| with
+	 * f' = -6 (1-2t)^2 (u: rounding of k0 = 1 - iso), plus margin */
+	static const struct { double iso, tol; } tc[] = {
+		{ 0, 1e-12 },
+		{ 0.125, 1e-12 },        /* t = 1/4 */
+		{ -0.125, 1e-12 },       /* t = 3/4 */
+		{ 1e-9, 1e-9 },          /* 1-2t = 1e-3: f' = -6e-6 */
+		{ -1e-9, 1e-9 },
+		{ 1e-15, 1e-6 },         /* 1-2t = 1e-5: f' = -6e-10 */
+	};
+	double k[4], t;
+
+	(void)state;
+	vx_cell_poly(cb, o, d, 0, k);
+	assert_true(k[0] == 1 && k[1] == -6 && k[2] == 12 && k[3] == -8);
+	for (size_t i = 0; i < sizeof tc / sizeof tc[0]; i++) {
+		vx_cell_poly(cb, o, d, tc[i].iso, k);
+		int r = vx_cell_first_root(k, 0, 1, 1 - tc[i].iso,
+		    -1 - tc[i].iso, VX_CELL_EXACT, &t, NULL);
+		long double want = (1 - cbrtl(tc[i].iso)) / 2;
+		if (r != VX_CELL_CROSS || !(fabsl(t - want) <= tc[i].tol))
+			fail_msg("triple root case %zu: r %d t %.17g want %.17Lg",
+			    i, r, t, want);
+		for (int s = 1; s < VX_CELL_SOLVER_LAST; s++) {
+			r = vx_cell_first_root(k, 0, 1, 1 - tc[i].iso,
+			    -1 - tc[i].iso, s, &t, NULL);
+			assert_int_equal(r, VX_CELL_CROSS);
+			assert_true(t >= 0 && t <= 1);
+		}
+	}
+}
+
+/* Axis-parallel rays: f is linear (k3 = k2 = 0).  Oracle: along x at
+ * (y, z) the field is e0 + (e1 - e0) x with e0, e1 the values on the two
+ * x faces (the textbook trilinear in long double), so t = (iso-e0)/(e1-e0).
+ * Rays in a face plane (y = 0): f is quadratic (k3 = 0); rays nearly axis
+ * parallel: k3 tiny but nonzero.  Oracle for those: dense sampling with
+ * long double bisection on the textbook trilinear. */
+static void
+degenerate_leading(void **state)
+{
+	static const float c[8] = { 0.5f, 3, -1, 2, 1.25f, -2, 4, 0 };
+	static const struct {
+		double o[3], d[3], t0, t1;
+		int k3zero, k2zero;
+	} tc[] = {
+		{ { 0, 0.3, 0.7 }, { 1, 0, 0 }, 0, 1, 1, 1 },
+		{ { 0.4, 0, 0.2 }, { 0, 1, 0 }, 0, 1, 1, 1 },
+		{ { 0.9, 0.1, 0 }, { 0, 0, 2 }, 0, 0.5, 1, 1 },
+		{ { 0.9, 0.1, 1 }, { 0, 0, -1 }, 0, 1, 1, 1 },
+		{ { 0.2, 0, 0.1 }, { 0.6, 0, 0.8 }, 0, 1.125, 1, 0 },
+		{ { 0, 1, 0 }, { 1, 0, 1 }, 0, 1, 1, 0 },
+		{ { 0, 0.25, 0.5 }, { 1, 1e-9, -1e-9 }, 0, 1, 0, 0 },
+		{ { 0, 0.25, 0.5 }, { 1, 1e-12, 1e-13 }, 0, 1, 0, 0 },
+	};
+	double k[4], t;
+
+	(void)state;
+	for (size_t i = 0; i < sizeof tc / sizeof tc[0]; i++) {
+		ray_case rc;
+		long double want;
+		double p0[3], p1[3];
+
+		memcpy(rc.c, c, sizeof c);
+		memcpy(rc.o, tc[i].o, sizeof rc.o);
+		memcpy(rc.d, tc[i].d, sizeof rc.d);
+		rc.t0 = tc[i].t0;
+		rc.t1 = tc[i].t1;
+		/* the isovalue: the field 37% of the way along (so a root
+		 * exists; for the linear cases it is the only one) */
+		rc.iso = 0;
+		rc.iso = (double)F(&rc, rc.t0 + 0.37L * (rc.t1 - rc.t0));
+		for (int a = 0; a < 3; a++) {
+			p0[a] = rc.o[a] + rc.t0 * rc.d[a];
+			p1[a] = rc.o[a] + rc.t1 * rc.d[a];
+		}
+		rc.f0 = vx_cell_trilinear(c, p0) - rc.iso;
+		rc.f1 = vx_cell_trilinear(c, p1) - rc.iso;
+		vx_cell_poly(c, rc.o, rc.d, rc.iso, k);
+		assert_true((k[3] == 0) == tc[i].k3zero);
+		assert_true((k[2] == 0) == tc[i].k2zero);
+		if (tc[i].k2zero) {
+			/* linear closed form; the axis is the one d moves on */
+			int a = rc.d[0] != 0 ? 0 : rc.d[1] != 0 ? 1 : 2;
+			long double q0[3], q1[3];
+			for (int b = 0; b < 3; b++)
+				q0[b] = q1[b] = rc.o[b];
+			q0[a] = 0;
+			q1[a] = 1;
+			long double e0 = tri_l(c, q0[0], q0[1], q0[2]);
+			long double e1 = tri_l(c, q1[0], q1[1], q1[2]);
+			long double x = (rc.iso - e0) / (e1 - e0);
+			want = (x - rc.o[a]) / rc.d[a];
+		} else {
+			assert_true(oracle_first_root(&rc, 100000, &want));
+		}
+		int r = vx_cell_first_root(k, rc.t0, rc.t1, rc.f0, rc.f1,
+		    VX_CELL_EXACT, &t, NULL);
+		if (r != VX_CELL_CROSS || !(fabsl(t - want) <= 1e-12))
+			fail_msg("degenerate case %zu: r %d t %.17g want %.17Lg",
+			    i, r, t, want);
+	}
+}
+
+/* Corners c_i = i, so the field is x + 2y + 4z exactly (trilinear of a
+ * linear function is itself); the oracle is that plane.  Isovalues equal to
+ * corner values, rays starting or ending on those corners: sign(0) = +
+ * decides.  All corners equal the isovalue: no hit (documented policy); a
+ * flat cell off the isovalue: no hit. */
+static void
+iso_at_corners(void **state)
+{
+	static const float lin[8] = { 0, 1, 2, 3, 4, 5, 6, 7 };
+	static const float flat[8] = { 5, 5, 5, 5, 5, 5, 5, 5 };
+	static const struct {
+		const float *c;
+		double o[3], d[3], iso;
+		int r;          /* expected: VX_CELL_MISS or _CROSS */
+		double t;
+	} tc[] = {
+		/* from corner 0 (value 0) up the diagonal: rho = 7t */
+		{ lin, { 0, 0, 0 }, { 1, 1, 1 }, 0, VX_CELL_MISS, 0 },  /* 0 then + */
+		{ lin, { 0, 0, 0 }, { 1, 1, 1 }, 7, VX_CELL_CROSS, 1 }, /* - then 0 */
+		{ lin, { 0, 0, 0 }, { 1, 1, 1 }, 3, VX_CELL_CROSS, 3.0 / 7 },
+		/* down the diagonal: rho = 7 - 7t */
+		{ lin, { 1, 1, 1 }, { -1, -1, -1 }, 0, VX_CELL_MISS, 0 },
+		{ lin, { 1, 1, 1 }, { -1, -1, -1 }, 7, VX_CELL_CROSS, 0 },
+		/* along edge 0-1 (rho = t) to the corner at the isovalue */
+		{ lin, { 0, 0, 0 }, { 1, 0, 0 }, 1, VX_CELL_CROSS, 1 },
+		/* along edge 1-3 (rho = 1 + 2t) through the face x = 1 */
+		{ lin, { 1, 0, 0 }, { 0, 1, 0 }, 3, VX_CELL_CROSS, 1 },
+		/* all corners at the isovalue: k == 0, no hit */
+		{ flat, { 0, 0.5, 0 }, { 1, 0.2, 1 }, 5, VX_CELL_MISS, 0 },
+		{ flat, { 0, 0, 0 }, { 1, 1, 1 }, 5, VX_CELL_MISS, 0 },
+		/* flat cell off the isovalue */
+		{ flat, { 0, 0, 0 }, { 1, 1, 1 }, 4, VX_CELL_MISS, 0 },
+		{ flat, { 0, 0, 0 }, { 1, 1, 1 }, 6, VX_CELL_MISS, 0 },
+	};
+
+	(void)state;
+	for (size_t i = 0; i < sizeof tc / sizeof tc[0]; i++) {
+		double k[4], p1[3], t = -42, f0, f1;
+
+		for (int a = 0; a < 3; a++)
+			p1[a] = tc[i].o[a] + tc[i].d[a];
+		f0 = vx_cell_trilinear(tc[i].c, tc[i].o) - tc[i].iso;
+		f1 = vx_cell_trilinear(tc[i].c, p1) - tc[i].iso;
+		vx_cell_poly(tc[i].c, tc[i].o, tc[i].d, tc[i].iso, k);
+		for (int s = 0; s < VX_CELL_SOLVER_LAST; s++) {
+			int r = vx_cell_first_root(k, 0, 1, f0, f1, s, &t, NULL);
+			if (r != tc[i].r)
+				fail_msg("corner case %zu solver %d: r %d", i, s, r);
+			if (r == VX_CELL_MISS)
+				assert_true(t == -42);   /* untouched */
+			else if (!(fabs(t - tc[i].t) <= 1e-15))
+				fail_msg("corner case %zu solver %d: t %.17g want %.17g",
+				    i, s, t, tc[i].t);
+		}
+	}
+}
+
+/* Two cells sharing the face x = 1 of a grid whose field is x (iso 1):
+ * the face is exactly on the isosurface.  A ray across both, either way,
+ * gets exactly one hit, at the shared face, because both cells see the
+ * same face value (0, sign +).  Oracle: the plane x = 1.  The same holds
+ * when the second cell is entirely at the isovalue. */
+static void
+shared_face_once(void **state)
+{
+	static const float A[8] = { 0, 1, 0, 1, 0, 1, 0, 1 };     /* x in [0,1] */
+	static const float B[8] = { 1, 2, 1, 2, 1, 2, 1, 2 };     /* x in [1,2] */
+	static const float E[8] = { 1, 1, 1, 1, 1, 1, 1, 1 };     /* all iso */
+	const float *second[2] = { B, E };
+	const double y = 0.375, z = 0.8125, iso = 1;
+
+	(void)state;
+	for (int w = 0; w < 2; w++)
+		for (int dir = 0; dir < 2; dir++) {
+			/* world ray along x from 0 to 2 (or back); t = x or 2 - x */
+			const float *cells[2] = { A, second[w] };
+			int hits = 0;
+			double thit = -1;
+
+			for (int step = 0; step < 2; step++) {
+				int ci = dir ? 1 - step : step;
+				const float *c = cells[ci];
+				double o[3], d[3], k[4], t, t0 = step, t1 = step + 1;
+				double f0, f1;
+
+				/* cell-local: x_local = world x - ci */
+				o[0] = dir ? 2 - ci : -ci;
+				d[0] = dir ? -1 : 1;
+				o[1] = y; o[2] = z; d[1] = d[2] = 0;
+				f0 = vx_cell_face_value(c, 0, dir ? 1 : 0, y, z) - iso;
+				f1 = vx_cell_face_value(c, 0, dir ? 0 : 1, y, z) - iso;
+				vx_cell_poly(c, o, d, iso, k);
+				if (vx_cell_first_root(k, t0, t1, f0, f1,
+				    VX_CELL_EXACT, &t, NULL)) {
+					hits++;
+					thit = t;
+				}
+			}
+			if (hits != 1 || thit != 1)
+				fail_msg("second %d dir %d: %d hits, t %g", w, dir,
+				    hits, thit);
+		}
+}
+
+/* Any NaN or infinite corner: no hit, no maximum, no NaN anywhere. */
+static void
+nonfinite(void **state)
+{
+	static const float vals[3] = { NAN, INFINITY, -INFINITY };
+	static const double o[3] = { 0.1, 0.2, 0.3 }, d[3] = { 0.5, 0.4, 0.3 };
+
+	(void)state;
+	for (int v = 0; v < 3; v++)
+		for (int i = 0; i < 8; i++) {
+			float c[8] = { 1, -1, 2, -2, 3, -3, 0.5f, -0.5f };
+			double k[4], t = 7, tm, fm, n[3], f0, f1;
+			int r;
+
+			c[i] = vals[v];
+			assert_int_equal(vx_cell_finite(c), 0);
+			vx_cell_poly(c, o, d, 0.25, k);
+			f0 = vx_cell_trilinear(c, o) - 0.25;
+			/* even with finite caller values, non-finite k misses */
+			for (int s = 0; s < VX_CELL_SOLVER_LAST; s++) {
+				r = vx_cell_first_root(k, 0, 1, -1, 1, s, &t, NULL);
+				assert_int_equal(r, VX_CELL_MISS);
+				r = vx_cell_first_root(k, 0, 1, f0, 1, s, &t, NULL);
+				assert_int_equal(r, VX_CELL_MISS);
+			}
+			assert_true(t == 7);
+			assert_int_equal(vx_cell_max(k, 0, 1, &tm, &fm), 0);
+			assert_true(tm == 0 && fm == -INFINITY);
+			/* a face holding the bad corner is not finite */
+			f1 = vx_cell_face_value(c, 0, i & 1, 0.5, 0.5);
+			assert_false(isfinite(f1));
+			r = vx_cell_normal(c, o, d, n);
+			assert_true(isfinite(n[0]) && isfinite(n[1]) && isfinite(n[2]));
+			assert_int_equal(r, VX_NORMAL_RAY);
+		}
+	/* non-finite caller values or interval */
+	{
+		double k[4] = { -1, 2, 0, 0 }, t = 7, tm, fm;
+		assert_int_equal(vx_cell_first_root(k, 0, 1, NAN, 1, 0, &t, NULL), 0);
+		assert_int_equal(vx_cell_first_root(k, 0, 1, -1, INFINITY, 0, &t, NULL), 0);
+		assert_int_equal(vx_cell_first_root(k, 0, NAN, -1, 1, 0, &t, NULL), 0);
+		assert_int_equal(vx_cell_first_root(k, -INFINITY, 1, -1, 1, 0, &t, NULL), 0);
+		assert_int_equal(vx_cell_first_root(k, 1, 0, -1, 1, 0, &t, NULL), 0);
+		assert_true(t == 7);
+		assert_int_equal(vx_cell_max(k, 0, INFINITY, &tm, &fm), 0);
+		/* a zero-length interval: the caller's signs decide */
+		assert_int_equal(vx_cell_first_root(k, 0.5, 0.5, -1, 1, 0, &t, NULL),
+		    VX_CELL_CROSS);
+		assert_true(t == 0.5);
+	}
+}
+
+/* Scaling values and isovalue by 2^k changes nothing: bit-identical t and
+ * return code for every solver (oracle: the unscaled run itself; the
+ * arithmetic is exact under power-of-two scaling).  Includes the double
+ * and triple root cells and random cells. */
+static void
+scaling(void **state)
+{
+	static const int ks[] = { -60, -20, 0, 20, 60 };
+
+	(void)state;
+	for (int i = 0; i < 64; i++) {
+		ray_case rc;
+
+		if (i == 0) {
+			memcpy(rc.c, dbl_cell, sizeof rc.c);
+			memcpy(rc.o, dbl_o, sizeof rc.o);
+			memcpy(rc.d, dbl_d, sizeof rc.d);
+			rc.iso = 4;
+			rc.t0 = 0;
+			rc.t1 = 1;
+			rc.f0 = rc.f1 = -4;
+		} else if (i == 1) {
+			static const float cb[8] = { 1, -1, -1, 1, -1, 1, 1, -1 };
+			memcpy(rc.c, cb, sizeof rc.c);
+			rc.o[0] = rc.o[1] = rc.o[2] = 0;
+			rc.d[0] = rc.d[1] = rc.d[2] = 1;
+			rc.iso = 0;
+			rc.t0 = 0;
+			rc.t1 = 1;
+			rc.f0 = 1;
+			rc.f1 = -1;
+		} else {
+			gen_case(7, (uint64_t)i, &rc);
+			if (rc.c[0] == 0 && 0)
+				continue;
+		}
+		for (int s = 0; s < VX_CELL_SOLVER_LAST; s++) {
+			double tref = 0, t, k[4], tm, fm, tmref = 0, fmref = 0;
+			int rref = 0, r;
+
+			for (size_t j = 0; j < sizeof ks / sizeof ks[0]; j++) {
+				float c[8];
+				for (int a = 0; a < 8; a++)
+					c[a] = ldexpf(rc.c[a], ks[j]);
+				vx_cell_poly(c, rc.o, rc.d, ldexp(rc.iso, ks[j]), k);
+				t = -1;
+				r = vx_cell_first_root(k, rc.t0, rc.t1,
+				    ldexp(rc.f0, ks[j]), ldexp(rc.f1, ks[j]), s, &t, NULL);
+				assert_int_equal(vx_cell_max(k, rc.t0, rc.t1, &tm, &fm), 1);
+				if (ks[j] == -60) {
+					rref = r;
+					tref = t;
+					tmref = tm;
+					fmref = ldexp(fm, 60);
+				} else if (r != rref || memcmp(&t, &tref, sizeof t) != 0 ||
+				    tm != tmref || ldexp(fm, -ks[j]) != fmref) {
+					fail_msg("case %d solver %d 2^%d: r %d/%d t %.17g/%.17g",
+					    i, s, ks[j], r, rref, t, tref);
+				}
+			}
+		}
+	}
+}
+
+/* Corners near the float limits (+-1e38, +-FLT_MAX): no overflow, and the
+ * hit is bit-identical to that of the same cell scaled down by 2^-120
+ * (oracle: exact power-of-two scaling, as above), and matches the dense
+ * sampling oracle. */
+static void
+float_limits(void **state)
+{
+	static const float big[][8] = {
+		{ 1e38f, -1e38f, 3e38f, -3e38f, 2e38f, -2.5e38f, 1.5e38f, -1e38f },
+		{ FLT_MAX, -FLT_MAX, -FLT_MAX, FLT_MAX, -FLT_MAX, FLT_MAX, FLT_MAX,
+		  -FLT_MAX },
+		{ 0, 0, 0, 0, 0, 0, 0, FLT_MAX },
+	};
+	static const double isos[] = { 0, 1e37, 0.5 * FLT_MAX };
+	static const double o[3] = { 0.05, 0.1, 0.93 }, d[3] = { 0.9, 0.8, -0.9 };
+
+	(void)state;
+	for (size_t i = 0; i < 3; i++) {
+		ray_case rc;
+		float small[8];
+		double k[4], ks[4], p1[3], t, ts, tm, fm;
+		long double want;
+		int r, rs;
+
+		memcpy(rc.c, big[i], sizeof rc.c);
+		memcpy(rc.o, o, sizeof o);
+		memcpy(rc.d, d, sizeof d);
+		rc.iso = isos[i];
+		rc.t0 = 0;
+		rc.t1 = 1;
+		for (int a = 0; a < 3; a++)
+			p1[a] = o[a] + d[a];
+		rc.f0 = vx_cell_trilinear(rc.c, o) - rc.iso;
+		rc.f1 = vx_cell_trilinear(rc.c, p1) - rc.iso;
+		assert_true(isfinite(rc.f0) && isfinite(rc.f1));
+		for (int a = 0; a < 8; a++)
+			small[a] = ldexpf(rc.c[a], -120);
+		vx_cell_poly(rc.c, o, d, rc.iso, k);
+		vx_cell_poly(small, o, d, ldexp(rc.iso, -120), ks);
+		for (int a = 0; a < 4; a++)
+			assert_true(isfinite(k[a]) && k[a] == ldexp(ks[a], 120));
+		r = vx_cell_first_root(k, 0, 1, rc.f0, rc.f1, 0, &t, NULL);
+		rs = vx_cell_first_root(ks, 0, 1, ldexp(rc.f0, -120),
+		    ldexp(rc.f1, -120), 0, &ts, NULL);
+		assert_int_equal(r, rs);
+		assert_int_equal(r, oracle_first_root(&rc, 100000, &want));
+		if (r) {
+			assert_true(t == ts);
+			assert_true(fabsl(t - want) <= 1e-9);
+		}
+		assert_int_equal(vx_cell_max(k, 0, 1, &tm, &fm), 1);
+		assert_true(isfinite(fm));
+	}
+}
+
+/* Face values: neighbouring cells of a random f32 grid (bricked layout, so
+ * the corners come through vx_grid_cell's tables) give bit-identical values
+ * on their shared face for hashed (u, v); the value lies within the face's
+ * corner range and matches the textbook bilinear form (long double). */
+static void
+face_values_shared(void **state)
+{
+	float a[3][3][3];  /* [z][y][x] samples of a 3x3x3 grid: 8 cells */
+
+	(void)state;
+	for (int rep = 0; rep < 20; rep++) {
+		for (int z = 0; z < 3; z++)
+			for (int y = 0; y < 3; y++)
+				for (int x = 0; x < 3; x++) {
+					double r = uni(99, (uint64_t)rep, (uint64_t)(x + 3 * y + 9 * z));
+					a[z][y][x] = (float)((2 * r - 1) *
+					    pow(10, rep % 5 * 9 - 18));
+				}
+		for (int axis = 0; axis < 3; axis++)
+			for (int cell = 0; cell < 4; cell++) {
+				/* cell pair along axis: lower cell L at 0, upper U at 1 */
+				int off[3] = { 0, 0, 0 }, pos[3];
+				float L[8], U[8];
+				int o1 = axis == 0 ? 1 : 0, o2 = axis == 2 ? 1 : 2;
+
+				pos[axis] = 0;
+				pos[o1] = cell & 1;
+				pos[o2] = cell >> 1;
+				off[axis] = 1;
+				for (int i = 0; i < 8; i++) {
+					int x = pos[0] + (i & 1), y = pos[1] + ((i >> 1) & 1),
+					    z = pos[2] + (i >> 2);
+					L[i] = a[z][y][x];
+					U[i] = a[z + off[2]][y + off[1]][x + off[0]];
+				}
+				for (int j = 0; j < 50; j++) {
+					double u = uni(5, (uint64_t)(rep * 1000 + axis * 100 + cell), (uint64_t)j);
+					double v = uni(6, (uint64_t)(rep * 1000 + axis * 100 + cell), (uint64_t)j);
+					double fl = vx_cell_face_value(L, axis, 1, u, v);
+					double fu = vx_cell_face_value(U, axis, 0, u, v);
+					assert_memory_equal(&fl, &fu, sizeof fl);
+					/* textbook bilinear in long double */
+					int b = 1 << axis, bu = 1 << o1, bv = 1 << o2;
+					long double want =
+					    (1 - (long double)u) * (1 - (long double)v) * L[b] +
+					    (long double)u * (1 - (long double)v) * L[b | bu] +
+					    (1 - (long double)u) * v * L[b | bv] +
+					    (long double)u * v * L[b | bu | bv];
+					double lo = fmin(fmin(L[b], L[b | bu]), fmin(L[b | bv], L[b | bu | bv]));
+					double hi = fmax(fmax(L[b], L[b | bu]), fmax(L[b | bv], L[b | bu | bv]));
+					assert_true(fl >= lo && fl <= hi);
+					assert_true(fabsl(fl - want) <= 1e-14L * fmax(fabs(lo), fabs(hi)));
+					/* the trilinear on that face agrees */
+					double p[3];
+					p[axis] = 1;
+					p[o1] = u;
+					p[o2] = v;
+					assert_true(fabs(vx_cell_trilinear(L, p) - fl) <=
+					    1e-14 * fmax(fabs(lo), fabs(hi)));
+				}
+				/* at the face's corners, the corner values exactly */
+				assert_true(vx_cell_face_value(L, axis, 1, 1, 1) == L[7]);
+				assert_true(vx_cell_face_value(L, axis, 0, 0, 0) == L[0]);
+			}
+	}
+	/* the clamps: (u, v) outside [0,1], and values of wildly different
+	 * magnitude, stay within the corner range */
+	{
+		static const float c[8] = { 1e-30f, 3e30f, -7, 1e20f, 0.1f, 5, 2, 3 };
+		for (int j = 0; j < 200; j++) {
+			double u = 3 * uni(8, 1, (uint64_t)j) - 1, v = 3 * uni(8, 2, (uint64_t)j) - 1;
+			for (int axis = 0; axis < 3; axis++)
+				for (int side = 0; side < 2; side++) {
+					double f = vx_cell_face_value(c, axis, side, u, v);
+					double lo = INFINITY, hi = -INFINITY;
+					for (int i = 0; i < 8; i++)
+						if (((i >> axis) & 1) == side) {
+							lo = fmin(lo, c[i]);
+							hi = fmax(hi, c[i]);
+						}
+					assert_true(f >= lo && f <= hi);
+				}
+		}
+	}
+}
+
+/* Randomized: the first root from EXACT agrees with the dense-sampling
+ * oracle (10^5 samples, long double bisection) within 1e-9 relative, and
+ * no root is reported where the oracle sees none, except touches and
+ * root pairs closer than the sampling step, which are verified by a finer
+ * local oracle.  The other solvers make the same hit-or-miss decision. */
+static void
+random_roots(void **state)
+{
+	int n = RANDOM_N, hits = 0, misses = 0, touches = 0, close_pairs = 0;
+	double worst = 0;
+
+	(void)state;
+	for (int i = 0; i < n; i++) {
+		ray_case rc;
+		double k[4], t = 0, ts;
+		long double want;
+		int r, ro;
+
+		gen_case(1234, (uint64_t)i, &rc);
+		vx_cell_poly(rc.c, rc.o, rc.d, rc.iso, k);
+		r = vx_cell_first_root(k, rc.t0, rc.t1, rc.f0, rc.f1,
+		    VX_CELL_EXACT, &t, NULL);
+		ro = oracle_first_root(&rc, 100000, &want);
+		if (r == VX_CELL_TOUCH)
+			touches++;
+		if (r != VX_CELL_MISS) {
+			assert_true(t >= rc.t0 && t <= rc.t1);
+			if (!ro || t < want - 1e-9 * fmax(1, fabsl(want))) {
+				/* earlier than the sampler saw: a touch or a
+				 * close pair inside one sampling step; check
+				 * that F has a zero there on a fine grid */
+				long double h = (rc.t1 - rc.t0) / 1e5L, m = INFINITY;
+				ray_case lc = rc;
+				long double tl;
+				lc.t0 = fmaxl(rc.t0, t - 2 * h);
+				lc.t1 = fminl(rc.t1, t + 2 * h);
+				lc.f0 = (double)F(&rc, lc.t0);
+				lc.f1 = (double)F(&rc, lc.t1);
+				for (int j = 0; j <= 1000; j++)
+					m = fminl(m, fabsl(F(&rc, lc.t0 + (lc.t1 - lc.t0) * j / 1000)));
+				if (!oracle_first_root(&lc, 1000, &tl) &&
+				    m > 1e-9L * corner_scale(rc.c, rc.iso))
+					fail_msg("case %d: hit at %.17g, oracle %d %.17Lg",
+					    i, t, ro, want);
+				close_pairs++;
+				continue;
+			}
+			double err = (double)fabsl(t - want) / fmax(1, fabsl(want));
+			worst = fmax(worst, err);
+			if (!(err <= 1e-9))
+				fail_msg("case %d: t %.17g oracle %.17Lg", i, t, want);
+			hits++;
+		} else {
+			if (ro)
+				fail_msg("case %d: miss, oracle root %.17Lg", i, want);
+			misses++;
+		}
+		for (int s = 1; s < VX_CELL_SOLVER_LAST; s++) {
+			assert_int_equal(vx_cell_first_root(k, rc.t0, rc.t1, rc.f0,
+			    rc.f1, s, &ts, NULL), r);
+			if (r)
+				assert_true(ts >= rc.t0 && ts <= rc.t1);
+		}
+	}
+	printf("# random_roots: %d hits, %d misses, %d touches, %d close pairs,"
+	    " worst relative error %.3g\n", hits, misses, touches, close_pairs,
+	    worst);
+	assert_true(hits > n / 3 && misses > n / 10);
+	assert_true(close_pairs <= n / 50);
+}
+
+/* vx_cell_max on the double-root cell (iso 0): f = 27 t^2 (1-t) is 0 at
+ * both faces and 4 at t = 2/3 (calculus).  Ties go to the smallest t.
+ * Randomized: never below the dense-sampling maximum (beyond rounding),
+ * within 1e-9 of the long double golden-section refinement of it. */
+static void
+cell_max(void **state)
+{
+	double k[4], tm, fm;
+	int worse = 0;
+	double worst = 0;
+
+	(void)state;
+	vx_cell_poly(dbl_cell, dbl_o, dbl_d, 0, k);
+	assert_int_equal(vx_cell_max(k, 0, 1, &tm, &fm), 1);
+	assert_true(fabs(tm - 2.0 / 3) <= 1e-15 && fabs(fm - 4) <= 1e-14);
+	/* only the ends: t in [0, 0.5] peaks at 0.5 (f increasing there) */
+	assert_int_equal(vx_cell_max(k, 0, 0.5, &tm, &fm), 1);
+	assert_true(tm == 0.5 && fm == 27 * 0.25 * 0.5);
+	/* ties: f = t^2 - t is 0 at both ends: smallest t */
+	{
+		double q[4] = { 0, -1, 1, 0 }, c0[4] = { 3, 0, 0, 0 };
+		assert_int_equal(vx_cell_max(q, 0, 1, &tm, &fm), 1);
+		assert_true(tm == 0 && fm == 0);
+		assert_int_equal(vx_cell_max(c0, -2, 5, &tm, &fm), 1);
+		assert_true(tm == -2 && fm == 3);
+	}
+	for (int i = 0; i < 100; i++) {
+		ray_case rc;
+		long double best = -INFINITY, bt = 0, h, a, b, scale;
+		const int n = 100000;
+
+		gen_case(4321, (uint64_t)i, &rc);
+		rc.iso = 0;
+		vx_cell_poly(rc.c, rc.o, rc.d, 0, k);
+		assert_int_equal(vx_cell_max(k, rc.t0, rc.t1, &tm, &fm), 1);
+		h = ((long double)rc.t1 - rc.t0) / n;
+		for (int j = 0; j <= n; j++) {
+			long double t = rc.t0 + h * j, f = F(&rc, t);
+			if (f > best) {
+				best = f;
+				bt = t;
+			}
+		}
+		scale = corner_scale(rc.c, 0);
+		if (fm < best - 1e-14L * scale) {
+			worse++;
+			fail_msg("case %d: max %.17g below sampled %.17Lg", i, fm, best);
+		}
+		/* golden-section refinement around the best sample */
+		a = fmaxl(rc.t0, bt - h);
+		b = fminl(rc.t1, bt + h);
+		for (int j = 0; j < 100; j++) {
+			long double m1 = b - (b - a) * 0.6180339887498948482L;
+			long double m2 = a + (b - a) * 0.6180339887498948482L;
+			if (F(&rc, m1) >= F(&rc, m2))
+				b = m2;
+			else
+				a = m1;
+		}
+		long double refined = fmaxl(best, F(&rc, (a + b) / 2));
+		double err = (double)(fabsl(fm - refined) / scale);
+		worst = fmax(worst, err);
+		if (!(err <= 1e-9))
+			fail_msg("case %d: max %.17g refined %.17Lg", i, fm, refined);
+		/* and the field at tmax is that maximum */
+		assert_true(fabsl(F(&rc, tm) - fm) <= 1e-12L * scale);
+	}
+	printf("# cell_max: worst relative error %.3g\n", worst);
+	assert_int_equal(worse, 0);
+}
+
+/* Gradient: central differences are exact for a trilinear field along each
+ * axis (it is linear in each coordinate), so the long double central
+ * difference of the textbook form is the oracle.  Normals: unit, facing the
+ * ray, parallel to the gradient; fallbacks at a saddle (x-1/4)(y-1/4)
+ * (gradient 0 at (1/4, 1/4, z), not at the centre) and at the checkerboard
+ * centre and in a flat cell (both vanish: -d). */
+static void
+gradient_normal(void **state)
+{
+	(void)state;
+	for (int i = 0; i < 100; i++) {
+		ray_case rc;
+		double p[3], g[3], n[3];
+		long double h = 0.25L;
+
+		gen_case(77, (uint64_t)i, &rc);
+		for (int a = 0; a < 3; a++)
+			p[a] = uni(78, (uint64_t)i, (uint64_t)a);
+		vx_cell_gradient(rc.c, p, g);
+		for (int a = 0; a < 3; a++) {
+			long double q1[3] = { p[0], p[1], p[2] }, q0[3] = { p[0], p[1], p[2] };
+			q1[a] += h;
+			q0[a] -= h;
+			long double want = (tri_l(rc.c, q1[0], q1[1], q1[2]) -
+			    tri_l(rc.c, q0[0], q0[1], q0[2])) / (2 * h);
+			assert_true(fabsl(g[a] - want) <= 1e-13L * corner_scale(rc.c, 0));
+		}
+		assert_int_equal(vx_cell_normal(rc.c, p, rc.d, n), VX_NORMAL_GRADIENT);
+		double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+		double gl = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+		double dot = n[0] * rc.d[0] + n[1] * rc.d[1] + n[2] * rc.d[2];
+		double cg = (n[0] * g[0] + n[1] * g[1] + n[2] * g[2]) / gl;
+		assert_true(fabs(len - 1) <= 1e-15 && dot <= 0);
+		assert_true(fabs(fabs(cg) - 1) <= 1e-14);
+	}
+	{
+		static const float sad[8] = { 0.0625f, -0.1875f, -0.1875f, 0.5625f,
+		    0.0625f, -0.1875f, -0.1875f, 0.5625f };
+		static const float cb[8] = { 1, -1, -1, 1, -1, 1, 1, -1 };
+		static const float flat[8] = { 2, 2, 2, 2, 2, 2, 2, 2 };
+		const double p[3] = { 0.25, 0.25, 0.6 }, c[3] = { 0.5, 0.5, 0.5 };
+		const double d[3] = { -1, -1, 0 }, dz[3] = { 0, 0, 0 };
+		double n[3];
+
+		/* centre gradient (1/4, 1/4, 0), facing d */
+		assert_int_equal(vx_cell_normal(sad, p, d, n), VX_NORMAL_CENTER);
+		assert_true(fabs(n[0] - sqrt(0.5)) < 1e-15 &&
+		    fabs(n[1] - sqrt(0.5)) < 1e-15 && n[2] == 0);
+		assert_int_equal(vx_cell_normal(cb, c, d, n), VX_NORMAL_RAY);
+		assert_true(fabs(n[0] - sqrt(0.5)) < 1e-15 && n[2] == 0);
+		assert_int_equal(vx_cell_normal(flat, p, d, n), VX_NORMAL_RAY);
+		assert_int_equal(vx_cell_normal(flat, p, dz, n), VX_NORMAL_NONE);
+		assert_true(n[0] == 0 && n[1] == 0 && n[2] == 0);
+	}
+}
+
+static void
+solver_names(void **state)
+{
+	(void)state;
+	for (int s = 0; s < VX_CELL_SOLVER_LAST; s++)
+		assert_int_equal(vx_cell_solver_parse(vx_cell_solver_name(s)), s);
+	assert_int_equal(vx_cell_solver_parse("cardano"), -1);
+	assert_string_equal(vx_cell_solver_name(99), "unknown");
+}
+
 int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(double_root),
+		cmocka_unit_test(touches),
+		cmocka_unit_test(triple_root),
+		cmocka_unit_test(degenerate_leading),
+		cmocka_unit_test(iso_at_corners),
+		cmocka_unit_test(shared_face_once),
+		cmocka_unit_test(nonfinite),
+		cmocka_unit_test(scaling),
+		cmocka_unit_test(float_limits),
+		cmocka_unit_test(face_values_shared),
+		cmocka_unit_test(random_roots),
+		cmocka_unit_test(cell_max),
+		cmocka_unit_test(gradient_normal),
+		cmocka_unit_test(solver_names),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
