@@ -1,0 +1,292 @@
+/* vx_tetmesh.h: tetrahedral meshes with one scalar per vertex: storage, the
+ * TETM chunk, importers (VTK legacy, gmsh), synthetic meshes, the leaf grid
+ * of tet lists (Parker et al. 1999, §4.2) and the watertight ray/tet
+ * isosurface intersection (Appendix B, made crack-free).
+ *
+ * Points are stored as double: every importer's coordinates (float or
+ * double) are kept exactly, the intersection computes in double anyway, and
+ * points are ~1/5 of the tets in a 5-split grid, so they cost ~5 bytes per
+ * tet (against 16 for the indices).  Converting double input to float could
+ * flatten thin tets, which the watertight test would then have to skip.
+ *
+ * formats/tetmesh.md specifies the TETM chunk. */
+#ifndef VX_TETMESH_H
+#define VX_TETMESH_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "vx_err.h"
+#include "vx_grid.h"
+#include "vx_stream.h"
+
+/* Limits, checked before anything is allocated.  Indices are uint32, so
+ * points stay below 2^32 - 1; tets below 2^31 keep 4 * ntet in range of the
+ * leaf lists' uint32 offsets for typical overlap.  Coordinates must be finite
+ * and at most VX_TETMESH_COORD_MAX in magnitude, so that the products of the
+ * intersection test neither overflow nor lose their exact-sign fallback. */
+#define VX_TETMESH_MAX_POINTS ((uint64_t)UINT32_MAX - 1)
+#define VX_TETMESH_MAX_TETS   ((uint64_t)1 << 31)
+#define VX_TETMESH_COORD_MAX  1e30
+#define VX_TETMESH_NAME       64
+
+typedef struct vx_tetmesh {
+	char name[VX_TETMESH_NAME];    /* mesh name, "mesh" by default */
+	char scalar[VX_TETMESH_NAME];  /* scalar name, "scalar" by default */
+	size_t npoint, ntet;
+	double *pts;          /* 3 * npoint: x y z, owned */
+	uint32_t *tet;        /* 4 * ntet vertex indices, owned */
+	float *val;           /* npoint scalar values, owned */
+	double bmin[3], bmax[3]; /* bounding box of all points (valid if npoint) */
+	int has_range;
+	double vmin, vmax;    /* finite value range over all points */
+} vx_tetmesh;
+
+void vx_tetmesh_init(vx_tetmesh *m);
+/* vx_tetmesh_free: release the arrays (m may be zeroed or initialized);
+ * leaves m initialized. */
+void vx_tetmesh_free(vx_tetmesh *m);
+
+/* vx_tetmesh_alloc: initialize m with npoint points and ntet tets, arrays
+ * zeroed, names defaulted.  VX_EDATA when a count exceeds the limits above,
+ * VX_ENOMEM. */
+int vx_tetmesh_alloc(vx_tetmesh *m, size_t npoint, size_t ntet, vx_err *e);
+
+/* vx_tetmesh_set_name / vx_tetmesh_set_scalar: copy a name (truncated to 63
+ * bytes; bytes outside printable ASCII and ':' become '_', an empty name
+ * becomes the default) so it can travel in a chunk header. */
+void vx_tetmesh_set_name(vx_tetmesh *m, const char *name);
+void vx_tetmesh_set_scalar(vx_tetmesh *m, const char *name);
+
+/* vx_tetmesh_validate: check indices < npoint and coordinates finite and
+ * within VX_TETMESH_COORD_MAX; then compute the bounding box and value
+ * range.  Every importer and vx_tetmesh_from_chunk calls it; code that
+ * fills a mesh by hand calls it before use.  VX_EDATA naming the first
+ * offending tet or point. */
+int vx_tetmesh_validate(vx_tetmesh *m, vx_err *e);
+
+/* vx_tetmesh_bbox / vx_tetmesh_range: recompute bmin/bmax, and vmin/vmax
+ * over the finite values (has_range 0 when there is none). */
+void vx_tetmesh_bbox(vx_tetmesh *m);
+void vx_tetmesh_range(vx_tetmesh *m);
+
+/* vx_tetmesh_volume: signed volume of tet t, det(b-a, c-a, d-a) / 6 in
+ * double arithmetic (positive for a right-handed vertex order). */
+double vx_tetmesh_volume(const vx_tetmesh *m, size_t t);
+
+/* vx_tetmesh_degenerate: 1 if the four vertices of tet t are exactly
+ * coplanar (exact orientation predicate: a filtered double evaluation, exact
+ * expansion arithmetic when the filter cannot decide), else 0. */
+int vx_tetmesh_degenerate(const vx_tetmesh *m, size_t t);
+
+/* ---- the TETM chunk (formats/tetmesh.md) ----
+ * Header: name, points, tets, scalar, range, encoding.  Body (LE): points
+ * f64 x 3 x npoint, tets u32 x 4 x ntet, scalars f32 x npoint.
+ * vx_tetmesh_from_chunk bounds the counts by the body's bytes (raw: exact;
+ * zlib: at most 1032 times the compressed size, zlib's largest ratio) before
+ * allocating, then validates (vx_tetmesh_validate). */
+int vx_tetmesh_to_chunk(const vx_tetmesh *m, int zlevel, vx_chunk *c,
+    vx_err *e);
+int vx_tetmesh_from_chunk(vx_tetmesh *m, const vx_chunk *c, vx_err *e);
+/* vx_tetmesh_from_stream: the first TETM chunk (or the one whose name
+ * matches when name is non-NULL); *index (may be NULL) gets its position. */
+int vx_tetmesh_from_stream(vx_tetmesh *m, const vx_stream *s,
+    const char *name, long *index, vx_err *e);
+
+/* ---- import ----
+ * Formats: VTK legacy UNSTRUCTURED_GRID (ASCII or BINARY, versions up to
+ * 5.1 with OFFSETS/CONNECTIVITY) and gmsh .msh 2.x and 4.1 ASCII.  The
+ * scalar is a one-component point array (VTK SCALARS or FIELD array in
+ * POINT_DATA; gmsh $NodeData): the one named opt->scalar, else the first.
+ * Cell policy, both formats: tetrahedra (VTK 10, gmsh 4) are kept; cells of
+ * lower dimension (vertices, lines, triangles, quads, ...) are skipped and
+ * counted; other volume cells (hexahedra, wedges, pyramids, quadratic
+ * tets, ...) are an error naming the type, since dropping them would punch
+ * holes in the volume, unless opt->skip_volume_cells (then counted). */
+enum {
+	VX_TETFMT_UNKNOWN = 0,
+	VX_TETFMT_VTK_ASCII,
+	VX_TETFMT_VTK_BINARY,
+	VX_TETFMT_GMSH2,
+	VX_TETFMT_GMSH4,
+	VX_TETFMT_LAST
+};
+
+typedef struct vx_tetimport_opt {
+	const char *scalar;      /* point array to use; NULL: the first */
+	int skip_volume_cells;   /* 1: skip non-tet volume cells, counted */
+} vx_tetimport_opt;
+
+typedef struct vx_tetimport_info {
+	int format;              /* VX_TETFMT_* */
+	size_t ncell;            /* cells or elements in the file */
+	size_t nskip_lower;      /* skipped: lower-dimensional cells */
+	size_t nskip_volume;     /* skipped: non-tet volume cells (opt) */
+	size_t narray;           /* candidate point arrays seen */
+} vx_tetimport_info;
+
+/* Limit on the decompressed size of a file read by vx_tetmesh_import. */
+#define VX_TETMESH_FILE_MAX ((size_t)1 << 34)
+
+/* vx_tetmesh_import_vtk / _gmsh: parse n bytes at buf (need not be
+ * NUL-terminated) into m (initialized by the call, empty on error).  opt and
+ * info may be NULL.  VX_EDATA for malformed or unsupported input, with
+ * "vtk: ..." / "gmsh: ..." messages and a line number where one helps. */
+int vx_tetmesh_import_vtk(vx_tetmesh *m, const void *buf, size_t n,
+    const vx_tetimport_opt *opt, vx_tetimport_info *info, vx_err *e);
+int vx_tetmesh_import_gmsh(vx_tetmesh *m, const void *buf, size_t n,
+    const vx_tetimport_opt *opt, vx_tetimport_info *info, vx_err *e);
+/* vx_tetmesh_import_mem: detect the format from the content ("# vtk
+ * DataFile" or "$MeshFormat", after optional leading blank space). */
+int vx_tetmesh_import_mem(vx_tetmesh *m, const void *buf, size_t n,
+    const vx_tetimport_opt *opt, vx_tetimport_info *info, vx_err *e);
+/* vx_tetmesh_import: read path (gzip-compressed or plain, decompressed
+ * transparently; at most VX_TETMESH_FILE_MAX bytes), detect the format and
+ * import; the mesh is named after the file (directory and extensions
+ * stripped).  VX_ENOINPUT when the file cannot be opened, VX_EIO on read
+ * errors. */
+int vx_tetmesh_import(vx_tetmesh *m, const char *path,
+    const vx_tetimport_opt *opt, vx_tetimport_info *info, vx_err *e);
+
+/* ---- synthetic meshes (tests, demos) ---- */
+
+/* Scalar function for synthetic meshes: value at world point p. */
+typedef double (*vx_tetsynth_fn)(const double p[3], void *ctx);
+
+enum { VX_TETSPLIT_5 = 5, VX_TETSPLIT_6 = 6 };
+
+/* vx_tetsynth_grid: a rectilinear grid of nc[0] x nc[1] x nc[2] cells
+ * spanning [lo, hi], vertex (i,j,k) at lo + (i,j,k) * (hi-lo)/nc, index
+ * i + (nc0+1) * (j + (nc1+1) * k).  Each cell is split into 5 tets (split 5:
+ * alternating with the parity of i+j+k, as in /work/shared/data's CFD
+ * meshes) or 6 Kuhn tets (split 6: all sharing the cell diagonal from
+ * (i,j,k) to (i+1,j+1,k+1)); both are face-conforming.  Tets are written
+ * cell by cell, i fastest, with positive volume.  Values: fn(p, ctx). */
+int vx_tetsynth_grid(vx_tetmesh *m, const int64_t nc[3], const double lo[3],
+    const double hi[3], int split, vx_tetsynth_fn fn, void *ctx, vx_err *e);
+
+/* vx_tetsynth_cube: the unit cell [lo, hi] as the 6 Kuhn tets (same as
+ * vx_tetsynth_grid with nc = 1 1 1, split 6). */
+int vx_tetsynth_cube(vx_tetmesh *m, const double lo[3], const double hi[3],
+    vx_tetsynth_fn fn, void *ctx, vx_err *e);
+
+/* vx_tetsynth_from_grid: the tet split of a volume: vertex (i,j,k) at the
+ * sample's world position origin + (i,j,k) * spacing, value the sample's,
+ * cells (dims - 1 per axis, each >= 1) split as in vx_tetsynth_grid.  The
+ * mesh's scalar gets g's name. */
+int vx_tetsynth_from_grid(vx_tetmesh *m, const vx_grid *g, int split,
+    vx_err *e);
+
+/* ---- the leaf grid (Parker §4.2) ----
+ * A rectilinear grid over the mesh's bounding box with about `density`
+ * leaves per tet (1 in the paper).  Leaf (i,j,k), index i + n0 * (j + n1 *
+ * k), covers bmin + (i,j,k) * cell ... + cell.  Its tets are
+ * idx[off[l] .. off[l+1]-1] (ascending), every tet whose bounding box,
+ * padded by VX_TETLEAF_PAD leaf widths, overlaps the leaf's closed box.  The
+ * padding makes a hit found at a leaf boundary safe against the rounding of
+ * the traversal's t values.  lmin/lmax: min/max of the vertex values of the
+ * listed tets (tets with a non-finite vertex value are not counted, as they
+ * never hit); an empty leaf has lmin = +inf, lmax = -inf. */
+#define VX_TETLEAF_PAD 1e-6
+#define VX_TETLEAF_MAX_LEAVES ((uint64_t)1 << 31)
+
+typedef struct vx_tetleaf {
+	int64_t dims[3];       /* leaves per axis */
+	double bmin[3];        /* = mesh bmin */
+	double cell[3];        /* leaf size per axis (> 0) */
+	size_t nleaf;          /* product of dims */
+	uint32_t *off;         /* nleaf + 1 offsets into idx, owned */
+	uint32_t *idx;         /* tet indices, off[nleaf] of them, owned */
+	float *lmin, *lmax;    /* nleaf each, owned */
+} vx_tetleaf;
+
+void vx_tetleaf_init(vx_tetleaf *lg);
+void vx_tetleaf_free(vx_tetleaf *lg);
+
+/* vx_tetleaf_dims: the leaf counts the builder picks for a box of extent
+ * ext holding ntet tets at `density` leaves per tet: cubical leaves as far as
+ * the box allows, each axis in 1 .. 2^20, the product near ntet * density. */
+void vx_tetleaf_dims(const double ext[3], size_t ntet, double density,
+    int64_t dims[3]);
+
+/* vx_tetleaf_build: build the leaf grid of a validated mesh (density <= 0
+ * means 1).  Deterministic; two passes over the tets (count, then fill).
+ * VX_EDATA when the lists would exceed 2^32 - 1 entries, VX_ENOMEM. */
+int vx_tetleaf_build(vx_tetleaf *lg, const vx_tetmesh *m, double density,
+    vx_err *e);
+
+/* vx_tetleaf_bytes: memory held by the leaf grid. */
+size_t vx_tetleaf_bytes(const vx_tetleaf *lg);
+
+/* ---- ray vs tet isosurface ----
+ * Within a tet the field is linear, so along a ray it is linear between the
+ * ray's entry and exit points.  Entry and exit faces are found by a
+ * watertight ray/triangle test in the spirit of Woop, Benthin and Wald
+ * (2013): vertices are sheared into ray space (the ray becomes the +z axis
+ * through the origin), each edge gets a 2D edge function whose sign is
+ * exact (the rounded value's sign, with an exact fallback when it rounds to
+ * zero) and whose zeros are resolved by a fixed symbolic perturbation of the
+ * ray; every quantity of a face is computed from its three vertices taken in
+ * ascending index order.  So a face shared by two tets gives both the same
+ * decision, t and value, bit for bit, and a ray through a shared face, edge or
+ * vertex of a conforming mesh crosses a chain of tets with no gap and no
+ * overlap: every change of sign of (f - iso) along it is reported by exactly
+ * one tet.  "Inside" is f >= iso (sign(0) = +): an isovalue equal to a
+ * vertex value puts that vertex inside, so a surface that only touches iso
+ * reports either nothing or two hits at the same t, never one.
+ * Tets with exactly coplanar vertices (zero volume) and tets with a
+ * non-finite vertex value never hit. */
+
+typedef struct vx_tetray {
+	double o[3], d[3];     /* origin, direction (not necessarily unit) */
+	int kx, ky, kz;        /* kz: axis of largest |d|; kx, ky the others */
+	double sx, sy, sz;     /* shear: x' = a[kx] - sx a[kz], z' = sz a[kz] */
+} vx_tetray;
+
+/* vx_tetray_init: set up the ray-space transform for o + t d (d nonzero,
+ * finite). */
+void vx_tetray_init(vx_tetray *r, const double o[3], const double d[3]);
+
+/* vx_tet_segment: where ray r crosses tet t: 1 and t0 <= t1 with the field
+ * values f0, f1 there (computed from the crossed faces alone), or 0 when the
+ * ray misses the tet (or only grazes it: faces seen edge-on are never
+ * crossed).  Degenerate tets are not excluded here. */
+int vx_tet_segment(const vx_tetmesh *m, size_t t, const vx_tetray *r,
+    double *t0, double *f0, double *t1, double *f1);
+
+/* vx_tet_normal: unit gradient of the linear field of tet t (points
+ * towards larger values).  When the gradient is zero or not finite, gives
+ * the unit vector along sgn * d (sgn = +1 when the field grows along the
+ * ray).  Returns 1 when the gradient was used, 0 for the fallback. */
+int vx_tet_normal(const vx_tetmesh *m, size_t t, const vx_tetray *r,
+    int sgn, double n[3]);
+
+/* vx_tet_intersect: the isosurface crossing of ray o + t d in tet `tet`:
+ * 1 with *t in [tmin, tmax) and the unit normal n (the field's gradient
+ * direction; n may be NULL), or 0.  The crossing is at the linear
+ * interpolation of the entry and exit values, clamped into the tet's
+ * [t0, t1].  Convenience form; vx_tet_nearest is the one for many tets. */
+int vx_tet_intersect(const vx_tetmesh *m, uint32_t tet, const double o[3],
+    const double d[3], double iso, double tmin, double tmax, double *t,
+    double n[3]);
+
+typedef struct vx_tethit {
+	double t;              /* ray parameter of the hit */
+	double n[3];           /* unit normal (gradient direction) */
+	uint32_t tet;          /* tet that reported it */
+	int iso;               /* index of the isovalue crossed */
+	int enter;             /* 1: f goes from < iso to >= iso along the ray */
+} vx_tethit;
+
+/* vx_tet_nearest: the nearest crossing in [tmin, tmax) of ray r with the
+ * isosurfaces iso[0..niso-1] among the n tets list[0..n-1] (e.g. one leaf's
+ * list: lg->idx + lg->off[l], lg->off[l+1] - lg->off[l]).  Ties in t go to
+ * the smaller tet index, then the smaller isovalue index, so the result does
+ * not depend on the list's order.  Returns 1 and fills *hit, or 0.  A
+ * traversal calls it per leaf with the leaf's [t_enter, t_exit) and stops at
+ * the first leaf that hits. */
+int vx_tet_nearest(const vx_tetmesh *m, const uint32_t *list, size_t n,
+    const vx_tetray *r, const double *iso, int niso, double tmin,
+    double tmax, vx_tethit *hit);
+
+#endif
