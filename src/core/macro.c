@@ -1,0 +1,1111 @@
+/* macro.c: the multilevel min/max grid, its hierarchical 3D-DDA, and the
+ * MCEL chunk (see vx_macro.h and formats/macrocell.md). */
+#include "vx_macro.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <zlib.h>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+/* Widths beyond this are clamped: a macrocell wider than the leaf grid
+ * covers all of it, and the clamp keeps width products from overflowing. */
+#define WIDTH_CAP ((int64_t)1 << 32)
+
+void
+vx_macro_init(vx_macro *m)
+{
+	int l;
+
+	memset(m, 0, sizeof *m);
+	for (l = 0; l <= VX_MACRO_MAXLEV; l++)
+		m->size[l][0] = m->size[l][1] = m->size[l][2] = 1;
+	m->root[0] = INFINITY;
+	m->root[1] = -INFINITY;
+}
+
+void
+vx_macro_free(vx_macro *m)
+{
+	if (m == NULL)
+		return;
+	free(m->block_);
+	vx_macro_init(m);
+}
+
+int
+vx_macro_default_sizes(vx_type t, int nlev, int sizes[][3])
+{
+	static const int l1[][3] = {
+		[VX_U8] = { 16, 16, 8 }, [VX_U16] = { 16, 8, 8 },
+		[VX_I16] = { 16, 8, 8 }, [VX_F32] = { 8, 8, 8 },
+	};
+	int l, a;
+
+	if (t <= VX_TYPE_UNKNOWN || t >= VX_TYPE_LAST || nlev < 1 ||
+	    nlev > VX_MACRO_MAXLEV)
+		return 0;
+	for (l = 0; l < nlev; l++)
+		for (a = 0; a < 3; a++)
+			sizes[l][a] = l == 0 ? l1[t][a] : l == 1 ?
+			    64 / l1[t][a] : 4;
+	return nlev;
+}
+
+int
+vx_macro_parse_sizes(const char *s, int sizes[][3], vx_err *e)
+{
+	int n = 0, used;
+	const char *p = s;
+
+	for (;;) {
+		if (n == VX_MACRO_MAXLEV) {
+			vx_err_set(e, VX_EUSAGE, "sizes '%.60s': more than %d "
+			    "levels", s, VX_MACRO_MAXLEV);
+			return -1;
+		}
+		if (*p < '0' || *p > '9' ||
+		    sscanf(p, "%5dx%5dx%5d%n", &sizes[n][0], &sizes[n][1],
+		    &sizes[n][2], &used) != 3) {
+			vx_err_set(e, VX_EUSAGE, "sizes '%.60s': expected "
+			    "AxBxC[,DxExF...]", s);
+			return -1;
+		}
+		for (int a = 0; a < 3; a++)
+			if (sizes[n][a] < 1 || sizes[n][a] > VX_MACRO_MAXSIZE) {
+				vx_err_set(e, VX_EUSAGE, "sizes '%.60s': each "
+				    "edge must be in 1..%d", s, VX_MACRO_MAXSIZE);
+				return -1;
+			}
+		p += used;
+		n++;
+		if (*p == '\0')
+			return n;
+		if (*p != ',' || p[1] < '0' || p[1] > '9') {
+			vx_err_set(e, VX_EUSAGE, "sizes '%.60s': expected "
+			    "AxBxC[,DxExF...]", s);
+			return -1;
+		}
+		p++;
+	}
+}
+
+static size_t
+ncells(const vx_macro *m, int l)
+{
+	return (size_t)m->dims[l][0] * (size_t)m->dims[l][1] *
+	    (size_t)m->dims[l][2];
+}
+
+size_t
+vx_macro_bytes(const vx_macro *m)
+{
+	size_t n = 0;
+	int l;
+
+	for (l = m->explicit_leaves ? 0 : 1; l <= m->nlev; l++)
+		n += 2 * sizeof(float) * ncells(m, l);
+	return n;
+}
+
+/* setup: geometry of every level over an n[0] x n[1] x n[2] leaf grid, and
+ * one zeroed allocation for the stored levels (level 0 too when leaf0).
+ * m is initialized here. */
+static int
+setup(vx_macro *m, const int64_t n[3], int nlev, const int sizes[][3],
+    int leaf0, vx_err *e)
+{
+	size_t total = 0, k;
+	float *p;
+	int l, a;
+
+	vx_macro_init(m);
+	if (nlev < 0 || nlev > VX_MACRO_MAXLEV)
+		return vx_err_set(e, VX_EDATA, "macrocells: %d levels (0..%d)",
+		    nlev, VX_MACRO_MAXLEV);
+	for (a = 0; a < 3; a++) {
+		if (n[a] < 0 || n[a] > VX_GRID_MAX_DIM)
+			return vx_err_set(e, VX_EDATA, "macrocells: %lld leaves "
+			    "along an axis (0..%lld)", (long long)n[a],
+			    (long long)VX_GRID_MAX_DIM);
+		m->dims[0][a] = n[a];
+		m->width[0][a] = 1;
+	}
+	m->nlev = nlev;
+	m->explicit_leaves = leaf0;
+	for (l = 1; l <= nlev; l++)
+		for (a = 0; a < 3; a++) {
+			int s = sizes[l - 1][a];
+
+			if (s < 1 || s > VX_MACRO_MAXSIZE)
+				return vx_err_set(e, VX_EDATA, "macrocells: "
+				    "level %d edge %d (1..%d)", l, s,
+				    VX_MACRO_MAXSIZE);
+			m->size[l][a] = s;
+			m->dims[l][a] = (m->dims[l - 1][a] + s - 1) / s;
+			m->width[l][a] = m->width[l - 1][a] * s;
+			if (m->width[l][a] > WIDTH_CAP)
+				m->width[l][a] = WIDTH_CAP;
+		}
+	for (l = leaf0 ? 0 : 1; l <= nlev; l++) {
+		/* each level has at most as many cells as the leaves, whose
+		 * count is below 2^60: no overflow in 64 bits */
+		if (vx_mul_size(&k, ncells(m, l), 2) != 0 ||
+		    vx_add_size(&total, total, k) != 0)
+			return vx_err_set(e, VX_EDATA, "macrocells: too many");
+	}
+	if (total == 0)
+		return 0;
+	if ((p = vx_calloc(total, sizeof(float), e)) == NULL)
+		return vx_err_push(e, "macrocells");
+	m->block_ = p;
+	for (l = leaf0 ? 0 : 1; l <= nlev; l++) {
+		m->mm[l] = p;
+		p += 2 * ncells(m, l);
+	}
+	return 0;
+}
+
+static int
+threads(int nthreads)
+{
+#ifdef _OPENMP
+	return nthreads > 0 ? nthreads : omp_get_max_threads();
+#else
+	(void)nthreads;
+	return 1;
+#endif
+}
+
+/* box_range: min and max of the finite samples of g in the inclusive index
+ * box lo..hi (min > max when there is none). */
+#define BOX_RANGE(T, FINITE)                                             \
+	do {                                                             \
+		const T *d = (const T *)g->data;                         \
+		for (z = lo[2]; z <= hi[2]; z++)                         \
+			for (y = lo[1]; y <= hi[1]; y++) {               \
+				const T *row = d + g->lay.off[1][y] +    \
+				    g->lay.off[2][z];                    \
+				for (x = lo[0]; x <= hi[0]; x++) {       \
+					float v = (float)row[ox[x]];     \
+					if (!(FINITE))                   \
+						continue;                \
+					if (v < mn)                      \
+						mn = v;                  \
+					if (v > mx)                      \
+						mx = v;                  \
+				}                                        \
+			}                                                \
+	} while (0)
+
+static void
+box_range(const vx_grid *g, const int64_t lo[3], const int64_t hi[3],
+    float *out)
+{
+	const int64_t *ox = g->lay.off[0];
+	float mn = INFINITY, mx = -INFINITY;
+	int64_t x, y, z;
+
+	switch (g->type) {
+	case VX_U8: BOX_RANGE(uint8_t, 1); break;
+	case VX_U16: BOX_RANGE(uint16_t, 1); break;
+	case VX_I16: BOX_RANGE(int16_t, 1); break;
+	case VX_F32: BOX_RANGE(float, isfinite(v)); break;
+	default: break;
+	}
+	out[0] = mn;
+	out[1] = mx;
+}
+
+/* reduce: level l's ranges from level l-1's. */
+static void
+reduce(vx_macro *m, int l, int nt)
+{
+	int64_t n = (int64_t)ncells(m, l);
+
+	(void)nt;
+#pragma omp parallel for schedule(dynamic, 64) num_threads(nt)
+	for (int64_t c = 0; c < n; c++) {
+		int64_t q[3], lo[3], hi[3], x, y, z;
+		float mn = INFINITY, mx = -INFINITY;
+		const float *below = m->mm[l - 1];
+
+		q[0] = c % m->dims[l][0];
+		q[1] = c / m->dims[l][0] % m->dims[l][1];
+		q[2] = c / m->dims[l][0] / m->dims[l][1];
+		for (int a = 0; a < 3; a++) {
+			lo[a] = q[a] * m->size[l][a];
+			hi[a] = lo[a] + m->size[l][a];
+			if (hi[a] > m->dims[l - 1][a])
+				hi[a] = m->dims[l - 1][a];
+		}
+		for (z = lo[2]; z < hi[2]; z++)
+			for (y = lo[1]; y < hi[1]; y++)
+				for (x = lo[0]; x < hi[0]; x++) {
+					size_t k = 2 * (size_t)(x +
+					    m->dims[l - 1][0] * (y +
+					    m->dims[l - 1][1] * z));
+
+					if (below[k] < mn)
+						mn = below[k];
+					if (below[k + 1] > mx)
+						mx = below[k + 1];
+				}
+		m->mm[l][2 * c] = mn;
+		m->mm[l][2 * c + 1] = mx;
+	}
+}
+
+static void
+root_from(vx_macro *m, int l)
+{
+	size_t k, n = ncells(m, l);
+
+	m->root[0] = INFINITY;
+	m->root[1] = -INFINITY;
+	for (k = 0; k < n; k++) {
+		if (m->mm[l][2 * k] < m->root[0])
+			m->root[0] = m->mm[l][2 * k];
+		if (m->mm[l][2 * k + 1] > m->root[1])
+			m->root[1] = m->mm[l][2 * k + 1];
+	}
+}
+
+int
+vx_macro_build(vx_macro *m, const vx_grid *g, int nlev, const int sizes[][3],
+    int nthreads, vx_err *e)
+{
+	int64_t n[3];
+	int a, l, rc, nt = threads(nthreads);
+
+	for (a = 0; a < 3; a++)
+		n[a] = g->dims[a] > 1 ? g->dims[a] - 1 : 0;
+	if (n[0] == 0 || n[1] == 0 || n[2] == 0)
+		n[0] = n[1] = n[2] = 0;
+	if ((rc = setup(m, n, nlev, sizes, 0, e)) != 0)
+		return rc;
+	snprintf(m->name, sizeof m->name, "%s", g->name);
+	memcpy(m->vdims, g->dims, sizeof m->vdims);
+	m->vtype = g->type;
+	m->vcrc = vx_macro_grid_crc(g);
+	if (n[0] == 0)
+		return 0;
+	if (nlev == 0) {
+		/* no stored level: the root is the range over all cells */
+		int64_t lo[3] = { 0, 0, 0 }, hi[3];
+		float r[2];
+
+		for (a = 0; a < 3; a++)
+			hi[a] = n[a];
+		box_range(g, lo, hi, r);
+		m->root[0] = r[0];
+		m->root[1] = r[1];
+		return 0;
+	}
+	/* level 1 straight from the samples: a macrocell over cells
+	 * [q w, (q+1) w) covers samples q w .. (q+1) w inclusive */
+	int64_t n1 = (int64_t)ncells(m, 1);
+#pragma omp parallel for schedule(dynamic, 16) num_threads(nt)
+	for (int64_t c = 0; c < n1; c++) {
+		int64_t q[3], lo[3], hi[3];
+
+		q[0] = c % m->dims[1][0];
+		q[1] = c / m->dims[1][0] % m->dims[1][1];
+		q[2] = c / m->dims[1][0] / m->dims[1][1];
+		for (int b = 0; b < 3; b++) {
+			lo[b] = q[b] * m->width[1][b];
+			hi[b] = lo[b] + m->width[1][b];
+			if (hi[b] > n[b])
+				hi[b] = n[b];
+		}
+		box_range(g, lo, hi, m->mm[1] + 2 * c);
+	}
+	for (l = 2; l <= nlev; l++)
+		reduce(m, l, nt);
+	root_from(m, nlev);
+	return 0;
+}
+
+int
+vx_macro_build_explicit(vx_macro *m, const int64_t n[3],
+    const float *leaf_mm, int nlev, const int sizes[][3], int nthreads,
+    vx_err *e)
+{
+	int l, rc, nt = threads(nthreads);
+
+	if ((rc = setup(m, n, nlev, sizes, 1, e)) != 0)
+		return rc;
+	if (ncells(m, 0) == 0)
+		return 0;
+	memcpy(m->mm[0], leaf_mm, 2 * sizeof(float) * ncells(m, 0));
+	for (l = 1; l <= nlev; l++)
+		reduce(m, l, nt);
+	root_from(m, nlev);
+	return 0;
+}
+
+/* ---- the volume's identity ---- */
+
+/* slab_crc: CRC-32 of samples z in logical order, little-endian. */
+static uint32_t
+slab_crc(const vx_grid *g, int64_t z)
+{
+	unsigned char buf[4096];
+	size_t ts = vx_type_size(g->type), k = 0;
+	uLong crc = crc32(0L, Z_NULL, 0);
+	int64_t x, y;
+
+	for (y = 0; y < g->dims[1]; y++) {
+		size_t base = (size_t)(g->lay.off[1][y] + g->lay.off[2][z]);
+
+		for (x = 0; x < g->dims[0]; x++) {
+			size_t i = base + (size_t)g->lay.off[0][x];
+			uint32_t u;
+
+			if (k + 4 > sizeof buf) {
+				crc = crc32(crc, buf, (uInt)k);
+				k = 0;
+			}
+			switch (g->type) {
+			case VX_U8:
+				buf[k] = ((const uint8_t *)g->data)[i];
+				break;
+			case VX_U16:
+				u = ((const uint16_t *)g->data)[i];
+				buf[k] = (unsigned char)u;
+				buf[k + 1] = (unsigned char)(u >> 8);
+				break;
+			case VX_I16:
+				u = (uint16_t)((const int16_t *)g->data)[i];
+				buf[k] = (unsigned char)u;
+				buf[k + 1] = (unsigned char)(u >> 8);
+				break;
+			case VX_F32:
+				memcpy(&u, (const float *)g->data + i, 4);
+				vx_put_le32(buf + k, u);
+				break;
+			default:
+				break;
+			}
+			k += ts;
+		}
+	}
+	return (uint32_t)crc32(crc, buf, (uInt)k);
+}
+
+uint32_t
+vx_macro_grid_crc(const vx_grid *g)
+{
+	size_t ts = vx_type_size(g->type);
+	z_off_t slab = (z_off_t)(g->dims[0] * g->dims[1] * (int64_t)ts);
+	int64_t nz = g->dims[2], z;
+	uint32_t *part;
+	uLong crc = crc32(0L, Z_NULL, 0);
+
+	if (ts == 0 || g->data == NULL)
+		return 0;
+	if ((part = malloc((size_t)nz * sizeof *part)) == NULL) {
+		for (z = 0; z < nz; z++)
+			crc = crc32_combine(crc, slab_crc(g, z), slab);
+		return (uint32_t)crc;
+	}
+#pragma omp parallel for schedule(dynamic, 1)
+	for (int64_t k = 0; k < nz; k++)
+		part[k] = slab_crc(g, k);
+	for (z = 0; z < nz; z++)
+		crc = crc32_combine(crc, part[z], slab);
+	free(part);
+	return (uint32_t)crc;
+}
+
+/* ---- traversal ---- */
+
+typedef struct ray {
+	double o[3], d[3], inv[3];
+	int s[3];              /* direction sign per axis: 1, -1 or 0 */
+	int div[3];            /* 1: crossing times by division */
+	int64_t fixed[3];      /* leaf index along axes with s == 0 */
+} ray;
+
+/* tcross: the time the ray crosses plane x_a = p.  One formula for every
+ * level and walk, so equal planes give bit-identical times. */
+static inline double
+tcross(const ray *r, int a, int64_t p)
+{
+	double x = (double)p - r->o[a];
+
+	return r->div[a] ? x / r->d[a] : x * r->inv[a];
+}
+
+static inline int64_t
+lev_width(const vx_macro *m, int l, int a)
+{
+	return l ? m->width[l][a] : 1;
+}
+
+/* the planes bounding level-l cell c along a, in leaves */
+static inline int64_t
+plane_lo(const vx_macro *m, int l, int a, int64_t c)
+{
+	return c * lev_width(m, l, a);
+}
+
+static inline int64_t
+plane_hi(const vx_macro *m, const int64_t n[3], int l, int a, int64_t c)
+{
+	int64_t p = (c + 1) * lev_width(m, l, a);
+
+	return p < n[a] ? p : n[a];
+}
+
+/* t_exit_of: crossing time of the face level-l cell c leaves through. */
+static inline double
+t_exit_of(const ray *r, const vx_macro *m, const int64_t n[3], int l, int a,
+    int64_t c)
+{
+	if (r->s[a] == 0)
+		return INFINITY;
+	return tcross(r, a, r->s[a] > 0 ? plane_hi(m, n, l, a, c) :
+	    plane_lo(m, l, a, c));
+}
+
+/* find_cell: among level-l cells k0..k1-1 along axis a (s != 0), the one
+ * the ray is in at time t: the last one in walking order whose entry face
+ * is crossed at or before t (post != 0) or strictly before t (post == 0);
+ * the first one if none is.  Binary search: crossing times are monotone. */
+static int64_t
+find_cell(const ray *r, const vx_macro *m, const int64_t n[3], int l, int a,
+    int64_t k0, int64_t k1, double t, int post)
+{
+	int64_t lo = k0, hi = k1 - 1;
+
+	if (r->s[a] > 0) {
+		while (lo < hi) {
+			int64_t mid = lo + (hi - lo + 1) / 2;
+			double tc = tcross(r, a, plane_lo(m, l, a, mid));
+
+			if (post ? tc <= t : tc < t)
+				lo = mid;
+			else
+				hi = mid - 1;
+		}
+	} else {
+		while (lo < hi) {
+			int64_t mid = lo + (hi - lo) / 2;
+			double tc = tcross(r, a, plane_hi(m, n, l, a, mid));
+
+			if (post ? tc <= t : tc < t)
+				hi = mid;
+			else
+				lo = mid + 1;
+		}
+	}
+	return lo;
+}
+
+static inline int
+brackets(float lo, float hi, const float *vals, int nvals)
+{
+	int k;
+
+	if (nvals <= 0)
+		return 1;
+	for (k = 0; k < nvals; k++)
+		if (lo <= vals[k] && vals[k] <= hi)
+			return 1;
+	return 0;
+}
+
+/* walk: the traversal behind both public entry points.  top is the level
+ * whose DDA starts the walk (0: flat).  n: leaf dims.  mm0: stored leaf
+ * ranges or NULL. */
+static int
+walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
+    const float *mm0, const double o[3], const double d[3], double tmin,
+    double tmax, const float *vals, int nvals, vx_visit_fn fn, void *ctx,
+    vx_trav_stats *st)
+{
+	int64_t c[VX_MACRO_MAXLEV + 1][3];     /* current cell per level */
+	int64_t rlo[VX_MACRO_MAXLEV + 1][3];   /* its siblings' index range */
+	int64_t rhi[VX_MACRO_MAXLEV + 1][3];
+	double tn[VX_MACRO_MAXLEV + 1][3];     /* next face crossing per axis */
+	int64_t leaf[3];
+	vx_trav_stats s;
+	vx_leaf_visit v;
+	double ta = tmin, tb = tmax, t;
+	int a, l, e, start, rc = 0;
+	ray r;
+
+	memset(&s, 0, sizeof s);
+	s.rays = 1;
+	if (n[0] <= 0 || n[1] <= 0 || n[2] <= 0 || !(ta <= tb))
+		goto done;
+	for (a = 0; a < 3; a++) {
+		double ad = fabs(d[a]);
+
+		if (!isfinite(o[a]) || !isfinite(d[a]))
+			goto done;
+		r.o[a] = o[a];
+		r.d[a] = d[a];
+		r.s[a] = d[a] > 0 ? 1 : d[a] < 0 ? -1 : 0;
+		r.div[a] = !(ad >= 0x1p-1000 && ad <= 0x1p1000);
+		r.inv[a] = r.s[a] ? 1.0 / d[a] : 0.0;
+		r.fixed[a] = 0;
+		if (r.s[a] == 0) {
+			if (!(o[a] >= 0 && o[a] <= (double)n[a]))
+				goto done;
+			r.fixed[a] = (int64_t)floor(o[a]);
+			if (r.fixed[a] > n[a] - 1)
+				r.fixed[a] = n[a] - 1;
+		} else {
+			double t0 = tcross(&r, a, r.s[a] > 0 ? 0 : n[a]);
+			double t1 = tcross(&r, a, r.s[a] > 0 ? n[a] : 0);
+
+			if (t0 > ta)
+				ta = t0;
+			if (t1 < tb)
+				tb = t1;
+		}
+	}
+	if (!(ta <= tb))
+		goto done;
+	if (top > 0 && nvals > 0 && !brackets(m->root[0], m->root[1], vals,
+	    nvals))
+		goto done;
+
+	/* the start leaf and its ancestors (post-crossing at ta) */
+	e = -1;
+	for (a = 0; a < 3; a++) {
+		if (r.s[a] == 0) {
+			leaf[a] = r.fixed[a];
+			continue;
+		}
+		leaf[a] = find_cell(&r, m, n, 0, a, 0, n[a], ta, 1);
+		if (tcross(&r, a, r.s[a] > 0 ? leaf[a] : leaf[a] + 1) == ta)
+			e = a;
+	}
+	for (l = 0; l <= top; l++)
+		for (a = 0; a < 3; a++)
+			c[l][a] = leaf[a] / lev_width(m, l, a);
+	for (a = 0; a < 3; a++) {
+		rlo[top][a] = 0;
+		rhi[top][a] = top ? m->dims[top][a] : n[a];
+		tn[top][a] = t_exit_of(&r, m, n, top, a, c[top][a]);
+	}
+	l = top;
+	t = ta;
+	start = 1;
+
+	for (;;) {
+		double texit;
+		int ax;
+
+		if (l == 0) {
+			float lo, hi;
+
+			if (g != NULL) {
+				vx_grid_cell(g, c[0][0], c[0][1], c[0][2], v.c);
+				lo = INFINITY;
+				hi = -INFINITY;
+				for (int k = 0; k < 8; k++) {
+					float x = v.c[k];
+
+					if (!isfinite(x))
+						continue;
+					if (x < lo)
+						lo = x;
+					if (x > hi)
+						hi = x;
+				}
+			} else if (mm0 != NULL) {
+				size_t k = 2 * (size_t)(c[0][0] + n[0] *
+				    (c[0][1] + n[1] * c[0][2]));
+
+				lo = mm0[k];
+				hi = mm0[k + 1];
+			} else {
+				lo = -INFINITY;
+				hi = INFINITY;
+			}
+			ax = tn[0][1] < tn[0][0] ? 1 : 0;
+			if (tn[0][2] < tn[0][ax])
+				ax = 2;
+			texit = tn[0][ax];
+			if (brackets(lo, hi, vals, nvals)) {
+				memcpy(v.i, c[0], sizeof v.i);
+				v.leaf = c[0][0] + n[0] * (c[0][1] + n[1] *
+				    c[0][2]);
+				v.t0 = t;
+				v.t1 = texit < tb ? texit : tb;
+				v.entry_axis = e;
+				v.entry_side = e >= 0 && r.s[e] < 0;
+				v.exit_axis = texit <= tb && r.s[ax] ? ax : -1;
+				v.exit_side = v.exit_axis >= 0 && r.s[ax] > 0;
+				v.lo = lo;
+				v.hi = hi;
+				s.leaves++;
+				if ((rc = fn(ctx, &v)) != 0)
+					goto done;
+			} else
+				s.culled++;
+		} else {
+			const float *p = m->mm[l] + 2 * (size_t)(c[l][0] +
+			    m->dims[l][0] * (c[l][1] + m->dims[l][1] * c[l][2]));
+
+			s.macro[l]++;
+			if (brackets(p[0], p[1], vals, nvals)) {
+				/* descend into the child the ray is in at t */
+				int k = l - 1;
+
+				for (a = 0; a < 3; a++) {
+					int64_t k0 = c[l][a] * m->size[l][a];
+					int64_t k1 = k0 + m->size[l][a];
+					int64_t dk = k ? m->dims[k][a] : n[a];
+
+					if (k1 > dk)
+						k1 = dk;
+					rlo[k][a] = k0;
+					rhi[k][a] = k1;
+					if (start)
+						;  /* c[k] set from the start leaf */
+					else if (r.s[a] == 0)
+						c[k][a] = r.fixed[a] /
+						    lev_width(m, k, a);
+					else if (a == e)
+						c[k][a] = r.s[a] > 0 ? k0 : k1 - 1;
+					else
+						/* tied axes before e were
+						 * crossed first, after e not */
+						c[k][a] = find_cell(&r, m, n, k, a,
+						    k0, k1, t, a < e);
+					tn[k][a] = t_exit_of(&r, m, n, k, a,
+					    c[k][a]);
+				}
+				l = k;
+				continue;
+			}
+			ax = tn[l][1] < tn[l][0] ? 1 : 0;
+			if (tn[l][2] < tn[l][ax])
+				ax = 2;
+			texit = tn[l][ax];
+		}
+		/* leave this cell through face ax at texit */
+		if (!(texit < tb))
+			break;
+		start = 0;
+		for (;;) {
+			c[l][ax] += r.s[ax];
+			if (c[l][ax] >= rlo[l][ax] && c[l][ax] < rhi[l][ax])
+				break;
+			if (l == top)
+				goto done;
+			l++;   /* left the parent too, through the same face */
+		}
+		tn[l][ax] = t_exit_of(&r, m, n, l, ax, c[l][ax]);
+		t = texit;
+		e = ax;
+	}
+done:
+	if (st != NULL) {
+		for (l = 0; l <= VX_MACRO_MAXLEV; l++)
+			st->macro[l] += s.macro[l];
+		st->leaves += s.leaves;
+		st->culled += s.culled;
+		st->rays += s.rays;
+	}
+	return rc;
+}
+
+static int
+fits(const vx_macro *m, const vx_grid *g)
+{
+	int64_t n[3];
+
+	for (int a = 0; a < 3; a++)
+		n[a] = g->dims[a] > 1 ? g->dims[a] - 1 : 0;
+	if (n[0] == 0 || n[1] == 0 || n[2] == 0)
+		n[0] = n[1] = n[2] = 0;
+	return n[0] == m->dims[0][0] && n[1] == m->dims[0][1] &&
+	    n[2] == m->dims[0][2];
+}
+
+int
+vx_macro_traverse(const vx_macro *m, const vx_grid *g, const double o[3],
+    const double d[3], double tmin, double tmax, const float *vals,
+    int nvals, vx_visit_fn fn, void *ctx, vx_trav_stats *st)
+{
+	if (g != NULL && !fits(m, g))
+		return -1;
+	return walk(m, m->nlev, m->dims[0], g, g ? NULL : m->mm[0], o, d,
+	    tmin, tmax, vals, nvals, fn, ctx, st);
+}
+
+int
+vx_macro_traverse_flat(const vx_macro *m, const vx_grid *g,
+    const double o[3], const double d[3], double tmin, double tmax,
+    const float *vals, int nvals, vx_visit_fn fn, void *ctx,
+    vx_trav_stats *st)
+{
+	int64_t n[3];
+
+	if (m == NULL) {
+		if (g == NULL)
+			return -1;
+		for (int a = 0; a < 3; a++)
+			n[a] = g->dims[a] > 1 ? g->dims[a] - 1 : 0;
+		if (n[0] == 0 || n[1] == 0 || n[2] == 0)
+			n[0] = n[1] = n[2] = 0;
+		return walk(NULL, 0, n, g, NULL, o, d, tmin, tmax, vals, nvals,
+		    fn, ctx, st);
+	}
+	if (g != NULL && !fits(m, g))
+		return -1;
+	return walk(m, 0, m->dims[0], g, g ? NULL : m->mm[0], o, d, tmin,
+	    tmax, vals, nvals, fn, ctx, st);
+}
+
+/* ---- the MCEL chunk ---- */
+
+static int
+sizes_string(const vx_macro *m, char *buf, size_t n)
+{
+	size_t k = 0;
+	int l;
+
+	buf[0] = '\0';
+	for (l = 1; l <= m->nlev && k < n; l++)
+		k += (size_t)snprintf(buf + k, n - k, "%s%dx%dx%d",
+		    l > 1 ? " " : "", m->size[l][0], m->size[l][1],
+		    m->size[l][2]);
+	return k < n ? 0 : -1;
+}
+
+int
+vx_macro_to_chunk(const vx_macro *m, int zlevel, vx_chunk *c, vx_err *e)
+{
+	size_t nbytes = vx_macro_bytes(m), k;
+	unsigned char *body = NULL;
+	char sz[VX_MACRO_MAXLEV * 16 + 1], key[16];
+	vx_hdr h;
+	int l, rc;
+
+	vx_hdr_init(&h);
+	if (sizes_string(m, sz, sizeof sz) != 0) {
+		rc = vx_err_set(e, VX_EINTERNAL, "macrocells: sizes too long");
+		goto out;
+	}
+	if ((rc = vx_hdr_set(&h, "leaves", e, "%s", m->explicit_leaves ?
+	    "explicit" : "cells")) != 0)
+		goto out;
+	if (!m->explicit_leaves &&
+	    ((rc = vx_hdr_set(&h, "volume", e, "%s", m->name)) ||
+	    (rc = vx_hdr_set(&h, "volume-dims", e, "%lld %lld %lld",
+	    (long long)m->vdims[0], (long long)m->vdims[1],
+	    (long long)m->vdims[2])) ||
+	    (rc = vx_hdr_set(&h, "volume-type", e, "%s",
+	    vx_type_name(m->vtype))) ||
+	    (rc = vx_hdr_set(&h, "volume-crc32", e, "%08x",
+	    (unsigned)m->vcrc))))
+		goto out;
+	if ((rc = vx_hdr_set(&h, "leaf-dims", e, "%lld %lld %lld",
+	    (long long)m->dims[0][0], (long long)m->dims[0][1],
+	    (long long)m->dims[0][2])) ||
+	    (rc = vx_hdr_set(&h, "levels", e, "%d", m->nlev)) ||
+	    (rc = vx_hdr_set(&h, "sizes", e, "%s", sz)))
+		goto out;
+	for (l = 1; l <= m->nlev; l++) {
+		snprintf(key, sizeof key, "dims-%d", l);
+		if ((rc = vx_hdr_set(&h, key, e, "%lld %lld %lld",
+		    (long long)m->dims[l][0], (long long)m->dims[l][1],
+		    (long long)m->dims[l][2])) != 0)
+			goto out;
+	}
+	if (m->root[0] <= m->root[1])
+		rc = vx_hdr_set(&h, "range", e, "%.9g %.9g", (double)m->root[0],
+		    (double)m->root[1]);
+	else
+		rc = vx_hdr_set(&h, "range", e, "empty");
+	if (rc != 0 || (rc = vx_hdr_set(&h, "nonfinite", e, "ignored")) != 0)
+		goto out;
+	if (nbytes > 0 && (body = vx_malloc(nbytes, e)) == NULL) {
+		rc = VX_ENOMEM;
+		goto out;
+	}
+	k = 0;
+	for (l = m->explicit_leaves ? 0 : 1; l <= m->nlev; l++) {
+		size_t i, nl = 2 * ncells(m, l);
+
+		for (i = 0; i < nl; i++, k++) {
+			uint32_t u;
+
+			memcpy(&u, &m->mm[l][i], 4);
+			vx_put_le32(body + 4 * k, u);
+		}
+	}
+	rc = vx_payload_make(c, VX_CHUNK_MACRO, &h, body, nbytes, zlevel, e);
+out:
+	free(body);
+	vx_hdr_free(&h);
+	if (rc != 0)
+		vx_err_push(e, "macrocells");
+	return rc;
+}
+
+/* parse_sizes_hdr: the "sizes" value: nlev space-separated AxBxC. */
+static int
+parse_sizes_hdr(const char *v, int nlev, int sizes[][3], vx_err *e)
+{
+	const char *p = v;
+	int l, used;
+
+	for (l = 0; l < nlev; l++) {
+		if (l > 0 && *p++ != ' ')
+			goto bad;
+		if (*p < '0' || *p > '9' ||
+		    sscanf(p, "%5dx%5dx%5d%n", &sizes[l][0], &sizes[l][1],
+		    &sizes[l][2], &used) != 3)
+			goto bad;
+		p += used;
+	}
+	if (*p == '\0')
+		return 0;
+bad:
+	return vx_err_set(e, VX_EDATA, "sizes '%.60s': expected %d sizes "
+	    "AxBxC separated by spaces", v, nlev);
+}
+
+int
+vx_macro_from_chunk(vx_macro *m, const vx_chunk *c, vx_err *e)
+{
+	int sizes[VX_MACRO_MAXLEV][3];
+	const unsigned char *body;
+	size_t bodylen, nbytes, k;
+	int64_t n[3], nl, dl[3];
+	const char *v;
+	unsigned char *tmp = NULL;
+	int explicit_leaves, l, a, rc;
+	vx_hdr h;
+
+	vx_macro_init(m);
+	vx_hdr_init(&h);
+	if ((rc = vx_payload_parse(c, &h, &body, &bodylen, e)) != 0)
+		goto out;
+	v = vx_hdr_get(&h, "leaves");
+	if (v == NULL || (strcmp(v, "cells") && strcmp(v, "explicit"))) {
+		rc = vx_err_set(e, VX_EDATA, "leaves '%.20s': expected cells "
+		    "or explicit", v ? v : "");
+		goto out;
+	}
+	explicit_leaves = strcmp(v, "explicit") == 0;
+	if ((rc = vx_hdr_get_i64(&h, "levels", &nl, 1, e)) != 0)
+		goto out;
+	if (nl < 0 || nl > VX_MACRO_MAXLEV) {
+		rc = vx_err_set(e, VX_EDATA, "levels %lld: expected 0..%d",
+		    (long long)nl, VX_MACRO_MAXLEV);
+		goto out;
+	}
+	if ((v = vx_hdr_get(&h, "sizes")) == NULL) {
+		rc = vx_err_set(e, VX_EDATA, "missing sizes");
+		goto out;
+	}
+	if ((rc = parse_sizes_hdr(v, (int)nl, sizes, e)) != 0 ||
+	    (rc = vx_hdr_get_i64(&h, "leaf-dims", n, 3, e)) != 0)
+		goto out;
+	/* setup checks every size and dim before anything is allocated
+	 * (its allocation is the body's size, checked below first) */
+	for (a = 0; a < 3; a++)
+		if (n[a] < 0 || n[a] > VX_GRID_MAX_DIM) {
+			rc = vx_err_set(e, VX_EDATA, "leaf-dims: %lld out of "
+			    "0..%lld", (long long)n[a],
+			    (long long)VX_GRID_MAX_DIM);
+			goto out;
+		}
+	for (l = 0; l < nl; l++)
+		for (a = 0; a < 3; a++)
+			if (sizes[l][a] < 1 || sizes[l][a] > VX_MACRO_MAXSIZE) {
+				rc = vx_err_set(e, VX_EDATA, "sizes: edge %d out "
+				    "of 1..%d", sizes[l][a], VX_MACRO_MAXSIZE);
+				goto out;
+			}
+	{
+		/* the body size, computed as setup will, checked first */
+		vx_macro g;
+
+		vx_macro_init(&g);
+		nbytes = 0;
+		for (a = 0; a < 3; a++)
+			g.dims[0][a] = n[a];
+		for (l = 1; l <= nl; l++)
+			for (a = 0; a < 3; a++)
+				g.dims[l][a] = (g.dims[l - 1][a] +
+				    sizes[l - 1][a] - 1) / sizes[l - 1][a];
+		for (l = explicit_leaves ? 0 : 1; l <= nl; l++) {
+			if (vx_mul_size(&k, ncells(&g, l), 2 * sizeof(float)) ||
+			    vx_add_size(&nbytes, nbytes, k)) {
+				rc = vx_err_set(e, VX_EDATA, "too many cells");
+				goto out;
+			}
+			if (l > 0) {
+				char key[16];
+
+				snprintf(key, sizeof key, "dims-%d", l);
+				if ((rc = vx_hdr_get_i64(&h, key, dl, 3, e)) != 0)
+					goto out;
+				if (dl[0] != g.dims[l][0] ||
+				    dl[1] != g.dims[l][1] ||
+				    dl[2] != g.dims[l][2]) {
+					rc = vx_err_set(e, VX_EDATA, "%s does not "
+					    "follow from leaf-dims and sizes",
+					    key);
+					goto out;
+				}
+			}
+		}
+		if ((rc = vx_body_fits(&h, bodylen, nbytes, e)) != 0)
+			goto out;
+	}
+	if ((rc = setup(m, n, (int)nl, sizes, explicit_leaves, e)) != 0)
+		goto out;
+	if (!explicit_leaves) {
+		int64_t vd[3];
+
+		if ((v = vx_hdr_get(&h, "volume")) == NULL || v[0] == '\0' ||
+		    strlen(v) >= sizeof m->name) {
+			rc = vx_err_set(e, VX_EDATA, "volume name missing or "
+			    "longer than %zu bytes", sizeof m->name - 1);
+			goto out;
+		}
+		snprintf(m->name, sizeof m->name, "%s", v);
+		if ((rc = vx_hdr_get_i64(&h, "volume-dims", vd, 3, e)) != 0)
+			goto out;
+		for (a = 0; a < 3; a++)
+			if (vd[a] < 1 || vd[a] > VX_GRID_MAX_DIM ||
+			    (n[0] > 0 && vd[a] - 1 != n[a]) ||
+			    (n[0] == 0 && vd[0] > 1 && vd[1] > 1 && vd[2] > 1)) {
+				rc = vx_err_set(e, VX_EDATA, "volume-dims do not "
+				    "match leaf-dims (cells = samples - 1)");
+				goto out;
+			}
+		memcpy(m->vdims, vd, sizeof vd);
+		if ((v = vx_hdr_get(&h, "volume-type")) == NULL ||
+		    (m->vtype = vx_type_parse(v)) == VX_TYPE_UNKNOWN) {
+			rc = vx_err_set(e, VX_EDATA, "volume-type '%.20s' unknown",
+			    v ? v : "");
+			goto out;
+		}
+		v = vx_hdr_get(&h, "volume-crc32");
+		if (v == NULL || strlen(v) != 8 ||
+		    strspn(v, "0123456789abcdef") != 8) {
+			rc = vx_err_set(e, VX_EDATA, "volume-crc32: expected 8 "
+			    "lower-case hex digits");
+			goto out;
+		}
+		m->vcrc = (uint32_t)strtoul(v, NULL, 16);
+	}
+	if ((v = vx_hdr_get(&h, "range")) == NULL) {
+		rc = vx_err_set(e, VX_EDATA, "missing range");
+		goto out;
+	}
+	if (strcmp(v, "empty") != 0) {
+		double r[2];
+
+		if ((rc = vx_hdr_get_f64(&h, "range", r, 2, e)) != 0)
+			goto out;
+		if (!(r[0] <= r[1])) {
+			rc = vx_err_set(e, VX_EDATA, "range: min > max");
+			goto out;
+		}
+		m->root[0] = (float)r[0];
+		m->root[1] = (float)r[1];
+	}
+	if (nbytes > 0) {
+		if ((tmp = vx_malloc(nbytes, e)) == NULL) {
+			rc = VX_ENOMEM;
+			goto out;
+		}
+		if ((rc = vx_body_decode(&h, body, bodylen, tmp, nbytes, e)) != 0)
+			goto out;
+		k = 0;
+		for (l = explicit_leaves ? 0 : 1; l <= nl; l++) {
+			size_t i, nc = 2 * ncells(m, l);
+
+			for (i = 0; i < nc; i++, k++) {
+				uint32_t u = vx_le32(tmp + 4 * k);
+
+				memcpy(&m->mm[l][i], &u, 4);
+				if (isnan(m->mm[l][i])) {
+					rc = vx_err_set(e, VX_EDATA, "level %d "
+					    "holds NaN", l);
+					goto out;
+				}
+			}
+		}
+	}
+out:
+	free(tmp);
+	vx_hdr_free(&h);
+	if (rc != 0) {
+		vx_macro_free(m);
+		vx_err_push(e, "macrocells");
+	}
+	return rc;
+}
+
+int
+vx_macro_matches(const vx_macro *m, const vx_grid *g, const uint32_t *crc)
+{
+	if (m->explicit_leaves || strcmp(m->name, g->name) != 0 ||
+	    m->vtype != g->type || m->vdims[0] != g->dims[0] ||
+	    m->vdims[1] != g->dims[1] || m->vdims[2] != g->dims[2] ||
+	    !fits(m, g))
+		return 0;
+	return (crc ? *crc : vx_macro_grid_crc(g)) == m->vcrc;
+}
+
+int
+vx_macro_from_stream(vx_macro *m, const vx_stream *s, const vx_grid *g,
+    int *status, long *index, vx_err *e)
+{
+	long i = -1;
+	int rc;
+
+	vx_macro_init(m);
+	*status = VX_MACRO_ABSENT;
+	if (index != NULL)
+		*index = -1;
+	while ((i = vx_stream_find(s, VX_CHUNK_MACRO, (size_t)(i + 1))) >= 0) {
+		const unsigned char *body;
+		const char *v;
+		size_t bodylen;
+		vx_hdr h;
+		int mine;
+
+		vx_hdr_init(&h);
+		if ((rc = vx_payload_parse(&s->chunk[i], &h, &body, &bodylen,
+		    e)) != 0) {
+			vx_hdr_free(&h);
+			return vx_err_push(e, "macrocells");
+		}
+		v = vx_hdr_get(&h, "volume");
+		mine = v != NULL && strcmp(v, g->name) == 0;
+		vx_hdr_free(&h);
+		if (!mine)
+			continue;
+		if (index != NULL)
+			*index = i;
+		if ((rc = vx_macro_from_chunk(m, &s->chunk[i], e)) != 0)
+			return rc;
+		if (vx_macro_matches(m, g, NULL)) {
+			*status = VX_MACRO_LOADED;
+			return 0;
+		}
+		vx_macro_free(m);
+		*status = VX_MACRO_STALE;
+		return 0;
+	}
+	return 0;
+}

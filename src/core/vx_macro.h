@@ -1,0 +1,237 @@
+/* vx_macro.h: the multilevel min/max grid (Parker et al. 1999, §3.2) and
+ * its hierarchical 3D-DDA traversal (Amanatides & Woo 1987, one DDA per
+ * level, descending into a macrocell only when its [min, max] brackets a
+ * value the caller looks for).
+ *
+ * Leaves.  The hierarchy sits over an abstract "leaf grid" of n[0] x n[1] x
+ * n[2] unit cells: leaf (i,j,k) is the closed box [i,i+1] x [j,j+1] x
+ * [k,k+1] of leaf index space, and the whole grid is the closed box
+ * [0,n[0]] x [0,n[1]] x [0,n[2]].
+ *   - For a volume (vx_grid), the leaves are its data cells: n = dims - 1,
+ *     and leaf index space is the grid's index space (sample (i,j,k) at
+ *     (i,j,k)).  Leaf min/max are not stored (they would cost more than the
+ *     data): the traversal fetches the cell's 8 corners (vx_grid_cell) and
+ *     tests them on the fly, and hands the corners to the visitor.
+ *   - For explicit leaves (the tetrahedral mesh's leaf grid of tet lists),
+ *     the caller gives one (min, max) pair per leaf; the visitor gets the
+ *     leaf's linear index.
+ *
+ * Levels.  Level 0 is the leaves.  Level l (1..nlev) groups size[l] cells
+ * of level l-1 per axis into one macrocell holding the min and max of the
+ * data it covers; the last macrocell along an axis may be partial.  The
+ * top is one implicit root cell over all level-nlev macrocells.  Parker's
+ * "trilevel" hierarchy is nlev = 2 (two macrocell levels, the data cells
+ * and the root).  Macrocells are stored linearly (x fastest): Parker found
+ * bricking them not worth it.
+ *
+ * Non-finite samples (NaN, +-Inf) are ignored by every min/max: a cell's
+ * range is that of its finite corners, a cell with no finite corner has
+ * the empty range (min = +Inf, max = -Inf) and brackets nothing.  So a cell
+ * with a non-finite corner is still visited when its finite corners bracket
+ * the value; the cell kernel must then reject what it cannot interpolate.
+ *
+ * The stream form is the MCEL chunk (formats/macrocell.md). */
+#ifndef VX_MACRO_H
+#define VX_MACRO_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "vx_err.h"
+#include "vx_grid.h"
+#include "vx_stream.h"
+
+#define VX_MACRO_MAXLEV 6        /* macrocell levels above the leaves */
+#define VX_MACRO_MAXSIZE 1024    /* largest macrocell edge, in cells below */
+
+typedef struct vx_macro {
+	int nlev;                /* macrocell levels, 0..VX_MACRO_MAXLEV */
+	int size[VX_MACRO_MAXLEV + 1][3];     /* size[l]: level-l edge in
+	                                         level-(l-1) cells; size[0] 1 */
+	int64_t width[VX_MACRO_MAXLEV + 1][3];/* level-l edge in leaves */
+	int64_t dims[VX_MACRO_MAXLEV + 1][3]; /* cells per axis; dims[0] = n */
+	float *mm[VX_MACRO_MAXLEV + 1];       /* mm[l][2c], mm[l][2c+1]: min,
+	                                         max of level-l cell c (x
+	                                         fastest); mm[0] only for
+	                                         explicit leaves */
+	float root[2];           /* min, max of everything (empty: +Inf -Inf) */
+	int explicit_leaves;     /* 1: leaves carry stored min/max (mm[0]) */
+	/* the volume this hierarchy belongs to (volume leaves only) */
+	char name[64];
+	int64_t vdims[3];
+	vx_type vtype;
+	uint32_t vcrc;           /* vx_macro_grid_crc of the volume */
+	void *block_;            /* private: one allocation for all mm[] */
+} vx_macro;
+
+void vx_macro_init(vx_macro *m);
+void vx_macro_free(vx_macro *m);   /* accepts an initialized or NULL m */
+
+/* vx_macro_default_sizes: default sizes for nlev levels (1..VX_MACRO_MAXLEV)
+ * over a volume of sample type t; fills sizes[0..nlev) (level 1 first, in
+ * cells of the level below) and returns nlev.  Level-1 macrocells cover
+ * 2 KiB of samples (u8 16x16x8, u16/i16 16x8x8, f32 8x8x8 cells), so with
+ * two f32 per macrocell level 1 costs 1/256 of the data (0.39 %) whatever
+ * the type; level-2 macrocells cover 64x64x64 cells (under 0.003 % more);
+ * each further level is 4x4x4 of the level below.  Parker's trilevel
+ * hierarchy is VX_MACRO_DEFAULT_LEVELS.  For explicit leaves pass VX_F32.
+ * Returns 0 for a bad nlev or type. */
+#define VX_MACRO_DEFAULT_LEVELS 2
+int vx_macro_default_sizes(vx_type t, int nlev, int sizes[][3]);
+
+/* vx_macro_parse_sizes: "AxBxC[,DxExF...]" (level 1 first) into sizes;
+ * returns the number of levels (1..VX_MACRO_MAXLEV) or -1 with e set. */
+int vx_macro_parse_sizes(const char *s, int sizes[][3], vx_err *e);
+
+/* vx_macro_build: the hierarchy over volume g's data cells, with nlev levels
+ * of the given sizes (each 1..VX_MACRO_MAXSIZE; nlev 0 is allowed and
+ * gives a flat grid).  nthreads <= 0 means OpenMP's default.  The result is
+ * bit-identical for any thread count.  A volume with a dimension of 1 has
+ * no cells: the hierarchy is empty and traversals visit nothing.  m is
+ * initialized by the call and owns its arrays.  Errors: VX_EDATA (sizes),
+ * VX_ENOMEM. */
+int vx_macro_build(vx_macro *m, const vx_grid *g, int nlev,
+    const int sizes[][3], int nthreads, vx_err *e);
+
+/* vx_macro_build_explicit: the hierarchy over an n[0] x n[1] x n[2] leaf
+ * grid whose leaf c (x fastest: c = i + n0 (j + n1 k)) has the range
+ * leaf_mm[2c] .. leaf_mm[2c+1] (non-finite bounds: see above; a leaf with
+ * min > max is empty).  The pairs are copied.  Each n[a] >= 0. */
+int vx_macro_build_explicit(vx_macro *m, const int64_t n[3],
+    const float *leaf_mm, int nlev, const int sizes[][3], int nthreads,
+    vx_err *e);
+
+/* vx_macro_bytes: bytes of stored min/max (all levels, mm[0] included). */
+size_t vx_macro_bytes(const vx_macro *m);
+
+/* vx_macro_cell_range: level-l cell (x,y,z)'s stored min and max (l >= 1,
+ * or l == 0 with explicit leaves).  No bounds check. */
+static inline void
+vx_macro_cell_range(const vx_macro *m, int l, int64_t x, int64_t y,
+    int64_t z, float *lo, float *hi)
+{
+	size_t c = (size_t)(x + m->dims[l][0] * (y + m->dims[l][1] * z));
+
+	*lo = m->mm[l][2 * c];
+	*hi = m->mm[l][2 * c + 1];
+}
+
+/* vx_macro_grid_crc: CRC-32 of g's samples in logical order (x fastest,
+ * little-endian bytes, pads excluded), so the same for every layout;
+ * computed in parallel slabs and combined, so the same for every thread
+ * count.  Identifies the volume a stored hierarchy belongs to. */
+uint32_t vx_macro_grid_crc(const vx_grid *g);
+
+/* ---- traversal ----
+ *
+ * A ray is o + t d in leaf index space (o, d finite; d need not be unit,
+ * components may be 0, -0.0, tiny or huge).  Its segment is
+ * [ta, tb] = [max(tmin, t_enter), min(tmax, t_exit)], where t_enter and
+ * t_exit bound the part of the ray inside the closed leaf-grid box; nothing
+ * is visited when ta > tb (or either is NaN).  The traversal walks the
+ * leaves along the segment in order of increasing t, stepping one face at a
+ * time (consecutive leaves of the walk are face neighbours), and calls the
+ * visitor for each leaf it enters whose range brackets a wanted value.
+ *
+ * Face crossings.  The ray crosses the plane x_a = p at t(a, p) = (p -
+ * o[a]) / d[a], computed the same way everywhere (as (p - o[a]) * (1 /
+ * d[a]) when 1/d[a] is a normal number, else by division), never
+ * accumulated: so crossing times are monotone in p, the leaf intervals of
+ * one walk tile [ta, tb] exactly (a leaf's t1 is bit-identical to the next
+ * leaf's t0), and the hierarchical walk reports bit-identical times to the
+ * flat walk.
+ *
+ * Ties.  When the ray leaves a leaf through an edge or a vertex (several
+ * crossing times equal), the walk steps the tied axes one at a time, lowest
+ * axis first; each intermediate leaf is entered with a zero-length interval
+ * [t, t] (it touches the ray at one point).  A ray lying in a face plane
+ * (d[a] == 0 and o[a] an integer) walks the leaves on the upper side of the
+ * plane (index floor(o[a])), or the last layer when o[a] == n[a].  The
+ * start leaf is the one the ray is in just after ta (the "post-crossing"
+ * leaf); a segment that starts on a plane starts beyond it.
+ *
+ * Values.  vals[0..nvals) are the values looked for (isovalues); a macrocell
+ * is entered and a leaf visited only when min <= v <= max for some v.  With
+ * nvals == 0 every cell is entered and every leaf visited.
+ *
+ * Guarantee.  With |o[a]| < 2^40, every leaf whose open box meets the
+ * segment in an interval of positive length is visited exactly once (if it
+ * brackets a value); the other visited leaves touch the segment only on
+ * their boundary.  No allocation, no recursion; at most sum of dims steps
+ * per level. */
+
+typedef struct vx_leaf_visit {
+	int64_t i[3];      /* leaf index */
+	int64_t leaf;      /* linear leaf index i0 + n0 (i1 + n1 i2) */
+	double t0, t1;     /* the ray is in this leaf for t in [t0, t1] */
+	int entry_axis;    /* axis of the face the ray entered through at t0,
+	                      -1 if t0 is not on a face (segment starts inside) */
+	int entry_side;    /* 0: face at i[a] (lower), 1: face at i[a] + 1 */
+	int exit_axis;     /* axis of the face it leaves through at t1, -1 if
+	                      the segment ends inside (t1 = tmax) */
+	int exit_side;     /* 0 lower, 1 upper */
+	float lo, hi;      /* the leaf's range (finite corners / stored) */
+	float c[8];        /* volume leaves: the 8 corners as vx_grid_cell */
+} vx_leaf_visit;
+
+/* vx_visit_fn: called once per visited leaf, in order; return nonzero to
+ * stop the walk (the traversal then returns that value). */
+typedef int (*vx_visit_fn)(void *ctx, const vx_leaf_visit *v);
+
+typedef struct vx_trav_stats {
+	uint64_t macro[VX_MACRO_MAXLEV + 1]; /* macrocells examined, level l */
+	uint64_t leaves;         /* leaves handed to the visitor */
+	uint64_t culled;         /* leaves stepped into but not bracketing */
+	uint64_t rays;           /* traversals started */
+} vx_trav_stats;
+
+/* vx_macro_traverse: the hierarchical walk.  g: the volume the hierarchy
+ * was built over (its cells are the leaves; corners are fetched), or NULL
+ * for explicit leaves (their stored ranges are tested when the hierarchy
+ * has them).  st: counters added to (may be NULL).  Returns 0 when the walk
+ * ended, or the visitor's nonzero value.  Reentrant: any number of threads
+ * may walk one hierarchy at once. */
+int vx_macro_traverse(const vx_macro *m, const vx_grid *g, const double o[3],
+    const double d[3], double tmin, double tmax, const float *vals,
+    int nvals, vx_visit_fn fn, void *ctx, vx_trav_stats *st);
+
+/* vx_macro_traverse_flat: the same walk without the hierarchy: every leaf
+ * along the segment is stepped through and tested (only its own range), so
+ * it visits exactly the leaves vx_macro_traverse visits, with bit-identical
+ * visits.  m may be NULL when g is given (the leaves are g's cells). */
+int vx_macro_traverse_flat(const vx_macro *m, const vx_grid *g,
+    const double o[3], const double d[3], double tmin, double tmax,
+    const float *vals, int nvals, vx_visit_fn fn, void *ctx,
+    vx_trav_stats *st);
+
+/* ---- stream form: the MCEL chunk (formats/macrocell.md) ---- */
+
+/* vx_macro_to_chunk: the MCEL chunk of m (zlevel 0 raw, 1..9 zlib). */
+int vx_macro_to_chunk(const vx_macro *m, int zlevel, vx_chunk *c,
+    vx_err *e);
+/* vx_macro_from_chunk: parse an MCEL chunk; m is initialized by the call.
+ * Checks every header word and the body's size before allocating. */
+int vx_macro_from_chunk(vx_macro *m, const vx_chunk *c, vx_err *e);
+
+/* vx_macro_matches: 1 if m was built over exactly this volume (name, dims,
+ * type and sample CRC; the CRC costs one pass over the samples unless crc
+ * is given: pass NULL to compute it). */
+int vx_macro_matches(const vx_macro *m, const vx_grid *g,
+    const uint32_t *crc);
+
+enum {
+	VX_MACRO_ABSENT = 0,     /* no MCEL chunk for this volume */
+	VX_MACRO_LOADED,         /* found, matches the volume, loaded */
+	VX_MACRO_STALE           /* found, but built over other samples */
+};
+
+/* vx_macro_from_stream: find the MCEL chunk belonging to volume g (same
+ * name) and load it if it matches g (vx_macro_matches).  *status gets one
+ * of the values above and *index the chunk's position (-1 if absent); m is
+ * initialized and holds the hierarchy only when LOADED.  A malformed MCEL
+ * chunk is an error (VX_EDATA), absence and staleness are not: the caller
+ * then builds the hierarchy itself (and may say so). */
+int vx_macro_from_stream(vx_macro *m, const vx_stream *s, const vx_grid *g,
+    int *status, long *index, vx_err *e);
+
+#endif

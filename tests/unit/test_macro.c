@@ -1,0 +1,1065 @@
+/* test_macro.c: the min/max hierarchy (build, MCEL chunk, staleness) and the
+ * 3D-DDA walks, each checked against an independent oracle: a brute-force
+ * intersection of the ray with every leaf box in long double. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <math.h>
+#include <float.h>
+#include <cmocka.h>
+
+#include "vx_macro.h"
+
+typedef long double ld;
+
+/* ---- collecting a walk ---- */
+
+typedef struct rec {
+	vx_leaf_visit *v;
+	int n, cap;
+} rec;
+
+static int
+collect(void *ctx, const vx_leaf_visit *v)
+{
+	rec *r = ctx;
+
+	if (r->n == r->cap)
+		return 99;   /* more visits than leaves could ever give */
+	r->v[r->n++] = *v;
+	return 0;
+}
+
+static void
+rec_init(rec *r, const int64_t n[3])
+{
+	r->cap = (int)(n[0] + n[1] + n[2] + 3);
+	r->v = calloc((size_t)r->cap, sizeof *r->v);
+	r->n = 0;
+}
+
+/* hash-based random numbers (deterministic; no shared generator) */
+static uint64_t
+hash64(uint64_t x)
+{
+	x += 0x9e3779b97f4a7c15ULL;
+	x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+	x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+	return x ^ (x >> 31);
+}
+
+static double
+urand(uint64_t *s)
+{
+	*s = hash64(*s);
+	return (double)(*s >> 11) * 0x1p-53;
+}
+
+static int
+irand(uint64_t *s, int n)
+{
+	return (int)(urand(s) * n);
+}
+
+/* ---- the oracle ----
+ * For a ray o + t d and the closed box [lo, hi], the set of t with the point
+ * in the box (or in its open interior when open != 0), in long double.
+ * Crossing times beyond DBL_MAX become infinite, as they do in double. */
+static ld
+clampinf(ld t)
+{
+	if (t > (ld)DBL_MAX)
+		return INFINITY;
+	if (t < -(ld)DBL_MAX)
+		return -INFINITY;
+	return t;
+}
+
+static void
+box_interval(const ld lo[3], const ld hi[3], const double o[3],
+    const double d[3], int open, ld *t0, ld *t1)
+{
+	*t0 = -INFINITY;
+	*t1 = INFINITY;
+	for (int a = 0; a < 3; a++) {
+		if (d[a] == 0) {
+			int in = open ? (o[a] > lo[a] && o[a] < hi[a]) :
+			    (o[a] >= lo[a] && o[a] <= hi[a]);
+
+			if (!in) {
+				*t0 = INFINITY;
+				*t1 = -INFINITY;
+				return;
+			}
+			continue;
+		}
+		ld u = clampinf((lo[a] - (ld)o[a]) / (ld)d[a]);
+		ld w = clampinf((hi[a] - (ld)o[a]) / (ld)d[a]);
+
+		if (u > w) {
+			ld x = u;
+			u = w;
+			w = x;
+		}
+		if (u > *t0)
+			*t0 = u;
+		if (w < *t1)
+			*t1 = w;
+	}
+}
+
+static int
+near(ld a, ld b, ld tol)
+{
+	if (isinf(a) || isinf(b))
+		return a == b;
+	return fabsl(a - b) <= tol;
+}
+
+#define OCHECK(c, ...) do { if (!(c)) { print_message("case %s: ", what); \
+	print_message(__VA_ARGS__); print_message("\n"); fail(); } } while (0)
+
+/* oracle_check: the visits v[0..nv) of a walk with nvals == 0 over an
+ * n-leaf grid must
+ *   - tile the reference segment [sa, sb] (the ray clipped to [tmin, tmax]
+ *     and the closed grid box, in long double): consecutive visits share
+ *     their t exactly, the ends match sa and sb within tol;
+ *   - each lie, over [t0, t1], inside its leaf's closed box (within tol);
+ *   - visit each leaf at most once, stepping between face neighbours along
+ *     the axis named by exit_axis / entry_axis, in the direction of d;
+ *   - include every leaf whose open box meets the segment in more than tol
+ *     ("core" leaves).  Leaves touched only on their boundary (measure zero
+ *     in the interior: edges, vertices, rays in face planes) may or may not
+ *     be visited; tiling decides which side of a face plane is walked.
+ * tol is 1e-9 of the segment's largest finite |t| (at least 1e-315). */
+static void
+oracle_check(const char *what, const int64_t n[3], const double o[3],
+    const double d[3], double tmin, double tmax, const vx_leaf_visit *v,
+    int nv)
+{
+	ld lo[3] = { 0, 0, 0 }, hi[3], sa, sb, tol, sc = 0;
+	int64_t nleaf = n[0] * n[1] * n[2], i;
+	unsigned char *seen;
+	int k, a;
+
+	for (a = 0; a < 3; a++)
+		hi[a] = (ld)n[a];
+	box_interval(lo, hi, o, d, 0, &sa, &sb);
+	if (tmin > sa)
+		sa = tmin;
+	if (tmax < sb)
+		sb = tmax;
+	if (isnan(tmin) || isnan(tmax))
+		sa = INFINITY;   /* an undefined segment is empty */
+	if (isfinite(sa))
+		sc = fabsl(sa);
+	if (isfinite(sb) && fabsl(sb) > sc)
+		sc = fabsl(sb);
+	if (isfinite(sa) && isfinite(sb) && sb - sa > sc)
+		sc = sb - sa;
+	tol = sc * 1e-9L;
+	if (tol < 1e-315L)
+		tol = 1e-315L;
+	if (!(sa <= sb + tol)) {
+		OCHECK(nv == 0, "ray misses but %d visits", nv);
+		return;
+	}
+	if (!(sa < sb - tol)) {
+		/* a touch: at most zero-length visits */
+		for (k = 0; k < nv; k++)
+			OCHECK(near(v[k].t0, v[k].t1, tol), "touch visit long");
+		return;
+	}
+	OCHECK(nv > 0, "no visits, segment [%Lg, %Lg]", sa, sb);
+	OCHECK(near(v[0].t0, sa, tol), "start %.17g vs %Lg", v[0].t0, sa);
+	OCHECK(near(v[nv - 1].t1, sb, tol), "end %.17g vs %Lg", v[nv - 1].t1,
+	    sb);
+	/* entering the grid from outside is entering through a face */
+	OCHECK(!(tmin < sa - tol) || v[0].entry_axis >= 0, "entry axis -1");
+	/* ending at the grid's boundary is leaving through a face */
+	OCHECK(!(tmax > sb + tol) || v[nv - 1].exit_axis >= 0, "exit axis -1");
+	seen = calloc((size_t)(nleaf > 0 ? nleaf : 1), 1);
+	for (k = 0; k < nv; k++) {
+		ld c0, c1, blo[3], bhi[3];
+
+		for (a = 0; a < 3; a++) {
+			OCHECK(v[k].i[a] >= 0 && v[k].i[a] < n[a], "leaf out");
+			blo[a] = (ld)v[k].i[a];
+			bhi[a] = blo[a] + 1;
+		}
+		i = v[k].i[0] + n[0] * (v[k].i[1] + n[1] * v[k].i[2]);
+		OCHECK(v[k].leaf == i, "linear index");
+		OCHECK(!seen[i], "leaf %lld %lld %lld visited twice",
+		    (long long)v[k].i[0], (long long)v[k].i[1],
+		    (long long)v[k].i[2]);
+		seen[i] = 1;
+		OCHECK(v[k].t0 <= v[k].t1, "t0 > t1 at visit %d", k);
+		if (k > 0)
+			OCHECK(v[k].t0 == v[k - 1].t1, "gap at visit %d", k);
+		box_interval(blo, bhi, o, d, 0, &c0, &c1);
+		OCHECK(v[k].t0 >= c0 - tol && v[k].t1 <= c1 + tol,
+		    "visit %d [%.17g, %.17g] outside leaf [%Lg, %Lg]", k,
+		    v[k].t0, v[k].t1, c0, c1);
+		if (v[k].entry_axis >= 0) {
+			a = v[k].entry_axis;
+			ld p = blo[a] + v[k].entry_side;
+			OCHECK(d[a] != 0 && (v[k].entry_side == 0) == (d[a] > 0),
+			    "entry side");
+			OCHECK(near(v[k].t0, clampinf((p - o[a]) / (ld)d[a]), tol),
+			    "entry face time");
+		}
+		if (v[k].exit_axis >= 0) {
+			a = v[k].exit_axis;
+			ld p = blo[a] + v[k].exit_side;
+			OCHECK(d[a] != 0 && (v[k].exit_side == 1) == (d[a] > 0),
+			    "exit side");
+			OCHECK(near(v[k].t1, clampinf((p - o[a]) / (ld)d[a]), tol),
+			    "exit face time");
+		}
+		if (k + 1 < nv) {
+			a = v[k].exit_axis;
+			OCHECK(a >= 0 && v[k + 1].entry_axis == a, "step axis");
+			for (int b = 0; b < 3; b++)
+				OCHECK(v[k + 1].i[b] - v[k].i[b] == (b == a ?
+				    (d[a] > 0 ? 1 : -1) : 0),
+				    "visit %d -> %d not a face step", k, k + 1);
+		}
+	}
+	/* every core leaf visited */
+	for (int64_t z = 0; z < n[2]; z++)
+		for (int64_t y = 0; y < n[1]; y++)
+			for (int64_t x = 0; x < n[0]; x++) {
+				ld blo[3] = { x, y, z }, bhi[3] = { x + 1, y + 1,
+				    z + 1 }, c0, c1;
+
+				box_interval(blo, bhi, o, d, 1, &c0, &c1);
+				if (c0 < sa)
+					c0 = sa;
+				if (c1 > sb)
+					c1 = sb;
+				OCHECK(!(c1 - c0 > tol) ||
+				    seen[x + n[0] * (y + n[1] * z)],
+				    "core leaf %lld %lld %lld (%Lg..%Lg) missed",
+				    (long long)x, (long long)y, (long long)z,
+				    c0, c1);
+			}
+	free(seen);
+}
+
+/* an explicit-leaf hierarchy where every leaf holds [0, 1] */
+static void
+unit_leaves(vx_macro *m, const int64_t n[3], int nlev, const int sz[][3])
+{
+	size_t k, nl = (size_t)(n[0] * n[1] * n[2]);
+	float *mm = malloc(2 * sizeof(float) * (nl ? nl : 1));
+	vx_err e = { 0, "" };
+
+	for (k = 0; k < nl; k++) {
+		mm[2 * k] = 0;
+		mm[2 * k + 1] = 1;
+	}
+	assert_int_equal(vx_macro_build_explicit(m, n, mm, nlev, sz, 1, &e), 0);
+	free(mm);
+}
+
+static int
+same_visit(const vx_leaf_visit *a, const vx_leaf_visit *b)
+{
+	return a->i[0] == b->i[0] && a->i[1] == b->i[1] && a->i[2] == b->i[2] &&
+	    a->leaf == b->leaf && memcmp(&a->t0, &b->t0, sizeof a->t0) == 0 &&
+	    memcmp(&a->t1, &b->t1, sizeof a->t1) == 0 &&
+	    a->entry_axis == b->entry_axis && a->entry_side == b->entry_side &&
+	    a->exit_axis == b->exit_axis && a->exit_side == b->exit_side &&
+	    memcmp(&a->lo, &b->lo, sizeof a->lo) == 0 &&
+	    memcmp(&a->hi, &b->hi, sizeof a->hi) == 0;
+}
+
+/* check_both: run the flat walk and the hierarchical walk (over a few
+ * hierarchies) with no values; each must pass the oracle, and they must be
+ * identical. */
+static void
+check_both(const char *what, const int64_t n[3], const double o[3],
+    const double d[3], double tmin, double tmax)
+{
+	static const int sz[][3] = { { 2, 3, 2 }, { 2, 2, 1 }, { 3, 1, 2 } };
+	static const int s1[][3] = { { 1, 1, 1 } };
+	vx_macro m;
+	rec f, h;
+	int rc, lev;
+
+	rec_init(&f, n);
+	rec_init(&h, n);
+	unit_leaves(&m, n, 0, NULL);
+	rc = vx_macro_traverse_flat(&m, NULL, o, d, tmin, tmax, NULL, 0,
+	    collect, &f, NULL);
+	assert_int_equal(rc, 0);
+	oracle_check(what, n, o, d, tmin, tmax, f.v, f.n);
+	vx_macro_free(&m);
+	for (lev = 0; lev <= 4; lev++) {
+		vx_trav_stats st;
+
+		memset(&st, 0, sizeof st);
+		if (lev == 4)
+			unit_leaves(&m, n, 1, s1);
+		else
+			unit_leaves(&m, n, lev, sz);
+		h.n = 0;
+		rc = vx_macro_traverse(&m, NULL, o, d, tmin, tmax, NULL, 0,
+		    collect, &h, &st);
+		assert_int_equal(rc, 0);
+		OCHECK(h.n == f.n, "hierarchy (%d levels) visits %d, flat %d",
+		    lev, h.n, f.n);
+		for (int k = 0; k < f.n; k++)
+			OCHECK(same_visit(&h.v[k], &f.v[k]), "visit %d differs",
+			    k);
+		assert_int_equal(st.leaves, (uint64_t)h.n);
+		vx_macro_free(&m);
+	}
+	free(f.v);
+	free(h.v);
+}
+
+/* The hard cases, each against the brute-force oracle (and the flat and
+ * hierarchical walks against each other). */
+static void
+walk_hard_cases(void **state)
+{
+	const double tiny = 1e-300, tiny2 = 1e-30, huge = 1e300;
+	const double sub = 4.9406564584124654e-324;
+	static const int64_t N[3] = { 5, 4, 3 }, T[3] = { 1, 40, 1 },
+	    C[3] = { 4, 4, 4 };
+	const struct {
+		const char *what;
+		const int64_t *n;
+		double o[3], d[3], tmin, tmax;
+	} t[] = {
+		{ "axis +x from outside", N, { -1, 0.5, 0.5 }, { 1, 0, 0 }, 0, INFINITY },
+		{ "axis -x with -0.0", N, { 7, 1.5, 2.5 }, { -1, -0.0, 0.0 }, 0, INFINITY },
+		{ "axis -0.0 origin on face", N, { -0.0, 1.5, 2.5 }, { 1, -0.0, 0 }, 0, INFINITY },
+		{ "diagonal through vertices", C, { 0, 0, 0 }, { 1, 1, 1 }, 0, INFINITY },
+		{ "diagonal from outside", C, { -1, -1, -1 }, { 1, 1, 1 }, -INFINITY, INFINITY },
+		{ "anti-diagonal", C, { 4, 4, 0 }, { -1, -1, 1 }, 0, INFINITY },
+		{ "diagonal in a plane", C, { 0, 0, 2 }, { 1, 1, 0 }, 0, INFINITY },
+		{ "2:1 through edges", C, { 0, 0, 0.5 }, { 2, 1, 0 }, 0, INFINITY },
+		{ "grazing interior face plane", N, { -1, 2, 0.5 }, { 1, 0, 0.1 }, 0, INFINITY },
+		{ "in outer face y=n", N, { -1, 4, 0.5 }, { 1, 0, 0.2 }, 0, INFINITY },
+		{ "in outer face y=0", N, { -1, 0, 0.5 }, { 1, 0, 0.2 }, 0, INFINITY },
+		{ "along interior edge", N, { -1, 1, 1 }, { 1, 0, 0 }, 0, INFINITY },
+		{ "along outer edge", N, { -1, 0, 0 }, { 1, 0, 0 }, 0, INFINITY },
+		{ "along far outer edge", N, { 6, 4, 3 }, { -1, 0, 0 }, 0, INFINITY },
+		{ "just outside", N, { -1, -1e-12, 0.5 }, { 1, 0, 0 }, 0, INFINITY },
+		{ "touching an outer edge", N, { -1, -1, 0.5 }, { 1, 1, 0 }, 0, INFINITY },
+		{ "touching a corner", N, { -1, -1, -1 }, { 1, 1, 1 }, 0, INFINITY },
+		{ "parallel in face plane, z axis", N, { 0.5, 1, -2 }, { 0, 0, 1 }, 0, INFINITY },
+		{ "parallel on edge, z axis", N, { 1, 1, -2 }, { 0, 0, 1 }, 0, INFINITY },
+		{ "parallel outside", N, { 0.5, 4.5, -2 }, { 0, 0, 1 }, 0, INFINITY },
+		{ "tiny components", N, { -0.5, 0.5, 0.5 }, { 1, tiny, tiny2 }, 0, INFINITY },
+		{ "tiny negative", N, { 0.5, -1, 2.5 }, { -tiny, 1, -tiny2 }, 0, INFINITY },
+		{ "tiny, origin near plane", N, { 0.25, 0.9999999999, 0.5 }, { 1, tiny, 0 }, 0, INFINITY },
+		{ "subnormal component", N, { 0.25, 0.9999999999, 0.5 }, { 1, sub, 0 }, 0, INFINITY },
+		{ "subnormal, origin on a plane", N, { 1, 0.5, 0.5 }, { sub, 0, 0 }, 0, INFINITY },
+		{ "subnormal, far crossing", N, { -1e-300, 0.5, 0.5 }, { 1e-310, 0, 0 }, 0, INFINITY },
+		{ "subnormal only", N, { 0.25, 0.5, 0.5 }, { sub, 0, 0 }, 0, INFINITY },
+		{ "huge components", N, { 0.5, 0.5, 0.5 }, { huge, huge / 10, 3 * huge }, 0, INFINITY },
+		{ "huge and zero", N, { 0.5, 1.5, 0.5 }, { huge, 0, -huge }, -INFINITY, INFINITY },
+		{ "huge and tiny", N, { 0.5, 1.5, 0.5 }, { huge, tiny, 1 }, 0, INFINITY },
+		{ "max double", N, { -1, 1.5, 0.5 }, { DBL_MAX, DBL_MAX, 0 }, 0, INFINITY },
+		{ "start inside", N, { 1.5, 1.5, 1.5 }, { 0.3, -0.7, 0.2 }, 0, INFINITY },
+		{ "start on boundary going in", N, { 0, 1.5, 1.5 }, { 1, 0.1, 0.1 }, 0, INFINITY },
+		{ "start on far boundary going in", N, { 5, 1.2, 0.7 }, { -1, 0.2, 0.1 }, 0, INFINITY },
+		{ "start on boundary going out", N, { 5, 1.5, 1.5 }, { 1, 0.1, 0.1 }, 0, INFINITY },
+		{ "start on interior plane", N, { 2, 1.5, 0.5 }, { 1, 0.3, 0.2 }, 0, INFINITY },
+		{ "start on interior vertex", N, { 2, 1, 1 }, { -1, -1, 1 }, 0, INFINITY },
+		{ "start on vertex, backwards", N, { 2, 1, 1 }, { -1, -1, 1 }, -INFINITY, 0 },
+		{ "tmin tmax clip", N, { -1, 0.5, 0.5 }, { 1, 0.2, 0.1 }, 2.3, 3.7 },
+		{ "tmax at a crossing", N, { 0, 0.5, 0.5 }, { 1, 0.2, 0.1 }, 0, 2 },
+		{ "tmin at a crossing", N, { 0, 0.5, 0.5 }, { 1, 0.2, 0.1 }, 2, 4.5 },
+		{ "point segment", N, { 0, 0.5, 0.5 }, { 1, 0.2, 0.1 }, 2.5, 2.5 },
+		{ "empty tmin > tmax", N, { 0, 0.5, 0.5 }, { 1, 0.2, 0.1 }, 3, 2 },
+		{ "NaN tmax", N, { 0, 0.5, 0.5 }, { 1, 0.2, 0.1 }, 0, NAN },
+		{ "zero direction inside", N, { 1.5, 2.5, 0.5 }, { 0, 0, 0 }, 0, 7 },
+		{ "zero direction outside", N, { 1.5, 7.5, 0.5 }, { 0, -0.0, 0 }, 0, 7 },
+		{ "thin 1xNx1 along y", T, { 0.5, -3, 0.5 }, { 0, 1, 0 }, 0, INFINITY },
+		{ "thin, slightly oblique", T, { 0.5, -3, 0.5 }, { 1e-3, 1, -1e-3 }, 0, INFINITY },
+		{ "thin, on its corner edge", T, { 1, 50, 1 }, { 0, -1, 0 }, 0, INFINITY },
+		{ "thin, across", T, { -1, 17.5, 0.5 }, { 1, 0.01, 0 }, 0, INFINITY },
+		{ "thin, diagonal in box", T, { 0, 0, 0 }, { 1, 40, 1 }, 0, INFINITY },
+		{ "far origin", N, { -1e6, 0.5, 0.5 }, { 1, 1e-7, 0 }, 0, INFINITY },
+		{ "far origin, oblique", N, { -1e6, -1e6, 0.5 }, { 1, 1, 0.1e-6 }, 0, INFINITY },
+	};
+	size_t i;
+
+	(void)state;
+	for (i = 0; i < sizeof t / sizeof t[0]; i++)
+		check_both(t[i].what, t[i].n, t[i].o, t[i].d, t[i].tmin,
+		    t[i].tmax);
+}
+
+/* A component that is not finite: the walk visits nothing. */
+static void
+walk_nonfinite_input(void **state)
+{
+	int64_t n[3] = { 3, 3, 3 };
+	double o[3] = { 0.5, 0.5, -1 }, d[3] = { 0, 0, 1 };
+	vx_macro m;
+	rec r;
+
+	(void)state;
+	unit_leaves(&m, n, 0, NULL);
+	rec_init(&r, n);
+	d[1] = NAN;
+	assert_int_equal(vx_macro_traverse(&m, NULL, o, d, 0, INFINITY, NULL,
+	    0, collect, &r, NULL), 0);
+	d[1] = INFINITY;
+	assert_int_equal(vx_macro_traverse(&m, NULL, o, d, 0, INFINITY, NULL,
+	    0, collect, &r, NULL), 0);
+	d[1] = 0;
+	o[0] = NAN;
+	assert_int_equal(vx_macro_traverse(&m, NULL, o, d, 0, INFINITY, NULL,
+	    0, collect, &r, NULL), 0);
+	assert_int_equal(r.n, 0);
+	free(r.v);
+	vx_macro_free(&m);
+}
+
+/* a random ray component: snapped to the lattice often, so ties, face
+ * planes and vertices are hit far more than chance would */
+static double
+rand_coord(uint64_t *s, int64_t n)
+{
+	switch (irand(s, 4)) {
+	case 0: return irand(s, (int)n + 3) - 1;
+	case 1: return irand(s, 2 * (int)n + 6) * 0.5 - 1.5;
+	default: return urand(s) * (double)(n + 4) - 2;
+	}
+}
+
+static double
+rand_dir(uint64_t *s)
+{
+	static const double pick[] = { 0, -0.0, 1, -1, 0.5, -2, 1e-300, -1e-30,
+	    1e300, 3 };
+
+	if (irand(s, 3) == 0)
+		return pick[irand(s, 10)];
+	return urand(s) * 2 - 1;
+}
+
+/* Random rays over random grids, hierarchies with random sizes: the flat
+ * walk passes the oracle and the hierarchical walks equal it. */
+static void
+walk_random_oracle(void **state)
+{
+	uint64_t s = 12345;
+	char what[64];
+
+	(void)state;
+	for (int k = 0; k < 1500; k++) {
+		int64_t n[3];
+		double o[3], d[3], tmin = 0, tmax = INFINITY;
+
+		for (int a = 0; a < 3; a++)
+			n[a] = 1 + irand(&s, 7);
+		for (int a = 0; a < 3; a++) {
+			o[a] = rand_coord(&s, n[a]);
+			d[a] = rand_dir(&s);
+		}
+		if (irand(&s, 4) == 0) {
+			tmin = urand(&s) * 4 - 1;
+			tmax = tmin + urand(&s) * 4;
+		} else if (irand(&s, 4) == 0)
+			tmin = -INFINITY;
+		snprintf(what, sizeof what, "random ray %d", k);
+		check_both(what, n, o, d, tmin, tmax);
+	}
+}
+
+/* ---- volumes ---- */
+
+/* rand_grid: dims n, type t, random values (f32: with NaN and Inf among
+ * them), in the given layout. */
+static void
+rand_grid(vx_grid *g, const int64_t dims[3], vx_type t, const char *lay,
+    uint64_t seed, int nonfinite)
+{
+	vx_err e = { 0, "" };
+	uint64_t s = seed;
+	double c[3], w[3];
+	int smooth = irand(&s, 3);   /* 0 noise, 1 ramp, 2 ball */
+
+	for (int a = 0; a < 3; a++) {
+		c[a] = urand(&s) * (double)dims[a];
+		w[a] = urand(&s) * 30 - 15;
+	}
+
+	assert_int_equal(vx_grid_alloc(g, dims, t, lay, &e), 0);
+	for (int64_t z = 0; z < dims[2]; z++)
+		for (int64_t y = 0; y < dims[1]; y++)
+			for (int64_t x = 0; x < dims[0]; x++) {
+				double v = urand(&s) * 200;
+
+				if (smooth == 1)
+					v = 100 + w[0] * (x - c[0]) + w[1] *
+					    (y - c[1]) + w[2] * (z - c[2]) + v / 50;
+				else if (smooth == 2)
+					v = 20 * sqrt((x - c[0]) * (x - c[0]) +
+					    (y - c[1]) * (y - c[1]) + (z - c[2]) *
+					    (z - c[2])) + v / 50;
+
+				if (nonfinite && irand(&s, 20) == 0)
+					v = irand(&s, 2) ? NAN : -INFINITY;
+				vx_grid_set(g, x, y, z, v);
+			}
+}
+
+/* leaf_range: brute-force range of cell (x,y,z) from its corners. */
+static void
+leaf_range(const vx_grid *g, int64_t x, int64_t y, int64_t z, float *lo,
+    float *hi)
+{
+	*lo = INFINITY;
+	*hi = -INFINITY;
+	for (int k = 0; k < 8; k++) {
+		float v = (float)vx_grid_get(g, x + (k & 1), y + (k >> 1 & 1),
+		    z + (k >> 2 & 1));
+
+		if (!isfinite(v))
+			continue;
+		if (v < *lo)
+			*lo = v;
+		if (v > *hi)
+			*hi = v;
+	}
+}
+
+/* Each stored macrocell range equals the brute-force union of its leaves'
+ * ranges (oracle: leaf ranges from vx_grid_get, looped over the leaves the
+ * macrocell covers); the result does not depend on the thread count. */
+static void
+build_matches_brute_force(void **state)
+{
+	static const int sz[][3] = { { 3, 2, 4 }, { 2, 3, 1 }, { 2, 2, 2 } };
+	int64_t dims[3] = { 12, 9, 14 };
+	vx_grid g;
+	vx_macro m, m4;
+	vx_err e = { 0, "" };
+
+	(void)state;
+	rand_grid(&g, dims, VX_F32, "bricked 2x2x2", 7, 1);
+	assert_int_equal(vx_macro_build(&m, &g, 3, sz, 1, &e), 0);
+	assert_int_equal(vx_macro_build(&m4, &g, 3, sz, 4, &e), 0);
+	for (int l = 1; l <= 3; l++) {
+		assert_memory_equal(m.mm[l], m4.mm[l],
+		    2 * sizeof(float) * (size_t)(m.dims[l][0] * m.dims[l][1] *
+		    m.dims[l][2]));
+		for (int64_t cz = 0; cz < m.dims[l][2]; cz++)
+			for (int64_t cy = 0; cy < m.dims[l][1]; cy++)
+				for (int64_t cx = 0; cx < m.dims[l][0]; cx++) {
+					float lo = INFINITY, hi = -INFINITY, a, b;
+					int64_t c[3] = { cx, cy, cz }, q0[3], q1[3];
+
+					for (int k = 0; k < 3; k++) {
+						q0[k] = c[k] * m.width[l][k];
+						q1[k] = q0[k] + m.width[l][k];
+						if (q1[k] > dims[k] - 1)
+							q1[k] = dims[k] - 1;
+					}
+					for (int64_t z = q0[2]; z < q1[2]; z++)
+						for (int64_t y = q0[1]; y < q1[1]; y++)
+							for (int64_t x = q0[0]; x < q1[0];
+							    x++) {
+								leaf_range(&g, x, y, z, &a,
+								    &b);
+								lo = fminf(lo, a);
+								hi = fmaxf(hi, b);
+							}
+					vx_macro_cell_range(&m, l, cx, cy, cz, &a, &b);
+					assert_true(a == lo && b == hi);
+				}
+	}
+	assert_true(m.root[0] == m4.root[0] && m.root[1] == m4.root[1]);
+	vx_macro_free(&m);
+	vx_macro_free(&m4);
+	vx_grid_free(&g);
+}
+
+/* Non-finite policy: a cell whose corners are all NaN/Inf has the empty
+ * range and is never visited with values; one with finite corners
+ * bracketing the value is. */
+static void
+nonfinite_policy(void **state)
+{
+	int64_t dims[3] = { 3, 2, 2 };
+	static const int sz[][3] = { { 1, 1, 1 } };
+	double o[3] = { -1, 0.5, 0.5 }, d[3] = { 1, 0, 0 };
+	float val = 5;
+	vx_grid g;
+	vx_macro m;
+	vx_err e = { 0, "" };
+	rec r;
+
+	(void)state;
+	assert_int_equal(vx_grid_alloc(&g, dims, VX_F32, NULL, &e), 0);
+	for (int z = 0; z < 2; z++)
+		for (int y = 0; y < 2; y++) {
+			vx_grid_set(&g, 0, y, z, NAN);
+			vx_grid_set(&g, 1, y, z, y ? INFINITY : NAN);
+			vx_grid_set(&g, 2, y, z, y ? 10 : 0);
+		}
+	/* cell 0: all non-finite; cell 1: finite corners 0 and 10 */
+	assert_int_equal(vx_macro_build(&m, &g, 1, sz, 1, &e), 0);
+	assert_true(m.mm[1][0] > m.mm[1][1]);
+	assert_true(m.mm[1][2] == 0 && m.mm[1][3] == 10);
+	rec_init(&r, m.dims[0]);
+	assert_int_equal(vx_macro_traverse(&m, &g, o, d, 0, INFINITY, &val, 1,
+	    collect, &r, NULL), 0);
+	assert_int_equal(r.n, 1);
+	assert_int_equal(r.v[0].i[0], 1);
+	assert_true(isinf(r.v[0].c[2]) && r.v[0].lo == 0 && r.v[0].hi == 10);
+	free(r.v);
+	vx_macro_free(&m);
+	vx_grid_free(&g);
+}
+
+/* The hierarchical walk visits exactly the leaves of the flat walk that
+ * bracket a value, bit for bit, for random volumes, values, hierarchies and
+ * rays; a bricked copy of the volume gives the identical sequence.  Oracle:
+ * the flat walk (checked against brute force above) filtered by the
+ * brute-force leaf range. */
+static void
+hierarchy_equals_filtered_flat(void **state)
+{
+	uint64_t s = 99;
+	int culled = 0, rays = 0;
+
+	(void)state;
+	for (int k = 0; k < 90; k++) {
+		int64_t dims[3];
+		int sz[3][3], nlev = irand(&s, 4);
+		vx_grid g, gb;
+		vx_macro m;
+		vx_err e = { 0, "" };
+
+		for (int a = 0; a < 3; a++)
+			dims[a] = 2 + irand(&s, 14);
+		for (int l = 0; l < 3; l++)
+			for (int a = 0; a < 3; a++)
+				sz[l][a] = 1 + irand(&s, 5);
+		rand_grid(&g, dims, k % 3 ? VX_F32 : VX_U8, NULL, hash64(k),
+		    k % 2);
+		assert_int_equal(vx_grid_relayout(&gb, &g, "bricked 2x4x2 2x2x2",
+		    &e), 0);
+		assert_int_equal(vx_macro_build(&m, &g, nlev, sz, 2, &e), 0);
+		for (int j = 0; j < 40; j++) {
+			double o[3], d[3];
+			float vals[3];
+			int nv = 1 + irand(&s, 3);
+			rec all, f, h, hb;
+			vx_trav_stats st;
+
+			for (int a = 0; a < 3; a++) {
+				o[a] = rand_coord(&s, dims[a] - 1);
+				d[a] = rand_dir(&s);
+			}
+			if (j % 2) {
+				/* through macrocell edges and corners */
+				for (int a = 0; a < 3; a++) {
+					int w = sz[0][a] * (nlev > 1 &&
+					    irand(&s, 2) ? sz[1][a] : 1);
+
+					o[a] = (double)(w * irand(&s, 4));
+					d[a] = irand(&s, 4) ? (irand(&s, 2) ? 1 : -1) *
+					    (double)sz[0][a] : 0;
+				}
+			}
+			for (int q = 0; q < nv; q++)
+				vals[q] = (float)(urand(&s) * 220 - 10);
+			if (irand(&s, 5) == 0)
+				vals[0] = (float)irand(&s, 200);  /* exact hits */
+			rec_init(&all, m.dims[0]);
+			rec_init(&f, m.dims[0]);
+			rec_init(&h, m.dims[0]);
+			rec_init(&hb, m.dims[0]);
+			assert_int_equal(vx_macro_traverse_flat(NULL, &g, o, d, 0,
+			    INFINITY, NULL, 0, collect, &all, NULL), 0);
+			assert_int_equal(vx_macro_traverse_flat(&m, &g, o, d, 0,
+			    INFINITY, vals, nv, collect, &f, NULL), 0);
+			memset(&st, 0, sizeof st);
+			assert_int_equal(vx_macro_traverse(&m, &g, o, d, 0,
+			    INFINITY, vals, nv, collect, &h, &st), 0);
+			assert_int_equal(vx_macro_traverse(&m, &gb, o, d, 0,
+			    INFINITY, vals, nv, collect, &hb, NULL), 0);
+			/* the filtered flat walk is the unfiltered one, filtered */
+			int q = 0;
+			for (int i = 0; i < all.n; i++) {
+				float lo, hi;
+				int hit = 0;
+
+				leaf_range(&g, all.v[i].i[0], all.v[i].i[1],
+				    all.v[i].i[2], &lo, &hi);
+				for (int w = 0; w < nv; w++)
+					hit |= lo <= vals[w] && vals[w] <= hi;
+				if (!hit)
+					continue;
+				assert_true(q < f.n);
+				assert_true(all.v[i].t0 == f.v[q].t0 &&
+				    all.v[i].leaf == f.v[q].leaf);
+				q++;
+			}
+			assert_int_equal(q, f.n);
+			culled += f.n < all.n;
+			rays += all.n > 0;
+			assert_int_equal(h.n, f.n);
+			assert_int_equal(hb.n, f.n);
+			assert_int_equal(st.leaves, (uint64_t)h.n);
+			for (int i = 0; i < f.n; i++) {
+				assert_true(same_visit(&h.v[i], &f.v[i]));
+				assert_true(same_visit(&hb.v[i], &f.v[i]));
+				assert_memory_equal(h.v[i].c, f.v[i].c,
+				    sizeof h.v[i].c);
+				assert_memory_equal(hb.v[i].c, f.v[i].c,
+				    sizeof h.v[i].c);
+			}
+			free(all.v);
+			free(f.v);
+			free(h.v);
+			free(hb.v);
+		}
+		vx_macro_free(&m);
+		vx_grid_free(&g);
+		vx_grid_free(&gb);
+	}
+	/* the values must cull a fair share, or the test proves little */
+	assert_true(culled > rays / 3);
+}
+
+/* The visitor's nonzero value stops the walk and is returned. */
+static int
+stop_at_third(void *ctx, const vx_leaf_visit *v)
+{
+	int *k = ctx;
+
+	(void)v;
+	return ++*k == 3 ? 42 : 0;
+}
+
+static void
+visitor_stops(void **state)
+{
+	int64_t n[3] = { 9, 2, 2 };
+	double o[3] = { -1, 0.5, 0.5 }, d[3] = { 1, 0, 0 };
+	int k = 0;
+	vx_macro m;
+
+	(void)state;
+	unit_leaves(&m, n, 0, NULL);
+	assert_int_equal(vx_macro_traverse(&m, NULL, o, d, 0, INFINITY, NULL,
+	    0, stop_at_third, &k, NULL), 42);
+	assert_int_equal(k, 3);
+	vx_macro_free(&m);
+}
+
+/* Explicit leaves: only leaves whose stored range brackets the value are
+ * visited, and the macrocells skip the rest (oracle: hand-made leaf grid
+ * with one interesting leaf). */
+static void
+explicit_leaves(void **state)
+{
+	int64_t n[3] = { 16, 1, 1 };
+	static const int sz[][3] = { { 4, 1, 1 } };
+	float mm[32];
+	double o[3] = { -1, 0.5, 0.5 }, d[3] = { 1, 0, 0 };
+	float val = 3;
+	vx_macro m;
+	vx_err e = { 0, "" };
+	vx_trav_stats st;
+	rec r;
+
+	(void)state;
+	for (int k = 0; k < 16; k++) {
+		mm[2 * k] = 0;
+		mm[2 * k + 1] = k == 9 ? 5 : 1;
+	}
+	assert_int_equal(vx_macro_build_explicit(&m, n, mm, 1, sz, 1, &e), 0);
+	assert_true(m.root[0] == 0 && m.root[1] == 5);
+	rec_init(&r, n);
+	memset(&st, 0, sizeof st);
+	assert_int_equal(vx_macro_traverse(&m, NULL, o, d, 0, INFINITY, &val, 1,
+	    collect, &r, &st), 0);
+	assert_int_equal(r.n, 1);
+	assert_int_equal(r.v[0].leaf, 9);
+	assert_true(r.v[0].t0 == 10 && r.v[0].t1 == 11);
+	assert_int_equal(st.macro[1], 4);   /* 4 macrocells, one entered */
+	assert_int_equal(st.culled, 3);     /* leaves 8, 10, 11 */
+	free(r.v);
+	vx_macro_free(&m);
+}
+
+/* ---- defaults and sizes ---- */
+
+static void
+default_sizes_overhead(void **state)
+{
+	int sz[VX_MACRO_MAXLEV][3];
+	int64_t dims[3] = { 257, 257, 129 };
+	static const vx_type types[] = { VX_U8, VX_U16, VX_I16, VX_F32 };
+
+	(void)state;
+	for (size_t i = 0; i < 4; i++) {
+		vx_macro m;
+		vx_grid g;
+		vx_err e = { 0, "" };
+		double data;
+
+		assert_int_equal(vx_macro_default_sizes(types[i],
+		    VX_MACRO_DEFAULT_LEVELS, sz), 2);
+		/* level-1 macrocells cover 2 KiB of samples, level 2 64^3 */
+		assert_int_equal(sz[0][0] * sz[0][1] * sz[0][2] *
+		    (int)vx_type_size(types[i]), 2048);
+		for (int a = 0; a < 3; a++)
+			assert_int_equal(sz[0][a] * sz[1][a], 64);
+		assert_int_equal(vx_grid_alloc(&g, dims, types[i], NULL, &e), 0);
+		assert_int_equal(vx_macro_build(&m, &g, 2, sz, 1, &e), 0);
+		data = (double)(dims[0] * dims[1] * dims[2]) *
+		    (double)vx_type_size(types[i]);
+		assert_true((double)vx_macro_bytes(&m) / data < 0.005);
+		vx_macro_free(&m);
+		vx_grid_free(&g);
+	}
+	assert_int_equal(vx_macro_default_sizes(VX_TYPE_UNKNOWN, 2, sz), 0);
+	assert_int_equal(vx_macro_default_sizes(VX_U8, 0, sz), 0);
+}
+
+static void
+parse_sizes(void **state)
+{
+	int sz[VX_MACRO_MAXLEV][3];
+	vx_err e = { 0, "" };
+	static const char *bad[] = { "", "8", "8x8", "8x8x8,", ",8x8x8",
+	    "8x8x0", "8x8x2000", "8x8x8 4x4x4", "8x8x8,,4x4x4", "-1x2x2",
+	    "1x1x1,1x1x1,1x1x1,1x1x1,1x1x1,1x1x1,1x1x1", "8x8x8x" };
+
+	(void)state;
+	assert_int_equal(vx_macro_parse_sizes("8x8x8", sz, &e), 1);
+	assert_int_equal(vx_macro_parse_sizes("16x8x4,3x5x7", sz, &e), 2);
+	assert_true(sz[0][0] == 16 && sz[0][2] == 4 && sz[1][1] == 5);
+	for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+		vx_err_clear(&e);
+		assert_int_equal(vx_macro_parse_sizes(bad[i], sz, &e), -1);
+		assert_int_equal(e.code, VX_EUSAGE);
+	}
+}
+
+/* ---- the MCEL chunk ---- */
+
+static void
+chunk_roundtrip_and_staleness(void **state)
+{
+	int64_t dims[3] = { 10, 7, 5 };
+	static const int sz[][3] = { { 3, 3, 2 }, { 2, 2, 2 } };
+	vx_grid g, gb, g2;
+	vx_macro m, m2;
+	vx_chunk c;
+	vx_stream s;
+	vx_err e = { 0, "" };
+	int status;
+	long idx;
+
+	(void)state;
+	rand_grid(&g, dims, VX_I16, NULL, 5, 0);
+	assert_int_equal(vx_macro_build(&m, &g, 2, sz, 1, &e), 0);
+	for (int z = 0; z < 2; z++) {
+		memset(&c, 0, sizeof c);
+		assert_int_equal(vx_macro_to_chunk(&m, z ? 6 : 0, &c, &e), 0);
+		assert_string_equal(c.type, "MCEL");
+		assert_int_equal(vx_macro_from_chunk(&m2, &c, &e), 0);
+		assert_int_equal(m2.nlev, 2);
+		assert_memory_equal(m2.dims, m.dims, sizeof m.dims);
+		assert_memory_equal(m2.size, m.size, sizeof m.size);
+		assert_memory_equal(m2.mm[1], m.mm[1], vx_macro_bytes(&m) -
+		    2 * sizeof(float) * 2);
+		assert_true(m2.root[0] == m.root[0] && m2.root[1] == m.root[1]);
+		assert_int_equal(m2.vcrc, m.vcrc);
+		assert_true(vx_macro_matches(&m2, &g, NULL));
+		vx_macro_free(&m2);
+		vx_chunk_free(&c);
+	}
+	/* the CRC does not depend on the layout: a bricked copy matches */
+	assert_int_equal(vx_grid_relayout(&gb, &g, "bricked 4x4x2", &e), 0);
+	assert_int_equal(vx_macro_grid_crc(&gb), m.vcrc);
+	assert_true(vx_macro_matches(&m, &gb, NULL));
+	/* one changed sample makes it stale; another name is absent */
+	vx_stream_init(&s);
+	memset(&c, 0, sizeof c);
+	assert_int_equal(vx_macro_to_chunk(&m, 0, &c, &e), 0);
+	assert_int_equal(vx_stream_append(&s, &c, &e), 0);
+	assert_int_equal(vx_macro_from_stream(&m2, &s, &gb, &status, &idx, &e),
+	    0);
+	assert_int_equal(status, VX_MACRO_LOADED);
+	assert_int_equal(idx, 0);
+	vx_macro_free(&m2);
+	assert_int_equal(vx_grid_relayout(&g2, &g, "linear", &e), 0);
+	vx_grid_set(&g2, 3, 3, 3, vx_grid_get(&g2, 3, 3, 3) + 1);
+	assert_int_equal(vx_macro_from_stream(&m2, &s, &g2, &status, &idx, &e),
+	    0);
+	assert_int_equal(status, VX_MACRO_STALE);
+	snprintf(g2.name, sizeof g2.name, "other");
+	assert_int_equal(vx_macro_from_stream(&m2, &s, &g2, &status, &idx, &e),
+	    0);
+	assert_int_equal(status, VX_MACRO_ABSENT);
+	assert_int_equal(idx, -1);
+	vx_stream_free(&s);
+	vx_macro_free(&m);
+	vx_grid_free(&g);
+	vx_grid_free(&gb);
+	vx_grid_free(&g2);
+}
+
+/* Explicit leaves survive the chunk too (level 0 is stored). */
+static void
+chunk_explicit(void **state)
+{
+	int64_t n[3] = { 5, 3, 2 };
+	static const int sz[][3] = { { 2, 2, 2 } };
+	vx_macro m, m2;
+	vx_chunk c;
+	vx_err e = { 0, "" };
+
+	(void)state;
+	unit_leaves(&m, n, 1, sz);
+	memset(&c, 0, sizeof c);
+	assert_int_equal(vx_macro_to_chunk(&m, 0, &c, &e), 0);
+	assert_int_equal(vx_macro_from_chunk(&m2, &c, &e), 0);
+	assert_int_equal(m2.explicit_leaves, 1);
+	assert_memory_equal(m2.mm[0], m.mm[0], vx_macro_bytes(&m));
+	vx_chunk_free(&c);
+	vx_macro_free(&m);
+	vx_macro_free(&m2);
+}
+
+/* Malformed MCEL chunks: each is refused with VX_EDATA and a message naming
+ * what is wrong, before any allocation on the header's word. */
+static void
+chunk_errors(void **state)
+{
+	static const struct { const char *hdr; const char *msg; size_t body; } t[] = {
+		{ "levels: 1\n", "leaves", 0 },
+		{ "leaves: cells\n", "levels", 0 },
+		{ "leaves: nodes\nlevels: 0\n", "leaves", 0 },
+		{ "leaves: explicit\nlevels: 7\nsizes:\n", "levels", 0 },
+		{ "leaves: explicit\nlevels: 1\nsizes: 2x2\nleaf-dims: 2 2 2\n",
+		  "sizes", 0 },
+		{ "leaves: explicit\nlevels: 1\nsizes: 2x2x2\nleaf-dims: 2 2 2\n"
+		  "dims-1: 2 1 1\nrange: 0 1\n", "dims-1", 0 },
+		{ "leaves: explicit\nlevels: 1\nsizes: 2x2x2\nleaf-dims: 2 2 2\n"
+		  "dims-1: 1 1 1\nrange: 0 1\nencoding: raw\n", "body", 8 },
+		{ "leaves: explicit\nlevels: 0\nsizes:\n"
+		  "leaf-dims: 1048576 1048576 1048576\nrange: 0 1\n"
+		  "encoding: zlib\n", "zlib", 8 },
+		{ "leaves: explicit\nlevels: 0\nsizes:\n"
+		  "leaf-dims: 2000000 1 1\nrange: 0 1\n", "leaf-dims", 0 },
+		{ "leaves: explicit\nlevels: 1\nsizes: 0x2x2\nleaf-dims: 2 2 2\n"
+		  "dims-1: 1 1 1\nrange: 0 1\n", "sizes", 0 },
+		{ "leaves: cells\nlevels: 0\nsizes:\nleaf-dims: 1 1 1\n"
+		  "volume: v\nvolume-dims: 3 2 2\nvolume-type: u8\n"
+		  "volume-crc32: 00000000\nrange: 0 1\n", "volume-dims", 0 },
+		{ "leaves: cells\nlevels: 0\nsizes:\nleaf-dims: 1 1 1\n"
+		  "volume: v\nvolume-dims: 2 2 2\nvolume-type: u9\n"
+		  "volume-crc32: 00000000\nrange: 0 1\n", "volume-type", 0 },
+		{ "leaves: cells\nlevels: 0\nsizes:\nleaf-dims: 1 1 1\n"
+		  "volume: v\nvolume-dims: 2 2 2\nvolume-type: u8\n"
+		  "volume-crc32: 0xabcdef\nrange: 0 1\n", "crc32", 0 },
+		{ "leaves: cells\nlevels: 0\nsizes:\nleaf-dims: 1 1 1\n"
+		  "volume: v\nvolume-dims: 2 2 2\nvolume-type: u8\n"
+		  "volume-crc32: 00000000\nrange: 1 0\n", "range", 0 },
+		{ "leaves: explicit\nlevels: 0\nsizes:\nleaf-dims: 1 1 1\n"
+		  "range: 0 1\n", "body", 0 },
+	};
+
+	(void)state;
+	for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+		size_t hl = strlen(t[i].hdr);
+		vx_chunk c;
+		vx_macro m;
+		vx_err e = { 0, "" };
+
+		memcpy(c.type, "MCEL", 5);
+		c.offset = 0;
+		c.len = hl + 1 + t[i].body;
+		c.data = calloc(c.len, 1);
+		memcpy(c.data, t[i].hdr, hl);
+		c.data[hl] = '\n';
+		assert_int_equal(vx_macro_from_chunk(&m, &c, &e), VX_EDATA);
+		if (strstr(e.msg, t[i].msg) == NULL)
+			print_message("case %zu: '%s'\n", i, e.msg);
+		assert_non_null(strstr(e.msg, t[i].msg));
+		assert_non_null(strstr(e.msg, "macrocells"));
+		vx_macro_free(&m);
+		free(c.data);
+	}
+}
+
+/* A volume with a dimension of 1 has no cells: an empty hierarchy that
+ * visits nothing, and that survives the chunk. */
+static void
+degenerate_volume(void **state)
+{
+	int64_t dims[3] = { 1, 5, 5 };
+	int sz[2][3];
+	double o[3] = { 0, 0.5, -1 }, d[3] = { 0, 0, 1 };
+	vx_grid g;
+	vx_macro m, m2;
+	vx_chunk c;
+	vx_err e = { 0, "" };
+	rec r;
+
+	(void)state;
+	vx_macro_default_sizes(VX_U8, 2, sz);
+	assert_int_equal(vx_grid_alloc(&g, dims, VX_U8, NULL, &e), 0);
+	assert_int_equal(vx_macro_build(&m, &g, 2, sz, 1, &e), 0);
+	assert_int_equal(vx_macro_bytes(&m), 0);
+	r.cap = 4;
+	r.n = 0;
+	r.v = calloc(4, sizeof *r.v);
+	assert_int_equal(vx_macro_traverse(&m, &g, o, d, 0, INFINITY, NULL, 0,
+	    collect, &r, NULL), 0);
+	assert_int_equal(vx_macro_traverse_flat(NULL, &g, o, d, 0, INFINITY,
+	    NULL, 0, collect, &r, NULL), 0);
+	assert_int_equal(r.n, 0);
+	memset(&c, 0, sizeof c);
+	assert_int_equal(vx_macro_to_chunk(&m, 0, &c, &e), 0);
+	assert_int_equal(vx_macro_from_chunk(&m2, &c, &e), 0);
+	assert_true(vx_macro_matches(&m2, &g, NULL));
+	free(r.v);
+	vx_chunk_free(&c);
+	vx_macro_free(&m);
+	vx_macro_free(&m2);
+	vx_grid_free(&g);
+}
+
+int
+main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(walk_hard_cases),
+		cmocka_unit_test(walk_nonfinite_input),
+		cmocka_unit_test(walk_random_oracle),
+		cmocka_unit_test(build_matches_brute_force),
+		cmocka_unit_test(nonfinite_policy),
+		cmocka_unit_test(hierarchy_equals_filtered_flat),
+		cmocka_unit_test(visitor_stops),
+		cmocka_unit_test(explicit_leaves),
+		cmocka_unit_test(default_sizes_overhead),
+		cmocka_unit_test(parse_sizes),
+		cmocka_unit_test(chunk_roundtrip_and_staleness),
+		cmocka_unit_test(chunk_explicit),
+		cmocka_unit_test(chunk_errors),
+		cmocka_unit_test(degenerate_volume),
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
