@@ -11,6 +11,8 @@ independently of the C code (written from formats/stream.md alone).
       a stream with one IMAG chunk; EXPR in x, y, c.
   mkstream.py add IN OUT TYPE TEXT [--at N]
       insert a chunk with payload TEXT at position N (default: the end).
+  mkstream.py cat OUT IN...
+      one stream with the chunks of all the inputs, in order.
   mkstream.py samples IN [--name N]
       write the volume's samples to stdout in x-fastest order, little-endian
       (what an NRRD body holds), whatever the stream's layout.
@@ -151,6 +153,10 @@ def cmd_add(a):
     write_stream(a.out, chunks)
 
 
+def cmd_cat(a):
+    write_stream(a.out, [c for path in a.inputs for c in read_stream(path)])
+
+
 def cmd_samples(a):
     for typ, payload in read_stream(a.inp):
         if typ != "VOLM":
@@ -195,12 +201,15 @@ def main():
     d.add_argument("type")
     d.add_argument("text")
     d.add_argument("--at", type=int)
+    c = sub.add_parser("cat")
+    c.add_argument("out")
+    c.add_argument("inputs", nargs="+")
     s = sub.add_parser("samples")
     s.add_argument("inp")
     s.add_argument("--name")
     a = p.parse_args()
     {"volume": cmd_volume, "image": cmd_image, "add": cmd_add,
-     "samples": cmd_samples}[a.cmd](a)
+     "cat": cmd_cat, "samples": cmd_samples}[a.cmd](a)
 
 
 if __name__ == "__main__":

@@ -93,7 +93,7 @@ nonfinite(void **state)
 	vx_grid g;
 	vx_stats st;
 	vx_err e = { 0, "" };
-	uint64_t h[4];
+	uint64_t h[8];
 
 	(void)state;
 	assert_int_equal(vx_grid_alloc(&g, d, VX_F32, NULL, &e), 0);
