@@ -10,8 +10,10 @@
 #include "tool.h"
 #include "vx_grid.h"
 #include "vx_image.h"
+#include "vx_macro.h"
 #include "vx_stats.h"
 #include "vx_stream.h"
+#include "vx_tetmesh.h"
 
 static const char usage[] =
     "vinfo [--json] [--histogram N] [--chunks] [FILE|-]";
@@ -331,6 +333,129 @@ out:
 	return rc;
 }
 
+/* What vinfo learned about a macrocell chunk: its levels, and whether it
+ * still matches the volume it was built over. */
+typedef struct mcel_info {
+	vx_macro m;
+	const char *status;     /* "matches", "stale", "no such volume", or
+	                           "explicit leaves" */
+} mcel_info;
+
+static int
+decode_mcel(const vx_stream *s, const vx_chunk *c, mcel_info *mi, vx_err *e)
+{
+	vx_grid g;
+	vx_err ge = { 0, "" };
+	int rc;
+
+	memset(mi, 0, sizeof *mi);
+	if ((rc = vx_macro_from_chunk(&mi->m, c, e)) != 0)
+		return rc;
+	if (mi->m.explicit_leaves) {
+		mi->status = "explicit leaves";
+		return 0;
+	}
+	if (vx_grid_from_stream(&g, s, mi->m.name, NULL, &ge) != 0) {
+		mi->status = "no such volume";
+		return 0;
+	}
+	mi->status = vx_macro_matches(&mi->m, &g, NULL) ? "matches" : "stale";
+	vx_grid_free(&g);
+	return 0;
+}
+
+static void
+text_mcel(const mcel_info *mi)
+{
+	int l;
+
+	printf("  macrocells: %d level%s over %lld x %lld x %lld %s leaves\n",
+	    mi->m.nlev, mi->m.nlev == 1 ? "" : "s",
+	    (long long)mi->m.dims[0][0], (long long)mi->m.dims[0][1],
+	    (long long)mi->m.dims[0][2],
+	    mi->m.explicit_leaves ? "explicit" : "cell");
+	for (l = 1; l <= mi->m.nlev; l++)
+		printf("    level %d: %dx%dx%d of level %d, %lld x %lld x %lld "
+		    "cells\n", l, mi->m.size[l][0], mi->m.size[l][1],
+		    mi->m.size[l][2], l - 1, (long long)mi->m.dims[l][0],
+		    (long long)mi->m.dims[l][1], (long long)mi->m.dims[l][2]);
+	printf("    root range: %.9g %.9g\n", (double)mi->m.root[0],
+	    (double)mi->m.root[1]);
+	if (!mi->m.explicit_leaves) {
+		printf("    volume: ");
+		put_str(mi->m.name);
+		printf(" (%s)\n", mi->status);
+	}
+}
+
+static void
+json_mcel(const mcel_info *mi)
+{
+	double r[2] = { mi->m.root[0], mi->m.root[1] };
+	int l;
+
+	printf(",\"macrocells\":{\"levels\":%d,\"leaf_dims\":[%lld,%lld,%lld],"
+	    "\"explicit\":%s,\"sizes\":[", mi->m.nlev,
+	    (long long)mi->m.dims[0][0], (long long)mi->m.dims[0][1],
+	    (long long)mi->m.dims[0][2],
+	    mi->m.explicit_leaves ? "true" : "false");
+	for (l = 1; l <= mi->m.nlev; l++)
+		printf("%s[%d,%d,%d]", l > 1 ? "," : "", mi->m.size[l][0],
+		    mi->m.size[l][1], mi->m.size[l][2]);
+	printf("],\"root\":");
+	json_nums(r, 2);
+	if (!mi->m.explicit_leaves) {
+		printf(",\"volume\":");
+		json_str(mi->m.name);
+	}
+	printf(",\"status\":");
+	json_str(mi->status);
+	putchar('}');
+}
+
+static void
+text_tetm(const vx_tetmesh *m)
+{
+	printf("  mesh: ");
+	put_str(m->name);
+	printf("\n    points: %zu, tets: %zu, scalar: ", m->npoint, m->ntet);
+	put_str(m->scalar);
+	putchar('\n');
+	if (m->npoint > 0)
+		printf("    bounds: %.9g %.9g %.9g to %.9g %.9g %.9g\n",
+		    m->bmin[0], m->bmin[1], m->bmin[2], m->bmax[0], m->bmax[1],
+		    m->bmax[2]);
+	if (m->has_range)
+		printf("    range: %.9g %.9g (recomputed)\n", m->vmin, m->vmax);
+	else
+		printf("    range: none (no finite value)\n");
+}
+
+static void
+json_tetm(const vx_tetmesh *m)
+{
+	printf(",\"mesh\":{\"name\":");
+	json_str(m->name);
+	printf(",\"scalar\":");
+	json_str(m->scalar);
+	printf(",\"points\":%zu,\"tets\":%zu,\"bounds\":", m->npoint, m->ntet);
+	if (m->npoint > 0) {
+		double b[6] = { m->bmin[0], m->bmin[1], m->bmin[2], m->bmax[0],
+		    m->bmax[1], m->bmax[2] };
+
+		json_nums(b, 6);
+	} else
+		fputs("null", stdout);
+	printf(",\"range\":");
+	if (m->has_range) {
+		double r[2] = { m->vmin, m->vmax };
+
+		json_nums(r, 2);
+	} else
+		fputs("null", stdout);
+	putchar('}');
+}
+
 /* ---- text report ---- */
 
 static void
@@ -436,7 +561,7 @@ text_lines(const unsigned char *p, size_t n, const char *indent)
 }
 
 static void
-text_chunk(size_t idx, const vx_chunk *c, const opts *o)
+text_chunk(const vx_stream *s, size_t idx, const vx_chunk *c, const opts *o)
 {
 	vx_err e = { 0, "" };
 	int rc;
@@ -515,6 +640,24 @@ text_chunk(size_t idx, const vx_chunk *c, const opts *o)
 			text_lines(text, n, "    ");
 		}
 		free(text);
+	} else if (memcmp(c->type, VX_CHUNK_MACRO, 4) == 0) {
+		mcel_info mi;
+
+		if ((rc = decode_mcel(s, c, &mi, &e)) != 0) {
+			printf("  error: %s\n", e.msg);
+			chunk_error(c, &e);
+		} else
+			text_mcel(&mi);
+		vx_macro_free(&mi.m);
+	} else if (memcmp(c->type, VX_CHUNK_TETMESH, 4) == 0) {
+		vx_tetmesh m;
+
+		if ((rc = vx_tetmesh_from_chunk(&m, c, &e)) != 0) {
+			printf("  error: %s\n", e.msg);
+			chunk_error(c, &e);
+		} else
+			text_tetm(&m);
+		vx_tetmesh_free(&m);
 	}
 }
 
@@ -616,7 +759,7 @@ json_error(const vx_chunk *c, const vx_err *e)
 }
 
 static void
-json_chunk(size_t idx, const vx_chunk *c, const opts *o)
+json_chunk(const vx_stream *s, size_t idx, const vx_chunk *c, const opts *o)
 {
 	vx_err e = { 0, "" };
 
@@ -695,6 +838,22 @@ json_chunk(size_t idx, const vx_chunk *c, const opts *o)
 			json_text(text, n);
 		}
 		free(text);
+	} else if (memcmp(c->type, VX_CHUNK_MACRO, 4) == 0) {
+		mcel_info mi;
+
+		if (decode_mcel(s, c, &mi, &e) != 0)
+			json_error(c, &e);
+		else
+			json_mcel(&mi);
+		vx_macro_free(&mi.m);
+	} else if (memcmp(c->type, VX_CHUNK_TETMESH, 4) == 0) {
+		vx_tetmesh m;
+
+		if (vx_tetmesh_from_chunk(&m, c, &e) != 0)
+			json_error(c, &e);
+		else
+			json_tetm(&m);
+		vx_tetmesh_free(&m);
 	}
 done:
 	putchar('}');
@@ -719,7 +878,7 @@ main(int argc, char **argv)
 		json_str(strcmp(o.in, "-") ? o.in : "<stdin>");
 		printf(",\"bytes\":%llu,\"chunks\":[", (unsigned long long)total);
 		for (i = 0; i < s.n; i++)
-			json_chunk(i, &s.chunk[i], &o);
+			json_chunk(&s, i, &s.chunk[i], &o);
 		printf("]}\n");
 	} else {
 		printf("stream: ");
@@ -727,7 +886,7 @@ main(int argc, char **argv)
 		printf(": %llu bytes, %zu chunk%s and the end chunk\n",
 		    (unsigned long long)total, s.n, s.n == 1 ? "" : "s");
 		for (i = 0; i < s.n; i++)
-			text_chunk(i, &s.chunk[i], &o);
+			text_chunk(&s, i, &s.chunk[i], &o);
 	}
 	vx_stream_free(&s);
 	tool_finish();

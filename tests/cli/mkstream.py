@@ -9,6 +9,9 @@ independently of the C code (written from formats/stream.md alone).
       (default x + 3*y + 11*z); the range is computed unless given.
   mkstream.py image OUT --size W H C [--formula EXPR]
       a stream with one IMAG chunk; EXPR in x, y, c.
+  mkstream.py tetm OUT
+      a stream with one TETM chunk (formats/tetmesh.md): the unit corner
+      tetrahedron, scalars 0.5 1.5 2.5 3.5 on its vertices.
   mkstream.py add IN OUT TYPE TEXT [--at N]
       insert a chunk with payload TEXT at position N (default: the end).
   mkstream.py cat OUT IN...
@@ -146,6 +149,14 @@ def cmd_image(a):
     write_stream(a.out, [("IMAG", hdr.encode() + body)])
 
 
+def cmd_tetm(a):
+    pts = [0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 2]
+    body = struct.pack("<12d", *pts) + struct.pack("<4I", 0, 1, 2, 3) + \
+        struct.pack("<4f", 0.5, 1.5, 2.5, 3.5)
+    hdr = "name: corner\npoints: 4\ntets: 1\nscalar: heat\nencoding: raw\n\n"
+    write_stream(a.out, [("TETM", hdr.encode() + body)])
+
+
 def cmd_add(a):
     chunks = read_stream(a.inp)
     at = len(chunks) if a.at is None else a.at
@@ -195,6 +206,8 @@ def main():
     i.add_argument("out")
     i.add_argument("--size", type=int, nargs=3, required=True)
     i.add_argument("--formula", default="x + 10*y + 100*c")
+    m = sub.add_parser("tetm")
+    m.add_argument("out")
     d = sub.add_parser("add")
     d.add_argument("inp")
     d.add_argument("out")
@@ -209,7 +222,7 @@ def main():
     s.add_argument("--name")
     a = p.parse_args()
     {"volume": cmd_volume, "image": cmd_image, "add": cmd_add,
-     "cat": cmd_cat, "samples": cmd_samples}[a.cmd](a)
+     "cat": cmd_cat, "tetm": cmd_tetm, "samples": cmd_samples}[a.cmd](a)
 
 
 if __name__ == "__main__":

@@ -73,6 +73,13 @@ check_eq "image size" "$(jget "$T/i.json" '[d["chunks"][0]["image"][k] for k in 
 check_eq "image min per channel" "$(jget "$T/i.json" 'd["chunks"][0]["image"]["min"]')" "[0, 100, 200, 300]"
 check_eq "image max per channel" "$(jget "$T/i.json" 'd["chunks"][0]["image"]["max"]')" "[12, 112, 212, 312]"
 
+# A tetrahedral mesh: counts, bounds and the recomputed scalar range
+$MK tetm "$T/m.vx"
+vinfo --json "$T/m.vx" >"$T/m.json"
+check_eq "mesh summary" \
+    "$(jget "$T/m.json" '[d["chunks"][0]["mesh"][k] for k in ("name","scalar","points","tets","bounds","range")]')" \
+    "['corner', 'heat', 4, 1, [0, 0, 0, 1, 1, 2], [0.5, 3.5]]"
+
 # A header range that disagrees with the samples: reported, exit 65
 $MK volume "$T/r.vx" --dims 2 2 2 --range 0 99
 vinfo "$T/r.vx" >"$T/r.out" 2>"$T/r.err"; rc=$?
