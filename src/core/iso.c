@@ -1,0 +1,203 @@
+/* iso.c: rays against isosurfaces of a volume: traversal + cell kernel. */
+#include "vx_iso.h"
+
+#include <math.h>
+#include <string.h>
+#include <time.h>
+
+#include "vx_camera.h"
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <x86intrin.h>
+#endif
+
+uint64_t
+vx_cycles(void)
+{
+#if defined(__x86_64__) || defined(__i386__)
+	return (uint64_t)__rdtsc();
+#else
+	struct timespec ts;
+
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
+#endif
+}
+
+typedef struct iso_ctx {
+	const vx_iso_tracer *tr;
+	const double *o, *d;
+	const float *iso;
+	int niso;
+	vx_iso_hit_fn fn;
+	void *ctx;
+	vx_iso_stats *st;
+} iso_ctx;
+
+/* The two axes other than a, lower first: u runs along the first. */
+static const int other[3][2] = { { 1, 2 }, { 0, 2 }, { 0, 1 } };
+
+/* face_field: the field on face (axis, side) of leaf v where the ray is at
+ * t.  The point o + t d is computed exactly as the neighbouring cell
+ * computes it (same o, d, t), and so are the in-face coordinates: both cells
+ * get the same bits. */
+static double
+face_field(const vx_leaf_visit *v, const double *o, const double *d,
+    double t, int axis, int side)
+{
+	int b = other[axis][0], c = other[axis][1];
+	double u = (o[b] + t * d[b]) - (double)v->i[b];
+	double w = (o[c] + t * d[c]) - (double)v->i[c];
+
+	return vx_cell_face_value(v->c, axis, side, u, w);
+}
+
+static double
+inner_field(const vx_leaf_visit *v, const double *o, const double *d,
+    double t)
+{
+	double p[3];
+	int a;
+
+	for (a = 0; a < 3; a++)
+		p[a] = (o[a] + t * d[a]) - (double)v->i[a];
+	return vx_cell_trilinear(v->c, p);
+}
+
+#define MAXROOTS 3   /* a cubic crosses a value at most 3 times */
+
+static int
+visit(void *vctx, const vx_leaf_visit *v)
+{
+	iso_ctx *x = vctx;
+	vx_iso_stats *st = x->st;
+	vx_iso_hit hits[VX_ISO_MAX * MAXROOTS];
+	double e0, e1, ol[3], len, k[4];
+	uint64_t c0 = 0;
+	int nh = 0, s, a, i, j, rc;
+
+	if (!vx_cell_finite(v->c)) {
+		if (st)
+			st->nonfinite++;
+		return 0;
+	}
+	if (st) {
+		st->cells++;
+		if (st->timing)
+			c0 = vx_cycles();
+	}
+	e0 = v->entry_axis >= 0 ? face_field(v, x->o, x->d, v->t0,
+	    v->entry_axis, v->entry_side) : inner_field(v, x->o, x->d, v->t0);
+	e1 = v->exit_axis >= 0 ? face_field(v, x->o, x->d, v->t1,
+	    v->exit_axis, v->exit_side) : inner_field(v, x->o, x->d, v->t1);
+	/* Solve in a local parameter s = t - t0 from a point near the cell, so
+	 * the cubic is well conditioned however far the ray's origin is. */
+	for (a = 0; a < 3; a++)
+		ol[a] = (x->o[a] + v->t0 * x->d[a]) - (double)v->i[a];
+	len = v->t1 - v->t0;
+	for (s = 0; s < x->niso; s++) {
+		double iso = x->iso[s], sa = 0, fa, f1, r;
+		int n, kind;
+
+		if (!(v->lo <= iso && iso <= v->hi))
+			continue;
+		vx_cell_poly(v->c, ol, x->d, iso, k);
+		fa = e0 - iso;
+		f1 = e1 - iso;
+		for (n = 0; n < MAXROOTS; n++) {
+			if (st)
+				st->roots++;
+			kind = vx_cell_first_root(k, sa, len, fa, f1,
+			    x->tr->solver, &r, NULL);
+			if (kind == VX_CELL_MISS || (n > 0 && !(r > sa)))
+				break;
+			vx_iso_hit *h = &hits[nh++];
+			h->t = v->t0 + r;
+			if (h->t > v->t1)     /* rounding of t0 + r */
+				h->t = v->t1;
+			h->surface = s;
+			h->kind = kind;
+			h->entering = fa < 0;
+			sa = r;
+			if (kind == VX_CELL_CROSS)
+				fa = fa >= 0 ? -1.0 : 1.0;
+		}
+	}
+	if (st && st->timing)
+		st->cyc_isect += vx_cycles() - c0;
+	/* insertion sort by t, stable: isovalue order breaks ties */
+	for (i = 1; i < nh; i++) {
+		vx_iso_hit h = hits[i];
+
+		for (j = i; j > 0 && hits[j - 1].t > h.t; j--)
+			hits[j] = hits[j - 1];
+		hits[j] = h;
+	}
+	for (i = 0; i < nh; i++) {
+		vx_iso_hit *h = &hits[i];
+
+		memcpy(h->cell, v->i, sizeof h->cell);
+		memcpy(h->c, v->c, sizeof h->c);
+		for (a = 0; a < 3; a++)
+			h->p[a] = x->o[a] + h->t * x->d[a];
+		if (st)
+			st->hits++;
+		if ((rc = x->fn(x->ctx, h)) != 0)
+			return rc;
+	}
+	return 0;
+}
+
+int
+vx_iso_trace(const vx_iso_tracer *tr, const double o[3], const double d[3],
+    double tmin, double tmax, const float *iso, int niso, vx_iso_hit_fn fn,
+    void *ctx, vx_iso_stats *st)
+{
+	iso_ctx x = { tr, o, d, iso, niso > VX_ISO_MAX ? VX_ISO_MAX : niso,
+	    fn, ctx, st };
+
+	if (st)
+		st->rays++;
+	if (x.niso <= 0)
+		return 0;
+	if (tr->flat || tr->m == NULL)
+		return vx_macro_traverse_flat(tr->m, tr->g, o, d, tmin, tmax,
+		    iso, x.niso, visit, &x, st ? &st->trav : NULL);
+	return vx_macro_traverse(tr->m, tr->g, o, d, tmin, tmax, iso, x.niso,
+	    visit, &x, st ? &st->trav : NULL);
+}
+
+static int
+keep_first(void *ctx, const vx_iso_hit *h)
+{
+	*(vx_iso_hit *)ctx = *h;
+	return 1;
+}
+
+int
+vx_iso_first(const vx_iso_tracer *tr, const double o[3], const double d[3],
+    double tmin, double tmax, const float *iso, int niso, vx_iso_hit *hit,
+    vx_iso_stats *st)
+{
+	return vx_iso_trace(tr, o, d, tmin, tmax, iso, niso, keep_first, hit,
+	    st) != 0;
+}
+
+int
+vx_iso_normal(const vx_grid *g, const vx_iso_hit *h, const double dw[3],
+    double n[3])
+{
+	double p[3], di[3], ni[3], len;
+	int a, path;
+
+	for (a = 0; a < 3; a++)
+		p[a] = h->p[a] - (double)h->cell[a];
+	vx_world_to_index_dir(g, dw, di);
+	path = vx_cell_normal(h->c, p, di, ni);
+	vx_index_to_world_normal(g, ni, n);
+	len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+	if (len > 0 && isfinite(len))
+		for (a = 0; a < 3; a++)
+			n[a] /= len;
+	return path;
+}

@@ -1,0 +1,82 @@
+/* vx_iso.h: rays against the isosurfaces of a volume: the macrocell
+ * traversal (vx_macro.h) feeding the trilinear cell kernel (vx_cell.h).
+ * One query serves primary rays, shadow rays, transparent layers and, later,
+ * the bakes' path-traced bounces.
+ *
+ * Rays are in the volume's index space (sample (i,j,k) at (i,j,k)); use
+ * vx_world_to_index / vx_world_to_index_dir (vx_camera.h) on world rays: the
+ * ray parameter t is then the same in both spaces.
+ *
+ * Crack-free hits.  For every visited cell the field minus the isovalue is
+ * taken at the ray's entry and exit from the face's own four corners
+ * (vx_cell_face_value), so two cells sharing a face agree on its sign bit for
+ * bit; a sign change (f >= iso counts as inside) is claimed by exactly one
+ * cell.  Where the segment starts or ends inside a cell, the trilinear value
+ * is used.  Cells with a non-finite corner have no surface. */
+#ifndef VX_ISO_H
+#define VX_ISO_H
+
+#include <stdint.h>
+
+#include "vx_cell.h"
+#include "vx_grid.h"
+#include "vx_macro.h"
+
+#define VX_ISO_MAX 16            /* isovalues per query */
+
+typedef struct vx_iso_tracer {
+	const vx_grid *g;
+	const vx_macro *m;       /* NULL or flat: walk every cell */
+	int flat;                /* 1: ignore the hierarchy (benchmarks, tests) */
+	int solver;              /* vx_cell_solver */
+} vx_iso_tracer;
+
+typedef struct vx_iso_hit {
+	double t;                /* ray parameter of the hit */
+	int surface;             /* index into the isovalue list */
+	int kind;                /* VX_CELL_CROSS or VX_CELL_TOUCH */
+	int entering;            /* crossing from f < iso to f >= iso */
+	int64_t cell[3];         /* the cell that claimed it */
+	double p[3];             /* hit point, index space */
+	float c[8];              /* the cell's corners (for normals) */
+} vx_iso_hit;
+
+typedef struct vx_iso_stats {
+	uint64_t rays;           /* queries */
+	uint64_t cells;          /* cells handed to the kernel */
+	uint64_t roots;          /* vx_cell_first_root calls */
+	uint64_t hits;           /* hits reported */
+	uint64_t nonfinite;      /* cells skipped for a non-finite corner */
+	uint64_t cyc_isect;      /* clock ticks inside the cell kernel (only
+	                            counted when timing is on) */
+	int timing;              /* 1: count cyc_isect (costs a clock read per
+	                            cell) */
+	vx_trav_stats trav;
+} vx_iso_stats;
+
+/* vx_iso_hit_fn: called for each hit in order of increasing t (hits at one t
+ * in the order of the isovalue list); return nonzero to stop the query. */
+typedef int (*vx_iso_hit_fn)(void *ctx, const vx_iso_hit *h);
+
+/* vx_iso_trace: every crossing of the isovalues iso[0..niso) along o + t d
+ * for t in [tmin, tmax], in order, handed to fn.  Returns 0 when the ray
+ * ended, or fn's nonzero value.  st may be NULL.  Reentrant. */
+int vx_iso_trace(const vx_iso_tracer *tr, const double o[3],
+    const double d[3], double tmin, double tmax, const float *iso, int niso,
+    vx_iso_hit_fn fn, void *ctx, vx_iso_stats *st);
+
+/* vx_iso_first: the first hit in [tmin, tmax]; returns 1 and fills *hit, or
+ * 0 for none. */
+int vx_iso_first(const vx_iso_tracer *tr, const double o[3],
+    const double d[3], double tmin, double tmax, const float *iso, int niso,
+    vx_iso_hit *hit, vx_iso_stats *st);
+
+/* vx_iso_normal: the unit world-space normal at a hit, facing against the
+ * world ray direction dw; returns the vx_cell_normal path. */
+int vx_iso_normal(const vx_grid *g, const vx_iso_hit *h, const double dw[3],
+    double n[3]);
+
+/* vx_cycles: a cheap monotonic tick counter (TSC on x86, else ns). */
+uint64_t vx_cycles(void);
+
+#endif

@@ -1,0 +1,70 @@
+/* vx_mip.h: exact maximum-intensity projection (Parker et al. 1999 §4.3).
+ *
+ * For each ray, a priority queue of macrocells keyed by their stored maximum
+ * (largest first) is refined level by level; a level-1 macrocell pulled
+ * from the queue has its data cells walked along the ray, and each cell
+ * whose corner maximum can still beat the best value gives the exact
+ * maximum of the trilinear field on the ray's segment in it (the field
+ * along the ray is a cubic: its maximum can lie strictly inside a cell, so
+ * face values alone are not enough: vx_cell_max).  The walk stops as soon as
+ * the queue's head cannot beat the best value found.
+ *
+ * "Use last t": a trilinear sample at the t where the previous ray of the
+ * same tile found its maximum (the segment's midpoint when there is none)
+ * is a lower bound on this ray's maximum; macrocells whose maximum is below
+ * it are never pushed.  The bound only prunes cells that could never be
+ * pulled from the queue, so the result (value and depth) is bit-identical
+ * with the bound on or off; only the queue work differs.
+ *
+ * Rays are in index space (vx_world_to_index*).  Non-finite samples are
+ * ignored (a cell with a non-finite corner contributes nothing): no NaN key
+ * and no NaN result. */
+#ifndef VX_MIP_H
+#define VX_MIP_H
+
+#include <stdint.h>
+
+#include "vx_grid.h"
+#include "vx_macro.h"
+
+typedef struct vx_mip_stats {
+	uint64_t rays;
+	uint64_t pushes, pops;       /* priority-queue operations */
+	uint64_t macro_opened;       /* macrocells split or walked */
+	uint64_t cells;              /* data cells whose maximum was solved */
+	uint64_t cells_skipped;      /* data cells pruned by their corners */
+	uint64_t bound_pruned;       /* pushes avoided by the last-t bound */
+	uint64_t max_queue;          /* largest queue length seen */
+} vx_mip_stats;
+
+/* Per-thread workspace: the fixed-capacity queue (no allocation per ray). */
+typedef struct vx_mip_work {
+	void *q;
+	size_t cap;
+	double last_t;               /* previous ray's t of the maximum, or NaN */
+} vx_mip_work;
+
+/* vx_mip_work_init: size the queue for hierarchy m (its capacity bound is
+ * derived from the level dims: no ray can need more).  Free with
+ * vx_mip_work_free. */
+int vx_mip_work_init(vx_mip_work *w, const vx_macro *m, vx_err *e);
+void vx_mip_work_free(vx_mip_work *w);
+
+/* vx_mip_ray: the exact maximum of volume g along o + t d, t in
+ * [tmin, tmax], with hierarchy m built over g (vx_macro_build).
+ * use_last_t: 1 to use (and update) w->last_t as the lower bound.
+ * Returns 1 and sets *vmax and *tmax (smallest t among cells that tie, in
+ * queue order) if the ray meets a finite sample, else 0 (*vmax = -Inf,
+ * *tmax = +Inf).  st may be NULL. */
+int vx_mip_ray(const vx_grid *g, const vx_macro *m, vx_mip_work *w,
+    const double o[3], const double d[3], double tmin, double tmax,
+    int use_last_t, double *vmax, double *tmaxp, vx_mip_stats *st);
+
+/* vx_mip_ray_exhaustive: the same maximum by solving every cell along the
+ * ray (no queue, no pruning): the reference the tests compare against.
+ * Ties go to the smallest t. */
+int vx_mip_ray_exhaustive(const vx_grid *g, const double o[3],
+    const double d[3], double tmin, double tmax, double *vmax,
+    double *tmaxp);
+
+#endif

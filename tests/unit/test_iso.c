@@ -1,0 +1,421 @@
+/* test_iso.c: rays against isosurfaces of whole volumes: no holes, no double
+ * hits, hierarchy = flat = bricked bit for bit, hard cells through the real
+ * traversal, non-finite voxels, scale invariance. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <math.h>
+#include <cmocka.h>
+
+#include "vx_iso.h"
+
+/* hash01: a deterministic number in [0,1) from (seed, i). */
+static double
+hash01(uint64_t seed, uint64_t i)
+{
+	uint64_t x = seed * 0x9E3779B97F4A7C15ull + i * 0xBF58476D1CE4E5B9ull;
+
+	x ^= x >> 30;
+	x *= 0xBF58476D1CE4E5B9ull;
+	x ^= x >> 27;
+	x *= 0x94D049BB133111EBull;
+	x ^= x >> 31;
+	return (double)(x >> 11) * 0x1p-53;
+}
+
+/* sphere: an n^3 f32 volume holding the distance from the centre, in
+ * samples: the isosurface r is a closed surface for r < (n-1)/2. */
+static void
+make_sphere(vx_grid *g, int n, const char *layout)
+{
+	int64_t d[3] = { n, n, n };
+	vx_err e = { 0, "" };
+	double c = (n - 1) / 2.0;
+
+	assert_int_equal(vx_grid_alloc(g, d, VX_F32, layout, &e), 0);
+	for (int z = 0; z < n; z++)
+		for (int y = 0; y < n; y++)
+			for (int x = 0; x < n; x++)
+				vx_grid_set(g, x, y, z, sqrt((x - c) * (x - c) +
+				    (y - c) * (y - c) + (z - c) * (z - c)));
+	vx_grid_range(g);
+}
+
+static void
+make_random(vx_grid *g, int n, uint64_t seed, const char *layout)
+{
+	int64_t d[3] = { n, n + 1, n + 2 };
+	vx_err e = { 0, "" };
+	uint64_t i = 0;
+
+	assert_int_equal(vx_grid_alloc(g, d, VX_F32, layout, &e), 0);
+	for (int z = 0; z < n + 2; z++)
+		for (int y = 0; y < n + 1; y++)
+			for (int x = 0; x < n; x++)
+				vx_grid_set(g, x, y, z, hash01(seed, i++));
+	vx_grid_range(g);
+}
+
+typedef struct collect {
+	int n;
+	double t[256];
+	int surf[256];
+	int entering[256];
+} collect;
+
+static int
+collect_hit(void *ctx, const vx_iso_hit *h)
+{
+	collect *c = ctx;
+
+	if (c->n < 256) {
+		c->t[c->n] = h->t;
+		c->surf[c->n] = h->surface;
+		c->entering[c->n] = h->entering;
+	}
+	c->n++;
+	return 0;
+}
+
+static void
+trace_all(const vx_iso_tracer *tr, const double o[3], const double d[3],
+    const float *iso, int niso, collect *c)
+{
+	memset(c, 0, sizeof *c);
+	vx_iso_trace(tr, o, d, 0, INFINITY, iso, niso, collect_hit, c, NULL);
+}
+
+/* No holes, no double hits: rays from outside through a closed sphere
+ * cross it an even number of times, alternately entering and leaving
+ * (oracle: the Jordan curve property of a closed surface), and exactly
+ * twice when the line passes clearly inside (oracle: geometry of the
+ * sphere, whose trilinear isosurface stays within a fraction of a voxel of
+ * the true one).  The ray set includes rays in grid planes and along grid
+ * lines, through cell edges and vertices. */
+static void
+sphere_no_holes(void **state)
+{
+	vx_grid g;
+	vx_macro m;
+	vx_err e = { 0, "" };
+	int sizes[VX_MACRO_MAXLEV][3];
+	float iso = 9.3f;
+	int n = 24, bad = 0, tested = 0;
+	double c = (n - 1) / 2.0;
+
+	(void)state;
+	make_sphere(&g, n, NULL);
+	int nlev = vx_macro_default_sizes(VX_F32, 2, sizes);
+	assert_int_equal(vx_macro_build(&m, &g, nlev, (const int (*)[3])sizes,
+	    1, &e), 0);
+	vx_iso_tracer tr = { &g, &m, 0, VX_CELL_EXACT };
+	for (int k = 0; k < 4000; k++) {
+		double o[3], d[3], q[3], len = 0;
+		collect col;
+
+		/* a target point inside the sphere's bounding region: grid
+		 * points, edge midpoints and random points */
+		for (int a = 0; a < 3; a++) {
+			double r = hash01(7, 3 * k + a);
+
+			q[a] = k % 3 == 0 ? floor(c - 8 + 16 * r) :
+			    k % 3 == 1 ? floor(c - 8 + 16 * r) + (a == 0 ? 0.5 : 0) :
+			    c - 8 + 16 * r;
+		}
+		for (int a = 0; a < 3; a++) {
+			d[a] = hash01(11, 3 * k + a) - 0.5;
+			if (k % 5 == 0 && a > 0)
+				d[a] = 0;          /* axis-parallel: along grid lines */
+			if (k % 5 == 1 && a == 2)
+				d[a] = 0;          /* in a grid plane */
+			len += d[a] * d[a];
+		}
+		if (len == 0)
+			continue;
+		for (int a = 0; a < 3; a++)
+			o[a] = q[a] - 40 * d[a] / sqrt(len);
+		trace_all(&tr, o, d, &iso, 1, &col);
+		tested++;
+		if (col.n % 2 != 0)
+			bad++;
+		for (int i = 0; i < col.n && i < 256; i++)
+			if (col.entering[i] != (i % 2 == 1))
+				bad++;  /* f >= iso is outside the sphere: the ray
+				           leaves that set first, then re-enters */
+		/* distance of the line from the centre */
+		double w[3], dd = 0, wd = 0;
+		for (int a = 0; a < 3; a++) {
+			w[a] = c - o[a];
+			wd += w[a] * d[a];
+		}
+		for (int a = 0; a < 3; a++) {
+			double p = w[a] - wd / len * d[a];
+			dd += p * p;
+		}
+		if (sqrt(dd) < iso - 1 && col.n != 2)
+			bad++;
+		if (sqrt(dd) > iso + 1 && col.n != 0)
+			bad++;
+	}
+	if (bad)
+		fail_msg("%d of %d rays through the sphere broke parity", bad,
+		    tested);
+	vx_macro_free(&m);
+	vx_grid_free(&g);
+}
+
+
+/* Adversarial rays for crack-freedom: each aimed at a point where the
+ * isosurface meets a cell face (found by solving the face's bilinear
+ * interpolant for the isovalue), from a random direction, so the crossing
+ * lies on the shared face up to rounding.  Parity must hold for every one
+ * (oracle: Jordan, as above).  Without shared face values (each cell
+ * evaluating its own trilinear form at the face) rays here slip through or
+ * hit twice. */
+static void
+sphere_face_crossings(void **state)
+{
+	vx_grid g;
+	float iso = 7.37f;
+	int n = 20, bad = 0, tested = 0;
+
+	(void)state;
+	make_sphere(&g, n, NULL);
+	vx_iso_tracer tr = { &g, NULL, 1, VX_CELL_EXACT };
+	for (int k = 0; k < 6000; k++) {
+		int64_t j = 2 + (int64_t)(15 * hash01(21, k));
+		int64_t l = 2 + (int64_t)(15 * hash01(22, k));
+		double v = hash01(23, k), f[4], q[3], o[3], d[3], len = 0;
+		int axis = k % 3;
+		/* along the face axis: find the integer plane x_axis = p whose
+		 * face at (j, l) brackets iso along u */
+		int found = 0;
+		for (int64_t p = 1; p < n - 1 && !found; p++) {
+			int64_t ix[3];
+			double a0, a1, u;
+			ix[axis] = p;
+			ix[(axis + 1) % 3] = j;
+			ix[(axis + 2) % 3] = l;
+			/* values at the 4 face corners: (u,v) in {0,1}^2 */
+			for (int c = 0; c < 4; c++) {
+				int64_t w[3] = { ix[0], ix[1], ix[2] };
+				w[(axis + 1) % 3] += c & 1;
+				w[(axis + 2) % 3] += c >> 1;
+				f[c] = (float)vx_grid_get(&g, w[0], w[1], w[2]);
+			}
+			a0 = f[0] + v * (f[2] - f[0]);
+			a1 = f[1] + v * (f[3] - f[1]);
+			if ((a0 - iso) * (a1 - iso) >= 0)
+				continue;
+			u = (iso - a0) / (a1 - a0);
+			q[axis] = (double)p;
+			q[(axis + 1) % 3] = (double)j + u;
+			q[(axis + 2) % 3] = (double)l + v;
+			found = 1;
+		}
+		if (!found)
+			continue;
+		for (int a = 0; a < 3; a++) {
+			d[a] = hash01(24, 3 * k + a) - 0.5;
+			len += d[a] * d[a];
+		}
+		for (int a = 0; a < 3; a++)
+			o[a] = q[a] - 40 * d[a] / sqrt(len);
+		collect col;
+		trace_all(&tr, o, d, &iso, 1, &col);
+		tested++;
+		/* parity only: the isosurface has creases on cell faces, so a
+		 * ray through a face point may touch the surface there without
+		 * crossing it (0 hits) for a set of directions of positive
+		 * measure */
+		if (col.n % 2 != 0)
+			bad++;
+	}
+	assert_true(tested > 1000);
+	if (bad)
+		fail_msg("%d of %d rays aimed at face crossings broke parity", bad,
+		    tested);
+	vx_grid_free(&g);
+}
+
+static int
+same_hits(const collect *a, const collect *b)
+{
+	if (a->n != b->n)
+		return 0;
+	for (int i = 0; i < a->n && i < 256; i++)
+		if (a->t[i] != b->t[i] || a->surf[i] != b->surf[i])
+			return 0;
+	return 1;
+}
+
+/* Hierarchical = flat = bricked, bit for bit, on random volumes with
+ * several isovalues (oracle: the flat walk over a linear layout, which
+ * involves no hierarchy and no bricking). */
+static void
+hierarchy_flat_bricked_identical(void **state)
+{
+	vx_err e = { 0, "" };
+	int sizes[VX_MACRO_MAXLEV][3] = { { 2, 2, 2 }, { 2, 2, 2 } };
+
+	(void)state;
+	for (uint64_t seed = 1; seed <= 3; seed++) {
+		vx_grid g, b;
+		vx_macro m, mb;
+
+		make_random(&g, 13, seed, NULL);
+		make_random(&b, 13, seed, "bricked 2x2x2 2x2x2");
+		assert_int_equal(vx_macro_build(&m, &g, 2,
+		    (const int (*)[3])sizes, 1, &e), 0);
+		assert_int_equal(vx_macro_build(&mb, &b, 2,
+		    (const int (*)[3])sizes, 2, &e), 0);
+		vx_iso_tracer th = { &g, &m, 0, VX_CELL_EXACT };
+		vx_iso_tracer tf = { &g, &m, 1, VX_CELL_EXACT };
+		vx_iso_tracer tb = { &b, &mb, 0, VX_CELL_EXACT };
+		float iso[3] = { 0.2f, 0.5f, 0.93f };
+		for (int k = 0; k < 500; k++) {
+			double o[3], d[3];
+			collect ch, cf, cb;
+
+			for (int a = 0; a < 3; a++) {
+				o[a] = -5 + 25 * hash01(seed * 100 + 1, 3 * k + a);
+				d[a] = hash01(seed * 100 + 2, 3 * k + a) - 0.5;
+			}
+			if (k % 7 == 0)
+				d[k % 3] = 0;
+			int ni = 1 + k % 3;
+			trace_all(&th, o, d, iso, ni, &ch);
+			trace_all(&tf, o, d, iso, ni, &cf);
+			trace_all(&tb, o, d, iso, ni, &cb);
+			if (!same_hits(&ch, &cf) || !same_hits(&ch, &cb))
+				fail_msg("seed %llu ray %d: %d hierarchical, %d flat, "
+				    "%d bricked hits", (unsigned long long)seed, k,
+				    ch.n, cf.n, cb.n);
+		}
+		vx_macro_free(&m);
+		vx_macro_free(&mb);
+		vx_grid_free(&g);
+		vx_grid_free(&b);
+	}
+}
+
+/* The issue's double root through the whole pipeline: a 2x2x2 volume with
+ * corner (1,1,1) = 27, others 0; the ray from (0,0,1) towards (1,1,0) sees
+ * f(t) = 27 t^2 (1 - t) (oracle: expand the trilinear form by hand):
+ * iso 4 touches at t = 2/3; iso 1 crosses at 0.2175679 and 0.9597951. */
+static void
+double_root_volume(void **state)
+{
+	int64_t dims[3] = { 2, 2, 2 };
+	vx_grid g;
+	vx_err e = { 0, "" };
+	double o[3] = { 0, 0, 1 }, d[3] = { 1, 1, -1 };
+	collect c;
+
+	(void)state;
+	assert_int_equal(vx_grid_alloc(&g, dims, VX_F32, NULL, &e), 0);
+	vx_grid_set(&g, 1, 1, 1, 27);
+	vx_grid_range(&g);
+	vx_iso_tracer tr = { &g, NULL, 1, VX_CELL_EXACT };
+	float iso4 = 4, iso1 = 1, iso5 = 5;
+	trace_all(&tr, o, d, &iso4, 1, &c);
+	assert_int_equal(c.n, 1);
+	assert_true(fabs(c.t[0] - 2.0 / 3.0) < 1e-7);
+	trace_all(&tr, o, d, &iso1, 1, &c);
+	assert_int_equal(c.n, 2);
+	assert_true(fabs(c.t[0] - 0.2175679) < 1e-7);
+	assert_true(fabs(c.t[1] - 0.9597951) < 1e-7);
+	trace_all(&tr, o, d, &iso5, 1, &c);
+	assert_int_equal(c.n, 0);
+	vx_grid_free(&g);
+}
+
+/* NaN and Inf voxels: hits stay finite, cells with a non-finite corner are
+ * skipped (oracle: the policy in vx_iso.h), and the rest of the surface is
+ * still found. */
+static void
+nonfinite_voxels(void **state)
+{
+	vx_grid g;
+	float iso = 6.5f;
+	int hits = 0;
+
+	(void)state;
+	make_sphere(&g, 20, NULL);
+	vx_grid_set(&g, 9, 9, 9, NAN);
+	vx_grid_set(&g, 3, 9, 9, INFINITY);
+	vx_grid_set(&g, 9, 3, 9, -INFINITY);
+	vx_grid_range(&g);
+	assert_true(isfinite(g.vmin) && isfinite(g.vmax));
+	vx_iso_tracer tr = { &g, NULL, 1, VX_CELL_EXACT };
+	for (int k = 0; k < 400; k++) {
+		double o[3] = { -10, 0, 0 }, d[3] = { 1, 0, 0 };
+		collect c;
+
+		o[1] = 5 + 9 * hash01(3, k);
+		o[2] = 5 + 9 * hash01(4, k);
+		d[1] = 0.1 * (hash01(5, k) - 0.5);
+		trace_all(&tr, o, d, &iso, 1, &c);
+		for (int i = 0; i < c.n && i < 256; i++)
+			assert_true(isfinite(c.t[i]));
+		hits += c.n > 0;
+	}
+	assert_true(hits > 200);
+	vx_grid_free(&g);
+}
+
+/* Values and isovalue scaled by 2^k give bit-identical hits (oracle:
+ * exact scaling; every decision is relative). */
+static void
+scale_invariance(void **state)
+{
+	static const int ks[] = { -60, -20, 20, 60 };
+	vx_grid g, s;
+
+	(void)state;
+	make_random(&g, 9, 42, NULL);
+	for (size_t ki = 0; ki < sizeof ks / sizeof ks[0]; ki++) {
+		double f = ldexp(1.0, ks[ki]);
+
+		make_random(&s, 9, 42, NULL);
+		for (int z = 0; z < 11; z++)
+			for (int y = 0; y < 10; y++)
+				for (int x = 0; x < 9; x++)
+					vx_grid_set(&s, x, y, z, vx_grid_get(&g, x, y, z) * f);
+		vx_grid_range(&s);
+		vx_iso_tracer t1 = { &g, NULL, 1, VX_CELL_EXACT };
+		vx_iso_tracer t2 = { &s, NULL, 1, VX_CELL_EXACT };
+		float i1 = 0.5f, i2 = (float)(0.5 * f);
+		for (int k = 0; k < 200; k++) {
+			double o[3], d[3];
+			collect a, b;
+
+			for (int a2 = 0; a2 < 3; a2++) {
+				o[a2] = -3 + 15 * hash01(9, 3 * k + a2);
+				d[a2] = hash01(10, 3 * k + a2) - 0.5;
+			}
+			trace_all(&t1, o, d, &i1, 1, &a);
+			trace_all(&t2, o, d, &i2, 1, &b);
+			assert_true(same_hits(&a, &b));
+		}
+		vx_grid_free(&s);
+	}
+	vx_grid_free(&g);
+}
+
+int
+main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(sphere_no_holes),
+		cmocka_unit_test(sphere_face_crossings),
+		cmocka_unit_test(hierarchy_flat_bricked_identical),
+		cmocka_unit_test(double_root_volume),
+		cmocka_unit_test(nonfinite_voxels),
+		cmocka_unit_test(scale_invariance),
+	};
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}

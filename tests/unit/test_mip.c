@@ -1,0 +1,343 @@
+/* test_mip.c: exact maximum-intensity projection: interior maxima, the
+ * queue's early stop, non-finite voxels, hard rays, agreement with an
+ * exhaustive walk and with dense sampling, and invariance under the
+ * last-t bound, bricking and the hierarchy's shape. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <math.h>
+#include <cmocka.h>
+
+#include "vx_cell.h"
+#include "vx_mip.h"
+
+static double
+hash01(uint64_t seed, uint64_t i)
+{
+	uint64_t x = seed * 0x9E3779B97F4A7C15ull + i * 0xBF58476D1CE4E5B9ull;
+
+	x ^= x >> 30;
+	x *= 0xBF58476D1CE4E5B9ull;
+	x ^= x >> 27;
+	x *= 0x94D049BB133111EBull;
+	x ^= x >> 31;
+	return (double)(x >> 11) * 0x1p-53;
+}
+
+static void
+make_random(vx_grid *g, const int64_t d[3], uint64_t seed,
+    const char *layout)
+{
+	vx_err e = { 0, "" };
+	uint64_t i = 0;
+
+	assert_int_equal(vx_grid_alloc(g, d, VX_F32, layout, &e), 0);
+	for (int64_t z = 0; z < d[2]; z++)
+		for (int64_t y = 0; y < d[1]; y++)
+			for (int64_t x = 0; x < d[0]; x++)
+				vx_grid_set(g, x, y, z, 100 * hash01(seed, i++));
+	vx_grid_range(g);
+}
+
+static void
+build(vx_macro *m, const vx_grid *g, int nlev, int s)
+{
+	int sizes[VX_MACRO_MAXLEV][3];
+	vx_err e = { 0, "" };
+
+	for (int l = 0; l < nlev; l++)
+		sizes[l][0] = sizes[l][1] = sizes[l][2] = s;
+	assert_int_equal(vx_macro_build(m, g, nlev, (const int (*)[3])sizes, 1,
+	    &e), 0);
+}
+
+/* field: the trilinear value at o + t d (clamped into the volume); NaN for
+ * a cell with a non-finite corner. */
+static double
+field(const vx_grid *g, const double o[3], const double d[3], double t)
+{
+	double p[3], l[3];
+	int64_t c[3];
+	float v[8];
+
+	for (int a = 0; a < 3; a++) {
+		p[a] = o[a] + t * d[a];
+		c[a] = (int64_t)floor(p[a]);
+		if (c[a] > g->dims[a] - 2)
+			c[a] = g->dims[a] - 2;
+		if (c[a] < 0)
+			c[a] = 0;
+		l[a] = p[a] - (double)c[a];
+	}
+	vx_grid_cell(g, c[0], c[1], c[2], v);
+	if (!vx_cell_finite(v))
+		return NAN;
+	return vx_cell_trilinear(v, l);
+}
+
+/* dense: the maximum of the field sampled at n + 1 points of the clipped
+ * ray (a lower bound of the true maximum: oracle by brute force); with
+ * zoom > 0, the search is refined zoom times around the best sample, each
+ * time over the two neighbouring intervals with n more samples, which
+ * converges to the maximum also where it sits on a kink (a cell face). */
+static double
+dense(const vx_grid *g, const double o[3], const double d[3], int n,
+    int zoom)
+{
+	double ta = 0, tb = INFINITY, best = -INFINITY, tbest = 0;
+
+	for (int a = 0; a < 3; a++) {
+		double hi = (double)(g->dims[a] - 1);
+
+		if (d[a] == 0) {
+			if (!(o[a] >= 0 && o[a] <= hi))
+				return -INFINITY;
+			continue;
+		}
+		double t0 = -o[a] / d[a], t1 = (hi - o[a]) / d[a];
+		if (t0 > t1) {
+			double s = t0;
+			t0 = t1;
+			t1 = s;
+		}
+		ta = t0 > ta ? t0 : ta;
+		tb = t1 < tb ? t1 : tb;
+	}
+	if (!(ta <= tb))
+		return -INFINITY;
+	for (int r = 0; r <= zoom; r++) {
+		double lo = ta, hi = tb, h = (tb - ta) / n;
+
+		if (r > 0) {
+			h = (tb - ta) / n;
+			for (int k = 0; k < r; k++)
+				h *= 2.0 / n;
+			lo = tbest - n / 2 * h;
+			hi = tbest + n / 2 * h;
+			lo = lo < ta ? ta : lo;
+			hi = hi > tb ? tb : hi;
+		}
+		for (int i = 0; i <= n; i++) {
+			double t = lo + (hi - lo) * i / n, f = field(g, o, d, t);
+
+			if (f > best) {
+				best = f;
+				tbest = t;
+			}
+		}
+	}
+	return best;
+}
+
+/* The issue's interior maximum: corner (1,1,1) = 27, others 0, the ray
+ * from (0,0,1) towards (1,1,0): f = 27 t^2 (1 - t) is 0 at both faces and
+ * 4 at t = 2/3 (oracle: calculus on the cubic by hand). */
+static void
+interior_maximum(void **state)
+{
+	int64_t dims[3] = { 2, 2, 2 };
+	vx_grid g;
+	vx_macro m;
+	vx_mip_work w;
+	vx_err e = { 0, "" };
+	double o[3] = { 0, 0, 1 }, d[3] = { 1, 1, -1 }, v, t;
+
+	(void)state;
+	assert_int_equal(vx_grid_alloc(&g, dims, VX_F32, NULL, &e), 0);
+	vx_grid_set(&g, 1, 1, 1, 27);
+	vx_grid_range(&g);
+	build(&m, &g, 1, 2);
+	assert_int_equal(vx_mip_work_init(&w, &m, &e), 0);
+	assert_int_equal(vx_mip_ray(&g, &m, &w, o, d, 0, INFINITY, 0, &v, &t,
+	    NULL), 1);
+	assert_true(fabs(v - 4) < 1e-12);
+	assert_true(fabs(t - 2.0 / 3.0) < 1e-7);
+	assert_int_equal(vx_mip_ray_exhaustive(&g, o, d, 0, INFINITY, &v, &t), 1);
+	assert_true(fabs(v - 4) < 1e-12);
+	vx_mip_work_free(&w);
+	vx_macro_free(&m);
+	vx_grid_free(&g);
+}
+
+/* A constant volume: the first cell solved gives the maximum and the queue
+ * stops (oracle: nothing can beat a constant). */
+static void
+constant_volume_stops(void **state)
+{
+	int64_t dims[3] = { 33, 33, 33 };
+	vx_grid g;
+	vx_macro m;
+	vx_mip_work w;
+	vx_mip_stats st;
+	vx_err e = { 0, "" };
+	double o[3] = { -5, 3.3, 7.7 }, d[3] = { 1, 0.1, 0.05 }, v, t;
+
+	(void)state;
+	assert_int_equal(vx_grid_alloc(&g, dims, VX_U8, NULL, &e), 0);
+	for (int z = 0; z < 33; z++)
+		for (int y = 0; y < 33; y++)
+			for (int x = 0; x < 33; x++)
+				vx_grid_set(&g, x, y, z, 77);
+	vx_grid_range(&g);
+	build(&m, &g, 2, 4);
+	assert_int_equal(vx_mip_work_init(&w, &m, &e), 0);
+	for (int lt = 0; lt < 2; lt++) {
+		memset(&st, 0, sizeof st);
+		assert_int_equal(vx_mip_ray(&g, &m, &w, o, d, 0, INFINITY, lt, &v,
+		    &t, &st), 1);
+		assert_true(v == 77);
+		assert_int_equal(st.cells, 1);
+	}
+	vx_mip_work_free(&w);
+	vx_macro_free(&m);
+	vx_grid_free(&g);
+}
+
+/* NaN and infinite voxels: never a NaN result; where every cell on the ray
+ * has a non-finite corner there is no value (oracle: the policy). */
+static void
+nonfinite(void **state)
+{
+	int64_t dims[3] = { 9, 9, 9 };
+	vx_grid g;
+	vx_macro m;
+	vx_mip_work w;
+	vx_err e = { 0, "" };
+	double v, t;
+
+	(void)state;
+	make_random(&g, dims, 5, NULL);
+	for (int k = 0; k < 9; k++) {
+		vx_grid_set(&g, k, 4, 4, NAN);
+		vx_grid_set(&g, 4, k, 4, INFINITY);
+	}
+	vx_grid_range(&g);
+	build(&m, &g, 2, 2);
+	assert_int_equal(vx_mip_work_init(&w, &m, &e), 0);
+	for (int k = 0; k < 300; k++) {
+		double o[3], d[3];
+
+		for (int a = 0; a < 3; a++) {
+			o[a] = 4 + 8 * (hash01(1, 3 * k + a) - 0.5);
+			d[a] = hash01(2, 3 * k + a) - 0.5;
+		}
+		if (k % 3 == 0) {    /* along the NaN row */
+			o[0] = -1; o[1] = 4; o[2] = 4;
+			d[0] = 1; d[1] = d[2] = 0;
+		}
+		int hit = vx_mip_ray(&g, &m, &w, o, d, 0, INFINITY, 1, &v, &t, NULL);
+		assert_false(isnan(v));
+		assert_false(isnan(t));
+		if (k % 3 == 0)
+			assert_int_equal(hit, 0);
+	}
+	vx_mip_work_free(&w);
+	vx_macro_free(&m);
+	vx_grid_free(&g);
+}
+
+/* Random volumes and rays, including axis-parallel rays, rays in grid
+ * planes and grazing the box: the queue's maximum equals the exhaustive
+ * walk's bit for bit; it is never below a dense sampling (oracle: a
+ * sampled maximum is a lower bound) and within 1e-6 relative of it when
+ * the sampling is fine (oracle: refinement converges to the true
+ * maximum); with the last-t bound on or off, bricked or linear, any
+ * hierarchy shape: the same value and t, bit for bit. */
+static void
+randomized(void **state)
+{
+	int64_t dims[3] = { 11, 7, 13 };
+	vx_err e = { 0, "" };
+	int refined_bad = 0, refined = 0;
+
+	(void)state;
+	for (uint64_t seed = 1; seed <= 3; seed++) {
+		vx_grid g, b;
+		vx_macro m, m2, mb;
+		vx_mip_work w, w2, wb;
+
+		make_random(&g, dims, seed, NULL);
+		make_random(&b, dims, seed, "bricked 2x2x2 2x2x2");
+		build(&m, &g, 2, 2);
+		build(&m2, &g, 1, 3);
+		build(&mb, &b, 2, 2);
+		assert_int_equal(vx_mip_work_init(&w, &m, &e), 0);
+		assert_int_equal(vx_mip_work_init(&w2, &m2, &e), 0);
+		assert_int_equal(vx_mip_work_init(&wb, &mb, &e), 0);
+		for (int k = 0; k < 400; k++) {
+			double o[3], d[3], v1, t1, v2, t2, v3, t3, v4, t4, v5, t5;
+			double ve, te;
+
+			for (int a = 0; a < 3; a++) {
+				o[a] = -4 + 20 * hash01(seed * 10 + 1, 3 * k + a);
+				d[a] = hash01(seed * 10 + 2, 3 * k + a) - 0.5;
+			}
+			if (k % 5 == 0)
+				d[(k / 5) % 3] = 0;                /* in a plane */
+			if (k % 7 == 0) {                          /* along a grid line */
+				o[0] = -2; o[1] = (double)(k % 6); o[2] = (double)(k % 12);
+				d[0] = 1; d[1] = d[2] = 0;
+			}
+			if (k % 11 == 0) {                         /* grazing the box */
+				o[0] = -2; o[1] = 0; o[2] = 3.5;
+				d[0] = 1; d[1] = 0; d[2] = 0.01;
+			}
+			int h1 = vx_mip_ray(&g, &m, &w, o, d, 0, INFINITY, 0, &v1,
+			    &t1, NULL);
+			int h2 = vx_mip_ray(&g, &m, &w, o, d, 0, INFINITY, 1, &v2,
+			    &t2, NULL);
+			int h3 = vx_mip_ray(&b, &mb, &wb, o, d, 0, INFINITY, 1, &v3,
+			    &t3, NULL);
+			int h4 = vx_mip_ray(&g, &m2, &w2, o, d, 0, INFINITY, 1, &v4,
+			    &t4, NULL);
+			int he = vx_mip_ray_exhaustive(&g, o, d, 0, INFINITY, &ve,
+			    &te);
+			(void)v5; (void)t5;
+			assert_int_equal(h1, he);
+			assert_int_equal(h2, he);
+			assert_int_equal(h3, he);
+			assert_int_equal(h4, he);
+			if (!he)
+				continue;
+			if (!(v1 == ve && v2 == v1 && t2 == t1 && v3 == v1 &&
+			    t3 == t1 && v4 == v1))
+				fail_msg("seed %llu ray %d: %.17g %.17g %.17g %.17g vs "
+				    "exhaustive %.17g", (unsigned long long)seed, k,
+				    v1, v2, v3, v4, ve);
+			double ds = dense(&g, o, d, 2000, 0);
+			assert_true(v1 >= ds - 1e-9 * fabs(ds));
+			if (k % 4 == 0) {
+				double fine = dense(&g, o, d, 2000, 6);
+				refined++;
+				if (!(fabs(v1 - fine) <= 1e-6 * fabs(v1) + 1e-12))
+					refined_bad++;
+			}
+		}
+		vx_mip_work_free(&w);
+		vx_mip_work_free(&w2);
+		vx_mip_work_free(&wb);
+		vx_macro_free(&m);
+		vx_macro_free(&m2);
+		vx_macro_free(&mb);
+		vx_grid_free(&g);
+		vx_grid_free(&b);
+	}
+	if (refined_bad)
+		fail_msg("%d of %d refined samplings differ by more than 1e-6",
+		    refined_bad, refined);
+}
+
+int
+main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(interior_maximum),
+		cmocka_unit_test(constant_volume_stops),
+		cmocka_unit_test(nonfinite),
+		cmocka_unit_test(randomized),
+	};
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
