@@ -173,9 +173,13 @@ crit_points(const double k[4], double t0, double t1, double r[2], int ext[2])
 			return 0;
 		x[n++] = -c / b;
 	} else {
-		double w = 4 * a * c;
-		double e = fma(-4 * a, c, w);
-		double disc = fma(b, b, -w) + e;
+		double w = 4 * a * c, bb = b * b;
+		double disc = bb - w;
+
+		/* Kahan's fma difference of products where it cancels (the
+		 * critical points nearly coincide); fma is a library call */
+		if (fabs(disc) < 0x1p-20 * bb)
+			disc = fma(b, b, -w) + fma(-4 * a, c, w);
 
 		if (disc < 0)
 			return 0;
@@ -210,10 +214,17 @@ crit_points(const double k[4], double t0, double t1, double r[2], int ext[2])
 static void
 normalize(double k[4], double *f0, double *f1)
 {
-	double m = fmax(fmax(fabs(k[0]), fabs(k[1])), fmax(fabs(k[2]), fabs(k[3])));
-	int e, i;
+	int e, i, big = 0, small = 1;
 
-	if (m == 0 || (m < 0x1p400 && m > 0x1p-400))
+	for (i = 0; i < 4; i++) {
+		double x = fabs(k[i]);
+		big |= x >= 0x1p400;
+		small &= x <= 0x1p-400;
+	}
+	if (!big && !small)
+		return;
+	double m = fmax(fmax(fabs(k[0]), fabs(k[1])), fmax(fabs(k[2]), fabs(k[3])));
+	if (m == 0)
 		return;
 	e = ilogb(m);
 	for (i = 0; i < 4; i++)
@@ -257,6 +268,10 @@ refine_exact(const double k[4], double a, double b, double fa, double fb,
 			xn = a + dx;
 		} else {
 			dx = step;
+			/* converged: quadratic convergence puts the root
+			 * within about |step| of xn */
+			if (fabs(step) <= tol)
+				return xn;
 		}
 		if (xn == x)
 			break;

@@ -14,17 +14,19 @@
  *   the boundary of the closed set {value >= iso}; a hit is a change of that
  *   sign along the ray (or a touch of zero, see vx_cell_first_root).
  *
- * Typical use by a renderer, per cell whose [min, max] brackets iso:
+ * Typical use by a renderer, per cell whose [min, max] brackets iso, with
+ * the ray entering at t0 and leaving at t1:
  *     if (!vx_cell_finite(c)) skip the cell;
- *     f0 = vx_cell_face_value(c, entry face, u, v) - iso;   (same for f1)
- *     vx_cell_poly(c, o, d, iso, k);
- *     if (vx_cell_first_root(k, t0, t1, f0, f1, VX_CELL_EXACT, &t, NULL))
- *         hit at t; vx_cell_normal(c, o + t d, d, n);
- * Accuracy: the coefficients are exact up to rounding in the basis of t,
- * so the root is as accurate as the cubic is well conditioned on [t0, t1].
- * When |t| is much larger than t1 - t0 (an eye far from the cell), measure
- * t from a point near the cell instead: o' = o + t0 d (rounded), solve on
- * [0, t1 - t0], add t0 back.  The face values f0, f1 do not depend on t. */
+ *     f0 = vx_cell_face_value(c, entry axis, side, u, v) - iso;  (f1 alike)
+ *     oc = ray origin + t0 d - cell corner 0;    (the entry point, local)
+ *     vx_cell_poly(c, oc, d, iso, k);            (k in s = t - t0)
+ *     if (vx_cell_first_root(k, 0, t1 - t0, f0, f1, VX_CELL_EXACT, &s, NULL))
+ *         hit at t = t0 + s; vx_cell_normal(c, oc + s d, d, n);
+ * Measuring t from the entry point matters: the coefficients are exact up
+ * to rounding in the basis of t, so with o far from the cell (an eye 1000
+ * cells away) the cubic is ill-conditioned on [t0, t1] and the root loses
+ * about log10(|t|^3) digits (2e-7 of a cell at 1000 cells; a closed-form
+ * solver loses as much).  The face values f0, f1 do not depend on t. */
 #ifndef VX_CELL_H
 #define VX_CELL_H
 
@@ -152,7 +154,9 @@ int vx_cell_first_root(const double k[4], double t0, double t1, double f0,
  * the ends and the critical points inside (stable quadratic formula), ties
  * broken by the smallest t.  Returns 1 and sets *tmax, *fmax; returns 0 (no
  * value: *tmax = 0, *fmax = -INFINITY) if any input is not finite or
- * t0 > t1.  For maximum-intensity projection pass iso = 0 to vx_cell_poly. */
+ * t0 > t1.  For maximum-intensity projection pass iso = 0 to vx_cell_poly
+ * and, as above, measure t from the cell's entry point.  The value is that
+ * of the computed cubic (the ends are not replaced by face values). */
 int vx_cell_max(const double k[4], double t0, double t1, double *tmax,
     double *fmax);
 

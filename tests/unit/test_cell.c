@@ -394,6 +394,30 @@ degenerate_leading(void **state)
 	}
 }
 
+/* An eye 1000 cells away: with o relative to corner 0 the cubic in t is
+ * ill-conditioned on [1000, 1001] (the documented loss, about 2e-7);
+ * measuring t from the entry point, as the header recommends, gives the
+ * root to rounding.  Oracle: Viete's root + 1000. */
+static void
+far_origin(void **state)
+{
+	static const double far[3] = { -1000, -1000, 1001 };
+	double k[4], t, oc[3];
+	long double want = 1000 + viete(1, 1);
+
+	(void)state;
+	vx_cell_poly(dbl_cell, far, dbl_d, 1, k);
+	assert_int_equal(vx_cell_first_root(k, 1000, 1001, -1, -1,
+	    VX_CELL_EXACT, &t, NULL), VX_CELL_CROSS);
+	assert_true(fabsl(t - want) <= 1e-5);
+	for (int a = 0; a < 3; a++)
+		oc[a] = far[a] + 1000 * dbl_d[a];
+	vx_cell_poly(dbl_cell, oc, dbl_d, 1, k);
+	assert_int_equal(vx_cell_first_root(k, 0, 1, -1, -1, VX_CELL_EXACT, &t,
+	    NULL), VX_CELL_CROSS);
+	assert_true(fabsl(1000 + t - want) <= 1e-12);
+}
+
 /* Corners c_i = i, so the field is x + 2y + 4z exactly (trilinear of a
  * linear function is itself); the oracle is that plane.  Isovalues equal to
  * corner values, rays starting or ending on those corners: sign(0) = +
@@ -971,6 +995,7 @@ main(void)
 		cmocka_unit_test(touches),
 		cmocka_unit_test(triple_root),
 		cmocka_unit_test(degenerate_leading),
+		cmocka_unit_test(far_origin),
 		cmocka_unit_test(iso_at_corners),
 		cmocka_unit_test(shared_face_once),
 		cmocka_unit_test(nonfinite),
