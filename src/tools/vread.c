@@ -1,0 +1,254 @@
+/* vread.c: import a volume (raw, NRRD, NIfTI-1, VTK legacy) or make a
+ * synthetic one, and write it as a voxlux stream with one VOLM chunk. */
+#include <getopt.h>
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "tool.h"
+#include "vx_grid.h"
+#include "vx_import.h"
+#include "vx_stream.h"
+
+static const char usage[] =
+    "vread [-o out] [--format F] [--raw NX,NY,NZ --type T "
+    "[--endian little|big] [--skip BYTES]] [--spacing SX,SY,SZ] "
+    "[--origin X,Y,Z] [--name NAME] [-z LEVEL] [FILE|-]\n"
+    "       vread --synth NAME [--size N[,NY,NZ]] [--spacing SX,SY,SZ] "
+    "[--origin X,Y,Z] [--name NAME] [-o out] [-z LEVEL]";
+
+typedef struct opts {
+	const char *out, *in, *name;
+	vx_import_opts imp;
+	int raw, have_type, have_endian, have_skip;
+	int have_spacing, have_origin;
+	double spacing[3], origin[3];
+	vx_synth_kind synth;
+	int have_size;
+	int64_t size[3];
+	int zlevel;
+} opts;
+
+enum { O_FORMAT = 256, O_RAW, O_TYPE, O_ENDIAN, O_SKIP, O_SPACING, O_ORIGIN,
+	O_NAME, O_SYNTH, O_SIZE };
+
+/* parse_dims: "N,NY,NZ" (or just "N" when one_ok, meaning N,N,N). */
+static void
+parse_dims(const char *opt, const char *s, int64_t out[3], int one_ok)
+{
+	double v[3];
+	char *end;
+	int a;
+
+	if (one_ok && strchr(s, ',') == NULL) {
+		double x = strtod(s, &end);
+
+		v[0] = v[1] = v[2] = x;
+		if (end == s || *end != '\0')
+			tool_fail(VX_EUSAGE, "%s: '%s' is not a size", opt, s);
+	} else
+		tool_parse_doubles(opt, s, v, 3);
+	for (a = 0; a < 3; a++) {
+		if (v[a] != floor(v[a]) || v[a] < 1 ||
+		    v[a] > (double)VX_GRID_MAX_DIM)
+			tool_fail(VX_EUSAGE, "%s: '%s': sizes must be integers in "
+			    "1..%lld", opt, s, (long long)VX_GRID_MAX_DIM);
+		out[a] = (int64_t)v[a];
+	}
+}
+
+static void
+parse_name(const char *s)
+{
+	size_t i, n = strlen(s);
+
+	if (n == 0 || n >= 64)
+		tool_fail(VX_EUSAGE, "--name: '%s': 1 to 63 characters", s);
+	for (i = 0; i < n; i++)
+		if (!((s[i] >= 'a' && s[i] <= 'z') || (s[i] >= 'A' &&
+		    s[i] <= 'Z') || (s[i] >= '0' && s[i] <= '9') ||
+		    strchr("_.+-", s[i]) != NULL))
+			tool_fail(VX_EUSAGE, "--name: '%s': use letters, digits "
+			    "and _ . + -", s);
+}
+
+static void
+parse_args(opts *o, int argc, char **argv)
+{
+	static const struct option lo[] = {
+		{ "output", required_argument, NULL, 'o' },
+		{ "format", required_argument, NULL, O_FORMAT },
+		{ "raw", required_argument, NULL, O_RAW },
+		{ "type", required_argument, NULL, O_TYPE },
+		{ "endian", required_argument, NULL, O_ENDIAN },
+		{ "skip", required_argument, NULL, O_SKIP },
+		{ "spacing", required_argument, NULL, O_SPACING },
+		{ "origin", required_argument, NULL, O_ORIGIN },
+		{ "name", required_argument, NULL, O_NAME },
+		{ "synth", required_argument, NULL, O_SYNTH },
+		{ "size", required_argument, NULL, O_SIZE },
+		{ "help", no_argument, NULL, 'h' },
+		{ NULL, 0, NULL, 0 }
+	};
+	vx_raw_info *r = &o->imp.raw;
+	int c, a;
+
+	memset(o, 0, sizeof *o);
+	o->out = "-";
+	vx_import_opts_init(&o->imp);
+	opterr = 0;
+	while ((c = getopt_long(argc, argv, ":o:z:h", lo, NULL)) != -1) {
+		switch (c) {
+		case 'o':
+			o->out = optarg;
+			break;
+		case 'z':
+			o->zlevel = (int)tool_parse_long("-z", optarg, 0, 9);
+			break;
+		case O_FORMAT:
+			o->imp.format = vx_format_parse(optarg);
+			if (o->imp.format == VX_FORMAT_UNKNOWN)
+				tool_usage_fail(usage, "--format: '%s' is not raw, "
+				    "nrrd, nifti or vtk", optarg);
+			break;
+		case O_RAW:
+			parse_dims("--raw", optarg, r->dims, 0);
+			o->raw = 1;
+			break;
+		case O_TYPE:
+			if ((r->type = vx_scalar_parse(optarg)) ==
+			    VX_SCALAR_UNKNOWN)
+				tool_usage_fail(usage, "--type: '%s' is not one of "
+				    "u8 i8 u16 i16 u32 i32 u64 i64 f32 f64",
+				    optarg);
+			o->have_type = 1;
+			break;
+		case O_ENDIAN:
+			if (strcmp(optarg, "little") == 0)
+				r->big_endian = 0;
+			else if (strcmp(optarg, "big") == 0)
+				r->big_endian = 1;
+			else
+				tool_usage_fail(usage, "--endian: '%s' is not "
+				    "little or big", optarg);
+			o->have_endian = 1;
+			break;
+		case O_SKIP:
+			r->skip = (uint64_t)tool_parse_long("--skip", optarg, 0,
+			    LONG_MAX);
+			o->have_skip = 1;
+			break;
+		case O_SPACING:
+			tool_parse_doubles("--spacing", optarg, o->spacing, 3);
+			for (a = 0; a < 3; a++)
+				if (!(o->spacing[a] > 0))
+					tool_fail(VX_EUSAGE, "--spacing: '%s': each "
+					    "must be positive", optarg);
+			o->have_spacing = 1;
+			break;
+		case O_ORIGIN:
+			tool_parse_doubles("--origin", optarg, o->origin, 3);
+			o->have_origin = 1;
+			break;
+		case O_NAME:
+			parse_name(optarg);
+			o->name = optarg;
+			break;
+		case O_SYNTH:
+			if ((o->synth = vx_synth_parse(optarg)) ==
+			    VX_SYNTH_UNKNOWN)
+				tool_usage_fail(usage, "--synth: '%s' is not one "
+				    "of sphere torus linear ml saddle", optarg);
+			break;
+		case O_SIZE:
+			parse_dims("--size", optarg, o->size, 1);
+			o->have_size = 1;
+			break;
+		case 'h':
+			printf("usage: %s\n", usage);
+			exit(tool_finish());
+		case ':':
+			tool_usage_fail(usage, "%s: missing value",
+			    argv[optind - 1]);
+		default:
+			tool_usage_fail(usage, "unknown option '%s'",
+			    argv[optind - 1]);
+		}
+	}
+	if (optind < argc)
+		o->in = argv[optind++];
+	if (optind < argc)
+		tool_usage_fail(usage, "too many arguments ('%s')", argv[optind]);
+	if ((o->have_type || o->have_endian || o->have_skip) && !o->raw)
+		tool_usage_fail(usage, "--type, --endian and --skip go with "
+		    "--raw");
+	if (o->raw && !o->have_type)
+		tool_usage_fail(usage, "--raw needs --type");
+	if (o->raw && o->imp.format != VX_FORMAT_UNKNOWN &&
+	    o->imp.format != VX_FORMAT_RAW)
+		tool_usage_fail(usage, "--raw contradicts --format %s",
+		    vx_format_name(o->imp.format));
+	if (o->imp.format == VX_FORMAT_RAW && !o->raw)
+		tool_usage_fail(usage, "--format raw needs --raw NX,NY,NZ and "
+		    "--type T");
+	if (o->raw)
+		o->imp.format = VX_FORMAT_RAW;
+	if (o->have_size && o->synth == VX_SYNTH_UNKNOWN)
+		tool_usage_fail(usage, "--size goes with --synth");
+	if (o->synth != VX_SYNTH_UNKNOWN) {
+		if (o->in != NULL || o->raw || o->imp.format != VX_FORMAT_UNKNOWN)
+			tool_usage_fail(usage, "--synth reads no input");
+		if (!o->have_size)
+			o->size[0] = o->size[1] = o->size[2] = 64;
+	}
+	if (o->in == NULL)
+		o->in = "-";
+}
+
+int
+main(int argc, char **argv)
+{
+	vx_err e = { 0, "" };
+	vx_stream s;
+	vx_chunk c;
+	vx_grid g;
+	opts o;
+	int a;
+
+	tool_init("vread", argc, argv);
+	if (argc == 1 && isatty(STDIN_FILENO))
+		tool_usage_fail(usage, "no input");
+	parse_args(&o, argc, argv);
+	if (o.synth != VX_SYNTH_UNKNOWN) {
+		if (vx_synth_make(&g, o.synth, o.size, &e) != 0)
+			tool_fail_err(&e);
+	} else {
+		if (strcmp(o.in, "-") == 0 && isatty(STDIN_FILENO))
+			tool_fail(VX_EUSAGE, "standard input is a terminal: give "
+			    "a file or pipe the data in");
+		if (vx_import_file(&g, o.in, &o.imp, &e) != 0)
+			tool_fail_err(&e);
+	}
+	if (o.name != NULL)
+		snprintf(g.name, sizeof g.name, "%s", o.name);
+	for (a = 0; a < 3; a++) {
+		if (o.have_spacing)
+			g.spacing[a] = o.spacing[a];
+		if (o.have_origin)
+			g.origin[a] = o.origin[a];
+	}
+	if (strcmp(o.out, "-") == 0 && isatty(STDOUT_FILENO))
+		tool_fail(VX_EUSAGE, "standard output is a terminal: redirect it "
+		    "or give -o FILE");
+	vx_stream_init(&s);
+	if (vx_grid_to_chunk(&g, o.zlevel, &c, &e) != 0 ||
+	    vx_stream_append(&s, &c, &e) != 0)
+		tool_fail_err(&e);
+	vx_grid_free(&g);
+	tool_write_stream(&s, o.out);
+	vx_stream_free(&s);
+	return tool_finish();
+}
