@@ -24,8 +24,10 @@ imp_is_gzip(const void *p, size_t n)
 void
 imp_src_mem(imp_src *s, const void *p, size_t n)
 {
+	static const unsigned char none[1];
+
 	memset(s, 0, sizeof *s);
-	s->mem = p;
+	s->mem = p != NULL ? p : none;
 	s->n = n;
 }
 
@@ -212,7 +214,8 @@ imp_read(imp_src *s, void *dst, size_t n, size_t *got, vx_err *e)
 		k = s->n - s->pos;
 		if (k > n)
 			k = n;
-		memcpy(d, s->mem + s->pos, k);
+		if (k > 0)
+			memcpy(d, s->mem + s->pos, k);
 		s->pos += k;
 		s->done += k;
 		*got = k;
@@ -221,7 +224,8 @@ imp_read(imp_src *s, void *dst, size_t n, size_t *got, vx_err *e)
 	k = s->len - s->off;
 	if (k > n)
 		k = n;
-	memcpy(d, s->buf + s->off, k);
+	if (k > 0)
+		memcpy(d, s->buf + s->off, k);
 	s->off += k;
 	*got = k;
 	if (k < n) {

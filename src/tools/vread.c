@@ -111,7 +111,7 @@ parse_args(opts *o, int argc, char **argv)
 		case O_FORMAT:
 			o->imp.format = vx_format_parse(optarg);
 			if (o->imp.format == VX_FORMAT_UNKNOWN)
-				tool_usage_fail(usage, "--format: '%s' is not raw, "
+				tool_fail(VX_EUSAGE, "--format: '%s' is not raw, "
 				    "nrrd, nifti or vtk", optarg);
 			break;
 		case O_RAW:
@@ -121,7 +121,7 @@ parse_args(opts *o, int argc, char **argv)
 		case O_TYPE:
 			if ((r->type = vx_scalar_parse(optarg)) ==
 			    VX_SCALAR_UNKNOWN)
-				tool_usage_fail(usage, "--type: '%s' is not one of "
+				tool_fail(VX_EUSAGE, "--type: '%s' is not one of "
 				    "u8 i8 u16 i16 u32 i32 u64 i64 f32 f64",
 				    optarg);
 			o->have_type = 1;
@@ -132,7 +132,7 @@ parse_args(opts *o, int argc, char **argv)
 			else if (strcmp(optarg, "big") == 0)
 				r->big_endian = 1;
 			else
-				tool_usage_fail(usage, "--endian: '%s' is not "
+				tool_fail(VX_EUSAGE, "--endian: '%s' is not "
 				    "little or big", optarg);
 			o->have_endian = 1;
 			break;
@@ -160,7 +160,7 @@ parse_args(opts *o, int argc, char **argv)
 		case O_SYNTH:
 			if ((o->synth = vx_synth_parse(optarg)) ==
 			    VX_SYNTH_UNKNOWN)
-				tool_usage_fail(usage, "--synth: '%s' is not one "
+				tool_fail(VX_EUSAGE, "--synth: '%s' is not one "
 				    "of sphere torus linear ml saddle", optarg);
 			break;
 		case O_SIZE:
@@ -171,36 +171,41 @@ parse_args(opts *o, int argc, char **argv)
 			printf("usage: %s\n", usage);
 			exit(tool_finish());
 		case ':':
-			tool_usage_fail(usage, "%s: missing value",
+			if (optopt > 0 && optopt < 256)
+				tool_fail(VX_EUSAGE, "-%c: missing value", optopt);
+			tool_fail(VX_EUSAGE, "%s: missing value",
 			    argv[optind - 1]);
 		default:
-			tool_usage_fail(usage, "unknown option '%s'",
+			if (optopt > 0 && optopt < 256)
+				tool_fail(VX_EUSAGE, "unknown option '-%c'",
+				    optopt);
+			tool_fail(VX_EUSAGE, "unknown option '%s'",
 			    argv[optind - 1]);
 		}
 	}
 	if (optind < argc)
 		o->in = argv[optind++];
 	if (optind < argc)
-		tool_usage_fail(usage, "too many arguments ('%s')", argv[optind]);
+		tool_fail(VX_EUSAGE, "too many arguments ('%s')", argv[optind]);
 	if ((o->have_type || o->have_endian || o->have_skip) && !o->raw)
-		tool_usage_fail(usage, "--type, --endian and --skip go with "
+		tool_fail(VX_EUSAGE, "--type, --endian and --skip go with "
 		    "--raw");
 	if (o->raw && !o->have_type)
-		tool_usage_fail(usage, "--raw needs --type");
+		tool_fail(VX_EUSAGE, "--raw needs --type");
 	if (o->raw && o->imp.format != VX_FORMAT_UNKNOWN &&
 	    o->imp.format != VX_FORMAT_RAW)
-		tool_usage_fail(usage, "--raw contradicts --format %s",
+		tool_fail(VX_EUSAGE, "--raw contradicts --format %s",
 		    vx_format_name(o->imp.format));
 	if (o->imp.format == VX_FORMAT_RAW && !o->raw)
-		tool_usage_fail(usage, "--format raw needs --raw NX,NY,NZ and "
+		tool_fail(VX_EUSAGE, "--format raw needs --raw NX,NY,NZ and "
 		    "--type T");
 	if (o->raw)
 		o->imp.format = VX_FORMAT_RAW;
 	if (o->have_size && o->synth == VX_SYNTH_UNKNOWN)
-		tool_usage_fail(usage, "--size goes with --synth");
+		tool_fail(VX_EUSAGE, "--size goes with --synth");
 	if (o->synth != VX_SYNTH_UNKNOWN) {
 		if (o->in != NULL || o->raw || o->imp.format != VX_FORMAT_UNKNOWN)
-			tool_usage_fail(usage, "--synth reads no input");
+			tool_fail(VX_EUSAGE, "--synth reads no input");
 		if (!o->have_size)
 			o->size[0] = o->size[1] = o->size[2] = 64;
 	}
