@@ -4,11 +4,13 @@
 # fastest, whatever the layout), gzip, Teem reading the files, volume
 # selection, errors.
 . tests/cli/lib.sh
-MK="python3 tests/cli/mkstream.py"
+# Debian's python3 (what CI has), not a version manager's slower shim
+PY=python3; [ -x /usr/bin/python3 ] && PY=/usr/bin/python3
+MK="$PY tests/cli/mkstream.py"
 # field FILE NAME: the value of a NRRD header field
 field() { sed -n "/^\$/q; s/^$2: //p" "$1"; }
 # body FILE: the bytes after the header's empty line
-body() { python3 -c 'import sys; d=open(sys.argv[1],"rb").read(); sys.stdout.buffer.write(d[d.index(b"\n\n")+2:])' "$1"; }
+body() { $PY -c 'import sys; d=open(sys.argv[1],"rb").read(); sys.stdout.buffer.write(d[d.index(b"\n\n")+2:])' "$1"; }
 
 $MK volume "$T/a.vx" --dims 5 3 2 --type i16 --layout "bricked 2x2x2" --zlib \
     --formula "x - 3*y + 11*z" --spacing 0.5 1 2.5 --origin -1.5 2 0.1
@@ -27,7 +29,7 @@ check "history comment" grep -q "^# vwrite 0.1.0 -o $T/a.nrrd $T/a.vx\$" "$T/a.n
 # gzip, to standard output
 vwrite --gzip "$T/a.vx" >"$T/ag.nrrd"
 check_eq "gzip encoding" "$(field "$T/ag.nrrd" encoding)" "gzip"
-body "$T/ag.nrrd" | python3 -c 'import gzip,sys; sys.stdout.buffer.write(gzip.decompress(sys.stdin.buffer.read()))' >"$T/ag.body"
+body "$T/ag.nrrd" | $PY -c 'import gzip,sys; sys.stdout.buffer.write(gzip.decompress(sys.stdin.buffer.read()))' >"$T/ag.body"
 check "gzip body inflates to the samples" cmp "$T/ag.body" "$T/a.samples"
 
 # every type, through a linear u8/u16 and an f32 with a two-level layout
@@ -62,6 +64,10 @@ vwrite "$T/two.vx" >"$T/d.nrrd"
 check_eq "default: the first volume" "$(field "$T/d.nrrd" content) $(field "$T/d.nrrd" sizes)" "first 2 2 2"
 vwrite --name second "$T/two.vx" >"$T/s.nrrd"
 check_eq "--name second" "$(field "$T/s.nrrd" content) $(field "$T/s.nrrd" sizes)" "second 3 2 2"
+
+# the output gets the mode open(2) would give it, not mkstemp's 0600
+(umask 022; vwrite -o "$T/mode.nrrd" "$T/a.vx")
+check_eq "output mode follows the umask" "$(stat -c %a "$T/mode.nrrd")" "644"
 
 # errors: one line, the right code, no output file touched
 echo keep >"$T/keep.nrrd"

@@ -7,6 +7,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "vx_version.h"
@@ -162,6 +163,7 @@ tool_read_stream(vx_stream *s, const char *path)
 void
 tool_out_open(tool_out *o, const char *path)
 {
+	mode_t um;
 	int fd;
 
 	memset(o, 0, sizeof *o);
@@ -175,8 +177,18 @@ tool_out_open(tool_out *o, const char *path)
 		tool_fail(VX_EUSAGE, "%s: path too long", path);
 	snprintf(o->path, sizeof o->path, "%s", path);
 	snprintf(o->tmp, sizeof o->tmp, "%s.tmpXXXXXX", path);
-	if ((fd = mkstemp(o->tmp)) < 0 || (o->f = fdopen(fd, "wb")) == NULL)
+	if ((fd = mkstemp(o->tmp)) < 0)
 		tool_fail(VX_ECANTCREAT, "%s: %s", path, strerror(errno));
+	/* mkstemp makes the file 0600; give it the mode open(2) would */
+	um = umask(0);
+	umask(um);
+	if (fchmod(fd, 0666 & ~um) != 0 || (o->f = fdopen(fd, "wb")) == NULL) {
+		int err = errno;
+
+		close(fd);
+		unlink(o->tmp);
+		tool_fail(VX_ECANTCREAT, "%s: %s", path, strerror(err));
+	}
 	live_out = o;
 }
 
