@@ -16,6 +16,8 @@ independently of the C code (written from formats/stream.md alone).
       insert a chunk with payload TEXT at position N (default: the end).
   mkstream.py cat OUT IN...
       one stream with the chunks of all the inputs, in order.
+  mkstream.py payload IN TYPE [--name N]
+      write the payload of the first chunk of TYPE (with that name) to stdout.
   mkstream.py samples IN [--name N]
       write the volume's samples to stdout in x-fastest order, little-endian
       (what an NRRD body holds), whatever the stream's layout.
@@ -168,6 +170,18 @@ def cmd_cat(a):
     write_stream(a.out, [c for path in a.inputs for c in read_stream(path)])
 
 
+def cmd_payload(a):
+    for typ, payload in read_stream(a.inp):
+        if typ != a.type:
+            continue
+        if a.name is not None and \
+                parse_payload(payload)[0].get("name") != a.name:
+            continue
+        sys.stdout.buffer.write(payload)
+        return
+    sys.exit("mkstream.py: no such chunk")
+
+
 def cmd_samples(a):
     for typ, payload in read_stream(a.inp):
         if typ != "VOLM":
@@ -217,12 +231,16 @@ def main():
     c = sub.add_parser("cat")
     c.add_argument("out")
     c.add_argument("inputs", nargs="+")
+    y = sub.add_parser("payload")
+    y.add_argument("inp")
+    y.add_argument("type")
+    y.add_argument("--name")
     s = sub.add_parser("samples")
     s.add_argument("inp")
     s.add_argument("--name")
     a = p.parse_args()
     {"volume": cmd_volume, "image": cmd_image, "add": cmd_add,
-     "cat": cmd_cat, "tetm": cmd_tetm, "samples": cmd_samples}[a.cmd](a)
+     "cat": cmd_cat, "tetm": cmd_tetm, "payload": cmd_payload, "samples": cmd_samples}[a.cmd](a)
 
 
 if __name__ == "__main__":

@@ -3,9 +3,11 @@
 # formats/stream.md alone): chunk listing, unknown chunks, volume statistics
 # against values computed by hand, images, JSON validity, errors.
 . tests/cli/lib.sh
-MK="python3 tests/cli/mkstream.py"
+# Debian's python3 (what CI has), not a version manager's slower shim
+PY=python3; [ -x /usr/bin/python3 ] && PY=/usr/bin/python3
+MK="$PY tests/cli/mkstream.py"
 # jget FILE EXPR: evaluate a Python expression over the JSON document d
-jget() { python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print($2)" "$1"; }
+jget() { $PY -c "import json,sys; d=json.load(open(sys.argv[1])); print($2)" "$1"; }
 
 # A bricked, zlib-compressed i16 volume: samples x - 3y + 11z over 5x3x2,
 # so the range is [0 - 6 + 0, 4 - 0 + 11] = [-6, 15] and the mean is
@@ -20,25 +22,25 @@ check_eq "mean" "$(jget "$T/a.json" 'd["chunks"][0]["volume"]["mean"]')" "4.5"
 check_eq "padding counted apart" \
     "$(jget "$T/a.json" '[d["chunks"][0]["volume"][k] for k in ("samples","stored")]')" "[30, 48]"
 # histogram over [-6, 15], width 5.25: count the 30 values by hand
-want=$(python3 -c '
+want=$($PY -c '
 v = [x - 3*y + 11*z for x in range(5) for y in range(3) for z in range(2)]
 c = [0]*4
 for s in v: c[min(int((s + 6) / 5.25), 3)] += 1
 print(c)')
 check_eq "histogram" "$(jget "$T/a.json" 'd["chunks"][0]["volume"]["histogram"]["counts"]')" "$want"
 # the checksum is that of the samples in x-fastest order, whatever the layout
-want=$($MK samples "$T/a.vx" | python3 -c 'import sys,zlib; print("%08x" % zlib.crc32(sys.stdin.buffer.read()))')
+want=$($MK samples "$T/a.vx" | $PY -c 'import sys,zlib; print("%08x" % zlib.crc32(sys.stdin.buffer.read()))')
 check_eq "crc32 of samples in linear order" \
     "$(jget "$T/a.json" 'd["chunks"][0]["volume"]["crc32"]')" "$want"
 $MK volume "$T/a_lin.vx" --dims 5 3 2 --type i16 --formula "x - 3*y + 11*z"
 check_eq "same crc32 for the linear raw volume" \
-    "$(vinfo --json "$T/a_lin.vx" | python3 -c 'import json,sys; print(json.load(sys.stdin)["chunks"][0]["volume"]["crc32"])')" "$want"
+    "$(vinfo --json "$T/a_lin.vx" | $PY -c 'import json,sys; print(json.load(sys.stdin)["chunks"][0]["volume"]["crc32"])')" "$want"
 
 # Non-finite f32 samples: counted, kept out of the range, JSON stays valid
 $MK volume "$T/f.vx" --dims 3 2 2 --type f32 --name 'q"uo\te' \
     --formula "nan if x == 0 else (inf if y == 0 and x == 1 else (-inf if x == 1 else 0.5 * x + y))"
 vinfo --json "$T/f.vx" >"$T/f.json"
-check "JSON with NaN samples parses" python3 -c 'import json,sys; json.load(open(sys.argv[1]))' "$T/f.json"
+check "JSON with NaN samples parses" $PY -c 'import json,sys; json.load(open(sys.argv[1]))' "$T/f.json"
 check_eq "nan / +inf / -inf counts" \
     "$(jget "$T/f.json" '[d["chunks"][0]["volume"][k] for k in ("nan","posinf","neginf")]')" "[4, 2, 2]"
 check_eq "range of the finite samples" "$(jget "$T/f.json" 'd["chunks"][0]["volume"]["range"]')" "[1, 2]"
@@ -47,7 +49,7 @@ check_eq "name with quote and backslash" "$(jget "$T/f.json" 'd["chunks"][0]["vo
 # All samples NaN: no range anywhere, null in JSON
 $MK volume "$T/n.vx" --dims 2 1 1 --type f32 --formula "nan"
 check_eq "no finite sample: range null" \
-    "$(vinfo --json "$T/n.vx" | python3 -c 'import json,sys; v=json.load(sys.stdin)["chunks"][0]["volume"]; print(v["range"], v["mean"], "histogram" in v)')" "None None False"
+    "$(vinfo --json "$T/n.vx" | $PY -c 'import json,sys; v=json.load(sys.stdin)["chunks"][0]["volume"]; print(v["range"], v["mean"], "histogram" in v)')" "None None False"
 
 # An unknown ancillary chunk is listed (type, length, unknown), a history
 # line with bytes that are not UTF-8 survives in both outputs
