@@ -168,6 +168,11 @@ vx_tet_segment(const vx_tetmesh *m, size_t t, const vx_tetray *r,
 			ht[nhit] = (v.z[a] + v.z[b] + v.z[c]) / 3;
 			hf[nhit] = (v.f[a] + v.f[b] + v.f[c]) / 3;
 		}
+		/* keep the value within its vertices' (rounding may step out),
+		 * so leaf ranges of vertex values never cull a crossing */
+		double lo = fmin(v.f[a], fmin(v.f[b], v.f[c]));
+		double hi = fmax(v.f[a], fmax(v.f[b], v.f[c]));
+		hf[nhit] = hf[nhit] < lo ? lo : hf[nhit] > hi ? hi : hf[nhit];
 		nhit++;
 	}
 	if (nhit != 2)

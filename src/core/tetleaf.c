@@ -1,7 +1,8 @@
 /* tetleaf.c: the leaf grid of a tet mesh (Parker et al. 1999, §4.2): a
  * rectilinear grid with about one leaf per tet, each leaf listing the tets
  * whose (slightly padded) bounding box overlaps it, CSR-style, with the
- * min/max of the scalar over its tets. */
+ * min/max of the scalar over its tets as level 0 of a vx_macro hierarchy;
+ * and the nearest-hit query that walks it. */
 #include "vx_tetmesh.h"
 
 #include <math.h>
@@ -14,6 +15,7 @@ void
 vx_tetleaf_init(vx_tetleaf *lg)
 {
 	memset(lg, 0, sizeof *lg);
+	vx_macro_init(&lg->mc);
 }
 
 void
@@ -21,8 +23,7 @@ vx_tetleaf_free(vx_tetleaf *lg)
 {
 	free(lg->off);
 	free(lg->idx);
-	free(lg->lmin);
-	free(lg->lmax);
+	vx_macro_free(&lg->mc);
 	vx_tetleaf_init(lg);
 }
 
@@ -33,7 +34,7 @@ vx_tetleaf_bytes(const vx_tetleaf *lg)
 		return 0;
 	return (lg->nleaf + 1) * sizeof *lg->off +
 	    (size_t)lg->off[lg->nleaf] * sizeof *lg->idx +
-	    2 * lg->nleaf * sizeof *lg->lmin;
+	    vx_macro_bytes(&lg->mc);
 }
 
 void
@@ -133,32 +134,37 @@ tet_range(const vx_tetleaf *lg, const vx_tetmesh *m, size_t t,
 }
 
 int
-vx_tetleaf_build(vx_tetleaf *lg, const vx_tetmesh *m, double density,
-    vx_err *e)
+vx_tetleaf_build_levels(vx_tetleaf *lg, const vx_tetmesh *m, double density,
+    int nlev, const int sizes[][3], int nthreads, vx_err *e)
 {
 	double ext[3];
 	uint32_t *cur = NULL;
+	float *mm = NULL;
 	uint64_t total = 0;
 	size_t t, l;
-	int a;
+	int a, rc = VX_ENOMEM;
 
 	vx_tetleaf_init(lg);
 	for (a = 0; a < 3; a++)
 		ext[a] = m->npoint ? m->bmax[a] - m->bmin[a] : 0;
 	vx_tetleaf_dims(ext, m->ntet, density, lg->dims);
+	/* The grid's box is the mesh's, grown by VX_TETLEAF_PAD leaves on
+	 * every side: a ray that touches the mesh only at its boundary then
+	 * still has a segment in the grid after the traversal's rounding. */
 	for (a = 0; a < 3; a++) {
-		lg->bmin[a] = m->npoint ? m->bmin[a] : 0;
-		lg->cell[a] = ext[a] > 0 ? ext[a] / (double)lg->dims[a] : 1;
+		double cell = ext[a] > 0 ? ext[a] / (double)lg->dims[a] : 1;
+		double pad = VX_TETLEAF_PAD * cell;
+		lg->bmin[a] = (m->npoint ? m->bmin[a] : 0) - pad;
+		lg->cell[a] = (ext[a] + 2 * pad) / (double)lg->dims[a];
 	}
 	lg->nleaf = (size_t)(lg->dims[0] * lg->dims[1] * lg->dims[2]);
 	lg->off = vx_calloc(lg->nleaf + 1, sizeof *lg->off, e);
-	lg->lmin = lg->off ? vx_malloc(lg->nleaf * sizeof *lg->lmin, e) : NULL;
-	lg->lmax = lg->lmin ? vx_malloc(lg->nleaf * sizeof *lg->lmax, e) : NULL;
-	if (lg->lmax == NULL)
-		goto nomem;
+	mm = lg->off ? vx_malloc(2 * lg->nleaf * sizeof *mm, e) : NULL;
+	if (mm == NULL)
+		goto fail;
 	for (l = 0; l < lg->nleaf; l++) {
-		lg->lmin[l] = INFINITY;
-		lg->lmax[l] = -INFINITY;
+		mm[2 * l] = INFINITY;
+		mm[2 * l + 1] = -INFINITY;
 	}
 
 	/* pass 1: count (in off[l + 1]) and min/max */
@@ -170,9 +176,9 @@ vx_tetleaf_build(vx_tetleaf *lg, const vx_tetmesh *m, double density,
 		total += (uint64_t)(hi[0] - lo[0] + 1) * (uint64_t)(hi[1] -
 		    lo[1] + 1) * (uint64_t)(hi[2] - lo[2] + 1);
 		if (total > UINT32_MAX) {
-			vx_tetleaf_free(lg);
-			return vx_err_set(e, VX_EDATA, "leaf grid: the tet lists "
+			rc = vx_err_set(e, VX_EDATA, "leaf grid: the tet lists "
 			    "would exceed 2^32 - 1 entries");
+			goto fail;
 		}
 		for (k = lo[2]; k <= hi[2]; k++)
 			for (j = lo[1]; j <= hi[1]; j++)
@@ -180,10 +186,10 @@ vx_tetleaf_build(vx_tetleaf *lg, const vx_tetmesh *m, double density,
 					l = (size_t)(i + lg->dims[0] * (j +
 					    lg->dims[1] * k));
 					lg->off[l + 1]++;
-					if (vmin < lg->lmin[l])
-						lg->lmin[l] = vmin;
-					if (vmax > lg->lmax[l])
-						lg->lmax[l] = vmax;
+					if (vmin < mm[2 * l])
+						mm[2 * l] = vmin;
+					if (vmax > mm[2 * l + 1])
+						mm[2 * l + 1] = vmax;
 				}
 	}
 	for (l = 0; l < lg->nleaf; l++)
@@ -193,7 +199,7 @@ vx_tetleaf_build(vx_tetleaf *lg, const vx_tetmesh *m, double density,
 	lg->idx = vx_malloc((size_t)total * sizeof *lg->idx, e);
 	cur = lg->idx ? vx_malloc(lg->nleaf * sizeof *cur, e) : NULL;
 	if (cur == NULL)
-		goto nomem;
+		goto fail;
 	memcpy(cur, lg->off, lg->nleaf * sizeof *cur);
 	for (t = 0; t < m->ntet; t++) {
 		int64_t lo[3], hi[3], i, j, k;
@@ -209,9 +215,117 @@ vx_tetleaf_build(vx_tetleaf *lg, const vx_tetmesh *m, double density,
 				}
 	}
 	free(cur);
+	cur = NULL;
+	if ((rc = vx_macro_build_explicit(&lg->mc, lg->dims, mm, nlev, sizes,
+	    nthreads, e)) != 0) {
+		vx_err_push(e, "leaf grid");
+		goto fail;
+	}
+	free(mm);
 	return 0;
-nomem:
+fail:
 	free(cur);
+	free(mm);
 	vx_tetleaf_free(lg);
-	return VX_ENOMEM;
+	return rc;
+}
+
+int
+vx_tetleaf_build(vx_tetleaf *lg, const vx_tetmesh *m, double density,
+    vx_err *e)
+{
+	int sizes[VX_MACRO_MAXLEV][3];
+	int nlev = vx_macro_default_sizes(VX_F32, VX_MACRO_DEFAULT_LEVELS,
+	    sizes);
+
+	return vx_tetleaf_build_levels(lg, m, density, nlev, sizes, 0, e);
+}
+
+/* ---- the nearest-hit query ---- */
+
+typedef struct near_ctx {
+	const vx_tetleaf *lg;
+	const vx_tetmesh *m;
+	vx_tetray ray;
+	const double *iso;
+	int niso;
+	double tmin, tmax;
+	vx_tethit *hit;
+	uint64_t nvisit;       /* leaves visited so far */
+	int64_t last;          /* the last one, and where it ended */
+	double last_t1;
+} near_ctx;
+
+static int
+leaf_query(near_ctx *c, int64_t leaf, double t0, double t1)
+{
+	const vx_tetleaf *lg = c->lg;
+	size_t l = (size_t)leaf;
+
+	if (t0 < c->tmin)
+		t0 = c->tmin;
+	if (t1 > c->tmax)
+		t1 = c->tmax;
+	if (!(t0 < t1))
+		return 0;
+	return vx_tet_nearest(c->m, lg->idx + lg->off[l], lg->off[l + 1] -
+	    lg->off[l], &c->ray, c->iso, c->niso, t0, t1, c->hit);
+}
+
+/* Each visited leaf is searched over [t0, t1): a hit on its far face
+ * belongs to the next leaf, whose list has the tet too (padding).  The
+ * first visited leaf is searched from tmin, and the last one again up to
+ * tmax after the walk: where the ray enters or leaves the grid there is no
+ * neighbour to defer to, and a hit that rounding puts just outside the
+ * walk's segment is kept.  (A crossing can only lie in a leaf whose range
+ * brackets the isovalue, so the extensions find nothing that a culled or
+ * earlier leaf should have found.) */
+static int
+near_visit(void *p, const vx_leaf_visit *v)
+{
+	near_ctx *c = p;
+	double t0 = c->nvisit == 0 ? c->tmin : v->t0;
+
+	c->nvisit++;
+	c->last = v->leaf;
+	c->last_t1 = v->t1;
+	return leaf_query(c, v->leaf, t0, v->t1);
+}
+
+int
+vx_tetleaf_nearest(const vx_tetleaf *lg, const vx_tetmesh *m,
+    const double o[3], const double d[3], const double *iso, int niso,
+    double tmin, double tmax, vx_tethit *hit, vx_trav_stats *st)
+{
+	float vals[64];
+	double lo[3], ld[3];
+	near_ctx c;
+	int a, k, nv;
+
+	if (lg->off == NULL || niso <= 0)
+		return 0;
+	/* the hierarchy culls with float isovalues: rounding is monotone and
+	 * leaf bounds are floats, so min <= iso <= max implies the same for
+	 * (float)iso, and the interpolated values stay within the vertex
+	 * values (vx_tet_segment clamps them) */
+	nv = niso <= 64 ? niso : 0;  /* more: no culling */
+	for (k = 0; k < nv; k++)
+		vals[k] = (float)iso[k];
+	for (a = 0; a < 3; a++) {
+		lo[a] = (o[a] - lg->bmin[a]) / lg->cell[a];
+		ld[a] = d[a] / lg->cell[a];
+	}
+	memset(&c, 0, sizeof c);
+	c.lg = lg;
+	c.m = m;
+	vx_tetray_init(&c.ray, o, d);
+	c.iso = iso;
+	c.niso = niso;
+	c.tmin = tmin;
+	c.tmax = tmax;
+	c.hit = hit;
+	if (vx_macro_traverse(&lg->mc, NULL, lo, ld, tmin, tmax, vals, nv,
+	    near_visit, &c, st) != 0)
+		return 1;
+	return c.nvisit > 0 && leaf_query(&c, c.last, c.last_t1, tmax);
 }

@@ -18,6 +18,7 @@
 
 #include "vx_err.h"
 #include "vx_grid.h"
+#include "vx_macro.h"
 #include "vx_stream.h"
 
 /* Limits, checked before anything is allocated.  Indices are uint32, so
@@ -177,27 +178,31 @@ int vx_tetsynth_cube(vx_tetmesh *m, const double lo[3], const double hi[3],
 int vx_tetsynth_from_grid(vx_tetmesh *m, const vx_grid *g, int split,
     vx_err *e);
 
-/* ---- the leaf grid (Parker §4.2) ----
- * A rectilinear grid over the mesh's bounding box with about `density`
- * leaves per tet (1 in the paper).  Leaf (i,j,k), index i + n0 * (j + n1 *
- * k), covers bmin + (i,j,k) * cell ... + cell.  Its tets are
+/* ---- the leaf grid (Parker §4.2) and its min/max hierarchy ----
+ * A rectilinear grid over the mesh's bounding box (grown by VX_TETLEAF_PAD
+ * leaf widths on every side) with about `density` leaves per tet (1 in the
+ * paper).  Leaf (i,j,k), index i + n0 * (j + n1 * k), covers bmin + (i,j,k)
+ * * cell ... + cell.  Its tets are
  * idx[off[l] .. off[l+1]-1] (ascending), every tet whose bounding box,
- * padded by VX_TETLEAF_PAD leaf widths, overlaps the leaf's closed box.  The
- * padding makes a hit found at a leaf boundary safe against the rounding of
- * the traversal's t values.  lmin/lmax: min/max of the vertex values of the
- * listed tets (tets with a non-finite vertex value are not counted, as they
- * never hit); an empty leaf has lmin = +inf, lmax = -inf. */
+ * padded by VX_TETLEAF_PAD leaf widths, overlaps the leaf's box; tets that
+ * can never hit (a non-finite vertex value, zero volume) are not listed.
+ * The padding makes a hit at a leaf boundary safe against the rounding of
+ * the traversal's t values.  The leaf ranges (min/max of the vertex values
+ * of the listed tets; empty leaf: +inf, -inf) are level 0 of a vx_macro
+ * hierarchy with explicit leaves (vx_macro.h), whose leaf index space is
+ * (world - bmin) / cell. */
 #define VX_TETLEAF_PAD 1e-6
 #define VX_TETLEAF_MAX_LEAVES ((uint64_t)1 << 31)
 
 typedef struct vx_tetleaf {
 	int64_t dims[3];       /* leaves per axis */
-	double bmin[3];        /* = mesh bmin */
+	double bmin[3];        /* mesh bmin - VX_TETLEAF_PAD * cell */
 	double cell[3];        /* leaf size per axis (> 0) */
 	size_t nleaf;          /* product of dims */
 	uint32_t *off;         /* nleaf + 1 offsets into idx, owned */
 	uint32_t *idx;         /* tet indices, off[nleaf] of them, owned */
-	float *lmin, *lmax;    /* nleaf each, owned */
+	vx_macro mc;           /* min/max hierarchy; leaf l's range is
+	                          mc.mm[0][2l], mc.mm[0][2l+1] */
 } vx_tetleaf;
 
 void vx_tetleaf_init(vx_tetleaf *lg);
@@ -210,13 +215,29 @@ void vx_tetleaf_dims(const double ext[3], size_t ntet, double density,
     int64_t dims[3]);
 
 /* vx_tetleaf_build: build the leaf grid of a validated mesh (density <= 0
- * means 1).  Deterministic; two passes over the tets (count, then fill).
- * VX_EDATA when the lists would exceed 2^32 - 1 entries, VX_ENOMEM. */
+ * means 1) and over it the default hierarchy (VX_MACRO_DEFAULT_LEVELS
+ * levels of vx_macro_default_sizes(VX_F32, ...)).  Deterministic; two
+ * passes over the tets (count, then fill).  The mesh is not referenced
+ * afterwards.  VX_EDATA when the lists would exceed 2^32 - 1 entries,
+ * VX_ENOMEM. */
 int vx_tetleaf_build(vx_tetleaf *lg, const vx_tetmesh *m, double density,
     vx_err *e);
+/* vx_tetleaf_build_levels: the same with nlev (0..VX_MACRO_MAXLEV) levels
+ * of the given sizes (see vx_macro_build_explicit) and nthreads for the
+ * reduction (<= 0: OpenMP's default; the result does not depend on it). */
+int vx_tetleaf_build_levels(vx_tetleaf *lg, const vx_tetmesh *m,
+    double density, int nlev, const int sizes[][3], int nthreads, vx_err *e);
 
-/* vx_tetleaf_bytes: memory held by the leaf grid. */
+/* vx_tetleaf_bytes: memory held by the leaf grid and its hierarchy. */
 size_t vx_tetleaf_bytes(const vx_tetleaf *lg);
+
+/* vx_tetleaf_range: stored min/max of leaf l. */
+static inline void
+vx_tetleaf_range(const vx_tetleaf *lg, size_t l, float *lo, float *hi)
+{
+	*lo = lg->mc.mm[0][2 * l];
+	*hi = lg->mc.mm[0][2 * l + 1];
+}
 
 /* ---- ray vs tet isosurface ----
  * Within a tet the field is linear, so along a ray it is linear between the
@@ -250,7 +271,8 @@ void vx_tetray_init(vx_tetray *r, const double o[3], const double d[3]);
 /* vx_tet_segment: where ray r crosses tet t: 1 and t0 <= t1 with the field
  * values f0, f1 there (computed from the crossed faces alone), or 0 when the
  * ray misses the tet (or only grazes it: faces seen edge-on are never
- * crossed).  Degenerate tets are not excluded here. */
+ * crossed).  f0 and f1 lie within the values of their faces' vertices.
+ * Degenerate tets are not excluded here. */
 int vx_tet_segment(const vx_tetmesh *m, size_t t, const vx_tetray *r,
     double *t0, double *f0, double *t1, double *f1);
 
@@ -288,5 +310,19 @@ typedef struct vx_tethit {
 int vx_tet_nearest(const vx_tetmesh *m, const uint32_t *list, size_t n,
     const vx_tetray *r, const double *iso, int niso, double tmin,
     double tmax, vx_tethit *hit);
+
+/* vx_tetleaf_nearest: the nearest crossing in [tmin, tmax) of the ray
+ * o + t d (world space) with the isosurfaces iso[0..niso-1] of mesh m, found
+ * by walking lg's hierarchy (vx_macro_traverse; leaves whose range brackets
+ * no isovalue are skipped) and testing each visited leaf's tets over the
+ * leaf's own [t0, t1) (closed at the grid's far side), stopping at the first
+ * leaf that hits.  The result (t, tet, iso, normal) is the one
+ * vx_tet_nearest gives over all tets of the mesh.  lg must have been built
+ * from m.  st (may be NULL) gets the traversal's counters added.  Returns 1
+ * and fills *hit, or 0.  Reentrant.  Up to 64 isovalues are culled by the
+ * hierarchy; with more, every leaf on the way is tested. */
+int vx_tetleaf_nearest(const vx_tetleaf *lg, const vx_tetmesh *m,
+    const double o[3], const double d[3], const double *iso, int niso,
+    double tmin, double tmax, vx_tethit *hit, vx_trav_stats *st);
 
 #endif

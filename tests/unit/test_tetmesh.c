@@ -914,7 +914,9 @@ leaf_grid_brute(void **state)
 				}
 			}
 			assert_int_equal(k, lg.off[l + 1]);
-			assert_true(lg.lmin[l] == vmin && lg.lmax[l] == vmax);
+			float rlo, rhi;
+			vx_tetleaf_range(&lg, l, &rlo, &rhi);
+			assert_true(rlo == vmin && rhi == vmax);
 		}
 		assert_true(vx_tetleaf_bytes(&lg) > 0);
 		vx_tetleaf_free(&lg);
@@ -922,83 +924,91 @@ leaf_grid_brute(void **state)
 	vx_tetmesh_free(&m);
 }
 
-/* Oracle: the nearest hit found leaf by leaf (every leaf the ray's line
- * crosses, each queried with its own [t_enter, t_exit) from a slab test,
- * the minimum taken) equals the nearest hit over all tets; so a traversal
- * that visits leaves in order and stops at the first hit loses nothing at
- * leaf boundaries. */
+/* Oracle: the nearest hit found by walking the hierarchy (any number of
+ * levels) is the nearest hit over all tets, bit for bit (t, tet, isovalue,
+ * normal): nothing is lost at leaf boundaries, by culling or by stopping
+ * at the first leaf that hits.  Rays: random, along leaf-grid planes and
+ * through leaf corners, and through mesh vertices; ray origins inside and
+ * outside the mesh, several isovalues. */
 static void
 leaf_grid_nearest(void **state)
 {
-	int64_t nc[3] = { 5, 5, 5 };
-	double lo[3] = { -1.5, -1.5, -1.5 }, hi[3] = { 1.5, 1.5, 1.5 };
-	double c[3] = { 0, 0, 0 }, iso = 1.0;
+	int64_t nc[3] = { 5, 4, 6 };
+	double lo[3] = { -1.5, -1.2, -1.5 }, hi[3] = { 1.5, 1.2, 1.8 };
+	double c[3] = { 0, 0.1, 0 }, isos[3] = { 1.0, 0.25, 1.6 };
+	int sizes[2][3] = { { 2, 3, 2 }, { 2, 2, 2 } };
 	vx_tetmesh m;
-	vx_tetleaf lg;
 	vx_err e = { 0, "" };
 
 	(void)state;
-	assert_int_equal(vx_tetsynth_grid(&m, nc, lo, hi, 6, bowl_fn, c, &e), 0);
-	assert_int_equal(vx_tetleaf_build(&lg, &m, 1, &e), 0);
-	uint32_t *all = malloc(m.ntet * sizeof *all);
-	for (size_t t = 0; t < m.ntet; t++)
-		all[t] = (uint32_t)t;
-	for (uint64_t r = 0; r < 150; r++) {
-		double o[3], d[3];
-		for (int a = 0; a < 3; a++) {
-			d[a] = 2 * u01(80 + (uint64_t)a, r) - 1;
-			/* aligned rays through leaf corners now and then */
-			if (r % 4 == 0)
-				d[a] = a == (int)(r / 4 % 3);
-			o[a] = (r % 4 == 0 ? lg.bmin[a] + lg.cell[a] *
-			    (double)(r % 3 + 1) : 0.5 * u01(83 + (uint64_t)a, r)) -
-			    4 * d[a];
-		}
-		vx_tetray ray;
-		vx_tethit hb, hl, h;
-		vx_tetray_init(&ray, o, d);
-		int fb = vx_tet_nearest(&m, all, m.ntet, &ray, &iso, 1, 0, 1e300,
-		    &hb);
-		int fl = 0;
-		for (size_t l = 0; l < lg.nleaf; l++) {
-			int64_t ix[3] = { (int64_t)l % lg.dims[0],
-			    (int64_t)l / lg.dims[0] % lg.dims[1],
-			    (int64_t)l / lg.dims[0] / lg.dims[1] };
-			double t0 = 0, t1 = 1e300;
-			for (int a = 0; a < 3; a++) {
-				double b0 = lg.bmin[a] + (double)ix[a] * lg.cell[a];
-				double b1 = lg.bmin[a] + (double)(ix[a] + 1) *
-				    lg.cell[a];
-				if (d[a] == 0) {
-					if (o[a] < b0 || o[a] >= b1)
-						t1 = -1;
+	for (int split = 5; split <= 6; split++) {
+		assert_int_equal(vx_tetsynth_grid(&m, nc, lo, hi, split, bowl_fn,
+		    c, &e), 0);
+		uint32_t *all = malloc(m.ntet * sizeof *all);
+		for (size_t t = 0; t < m.ntet; t++)
+			all[t] = (uint32_t)t;
+		for (int nlev = 0; nlev <= 3; nlev++) {
+			vx_tetleaf lg;
+			vx_trav_stats st;
+			/* level 3: one leaf per grid cell, so leaf planes are
+			 * mesh planes (tet boxes end on them) */
+			double dens = nlev == 3 ? 1.0 / split : 1;
+			memset(&st, 0, sizeof st);
+			assert_int_equal(vx_tetleaf_build_levels(&lg, &m, dens,
+			    nlev % 3, sizes, 1, &e), 0);
+			if (nlev == 3)
+				for (int a = 0; a < 3; a++)
+					assert_int_equal(lg.dims[a], nc[a]);
+			for (uint64_t r = 0; r < 1000; r++) {
+				double o[3], d[3], tmin = r % 5 == 1 ? 2.5 : 0;
+				int niso = 1 + (int)(r % 3);
+				for (int a = 0; a < 3; a++) {
+					d[a] = 2 * u01(80 + (uint64_t)a, r) - 1;
+					o[a] = 0.5 * u01(83 + (uint64_t)a, r) - 4 * d[a];
+				}
+				if (r % 4 == 0) {
+					/* along leaf planes, through leaf corners */
+					for (int a = 0; a < 3; a++) {
+						d[a] = a == (int)(r / 4 % 3);
+						o[a] = lg.bmin[a] + lg.cell[a] *
+						    (double)(r % 3 + 1) - 4 * d[a];
+					}
+				} else if (r % 4 == 2) {
+					/* through a mesh vertex (on leaf planes at
+					 * level 3), at its own value */
+					size_t v = (size_t)(u01(86, r) *
+					    (double)m.npoint);
+					for (int a = 0; a < 3; a++)
+						o[a] = m.pts[3 * v + a] - 4 * d[a];
+					isos[0] = m.val[v];
+				}
+				vx_tetray ray;
+				vx_tethit hb, hl;
+				vx_tetray_init(&ray, o, d);
+				int fb = vx_tet_nearest(&m, all, m.ntet, &ray, isos,
+				    niso, tmin, 1e300, &hb);
+				int fl = vx_tetleaf_nearest(&lg, &m, o, d, isos, niso,
+				    tmin, 1e300, &hl, &st);
+				isos[0] = 1.0;
+				if (fb != fl)
+					fprintf(stderr, "split %d nlev %d r %d: fb %d "
+					    "(t %.17g tet %u) fl %d (t %.17g tet %u)\n",
+					    split, nlev, (int)r, fb, hb.t, hb.tet, fl,
+					    hl.t, hl.tet);
+				assert_int_equal(fb, fl);
+				if (!fb)
 					continue;
-				}
-				double ta = (b0 - o[a]) / d[a], tb = (b1 - o[a]) / d[a];
-				if (ta > tb) {
-					double s = ta;
-					ta = tb;
-					tb = s;
-				}
-				t0 = fmax(t0, ta);
-				t1 = fmin(t1, tb);
+				assert_true(hb.t == hl.t);
+				assert_int_equal(hb.tet, hl.tet);
+				assert_int_equal(hb.iso, hl.iso);
+				assert_memory_equal(hb.n, hl.n, sizeof hb.n);
 			}
-			if (!(t0 < t1) || !(iso >= lg.lmin[l] && iso <= lg.lmax[l]))
-				continue;
-			if (vx_tet_nearest(&m, lg.idx + lg.off[l], lg.off[l + 1] -
-			    lg.off[l], &ray, &iso, 1, t0, t1, &h) &&
-			    (!fl || h.t < hl.t)) {
-				hl = h;
-				fl = 1;
-			}
+			assert_true(st.leaves > 0);
+			vx_tetleaf_free(&lg);
 		}
-		assert_int_equal(fb, fl);
-		if (fb)
-			assert_true(hb.t == hl.t);
+		free(all);
+		vx_tetmesh_free(&m);
 	}
-	free(all);
-	vx_tetleaf_free(&lg);
-	vx_tetmesh_free(&m);
 }
 
 /* Oracle: the leaf counts follow the box's shape and the cap. */
