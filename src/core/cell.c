@@ -144,12 +144,16 @@ vx_cell_face_value(const float c[8], int axis, int side, double u, double v)
 	/* clamps written so that NaN passes through */
 	u = u < 0 ? 0 : u > 1 ? 1 : u;
 	v = v < 0 ? 0 : v > 1 ? 1 : v;
-	r = lerp(lerp(c00, c10, u), lerp(c01, c11, u), v);
-	lo = fmin(fmin(c00, c10), fmin(c01, c11));
-	hi = fmax(fmax(c00, c10), fmax(c01, c11));
-	if (isnan(c00 + c10 + c01 + c11))
+	if (!isfinite(c00 + c10 + c01 + c11))   /* Inf - Inf is NaN too */
 		return NAN;
-	return r < lo ? lo : r > hi ? hi : r;
+	r = lerp(lerp(c00, c10, u), lerp(c01, c11, u), v);
+	lo = c00 < c10 ? c00 : c10;
+	hi = c00 < c10 ? c10 : c00;
+	lo = c01 < lo ? c01 : lo;
+	hi = c01 > hi ? c01 : hi;
+	lo = c11 < lo ? c11 : lo;
+	hi = c11 > hi ? c11 : hi;
+	return r < lo ? lo : r > hi ? hi : r;   /* NaN u or v stays NaN */
 }
 
 /* Critical points of the cubic strictly inside (t0, t1), ascending: the
