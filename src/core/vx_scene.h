@@ -246,6 +246,10 @@ int vx_scene_to_stream(const vx_scene *s, vx_stream *st, vx_err *e);
 
 /* ---- names and helpers ---- */
 const char *vx_light_type_name(vx_light_type t);   /* "point", ... */
+const char *vx_falloff_name(vx_falloff f);         /* "inverse-square" */
+const char *vx_illum_name(vx_illum m);             /* "irradiance" */
+const char *vx_interp_name(vx_interp m);           /* "nearest-iso" */
+const char *vx_phase_name(vx_phase p);             /* "isotropic" */
 const char *vx_colormap_name(vx_colormap m);       /* "gray", ... */
 vx_colormap vx_colormap_parse(const char *s);
 /* vx_effect_name: the name of one VX_FX_ bit ("shadows"), or NULL. */

@@ -1,0 +1,1269 @@
+/* scene_parse.c: reading the scene text (formats/scene.md): the words of
+ * the format, numbers in the C locale, the tokenizer, one handler per
+ * directive, vx_scene_parse and vx_scene_apply. */
+#include "vx_scene.h"
+#include "scene_text.h"
+
+#include <errno.h>
+#include <locale.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAXTOK 1024        /* words per line */
+#define NUM_MAX 400        /* characters per number */
+
+/* ---- names ---- */
+
+static const char *const light_names[VX_LIGHT_LAST] = {
+	NULL, "point", "directional", "headlight", "environment", "sky"
+};
+static const char *const falloff_names[VX_FALLOFF_LAST] = {
+	NULL, "none", "inverse-square"
+};
+static const char *const cmap_names[VX_COLORMAP_LAST] = {
+	NULL, "gray", "hot", "coolwarm", "viridis"
+};
+static const char *const illum_names[VX_ILLUM_LAST] = {
+	NULL, "local", "irradiance", "sh"
+};
+static const char *const interp_names[VX_INTERP_LAST] = {
+	NULL, "nearest", "trilinear", "tricubic", "nearest-iso"
+};
+static const char *const phase_names[VX_PHASE_LAST] = {
+	NULL, "isotropic", "henyey-greenstein"
+};
+/* in bit order: VX_FX_SHADOWS is bit 0 */
+static const char *const effect_names[] = {
+	"shadows", "specular", "transparency", "texture", "interreflection",
+	"volumetric-shadows", "scattering", NULL
+};
+
+/* lookup: index of s in names[1..last-1], or 0. */
+static int
+lookup(const char *const *names, int last, const char *s)
+{
+	int i;
+
+	for (i = 1; i < last; i++)
+		if (strcmp(names[i], s) == 0)
+			return i;
+	return 0;
+}
+
+const char *
+vx_light_type_name(vx_light_type t)
+{
+	return t > 0 && t < VX_LIGHT_LAST ? light_names[t] : "unknown";
+}
+
+const char *
+vx_falloff_name(vx_falloff f)
+{
+	return f > 0 && f < VX_FALLOFF_LAST ? falloff_names[f] : "unknown";
+}
+
+const char *
+vx_illum_name(vx_illum m)
+{
+	return m > 0 && m < VX_ILLUM_LAST ? illum_names[m] : "unknown";
+}
+
+const char *
+vx_interp_name(vx_interp m)
+{
+	return m > 0 && m < VX_INTERP_LAST ? interp_names[m] : "unknown";
+}
+
+const char *
+vx_phase_name(vx_phase p)
+{
+	return p > 0 && p < VX_PHASE_LAST ? phase_names[p] : "unknown";
+}
+
+const char *
+vx_colormap_name(vx_colormap m)
+{
+	return m > 0 && m < VX_COLORMAP_LAST ? cmap_names[m] : "unknown";
+}
+
+vx_colormap
+vx_colormap_parse(const char *s)
+{
+	return (vx_colormap)lookup(cmap_names, VX_COLORMAP_LAST, s);
+}
+
+const char *
+vx_effect_name(unsigned bit)
+{
+	int i;
+
+	for (i = 0; effect_names[i] != NULL; i++)
+		if (bit == 1u << i)
+			return effect_names[i];
+	return NULL;
+}
+
+/* ---- numbers in the C locale, whatever the process locale ---- */
+
+/* vx_scn_number: a finite double written as [+-]digits[.digits][e[+-]digits]
+ * (no hex, inf or nan); 0 on success. */
+int
+vx_scn_number(const char *t, double *out)
+{
+	const char *q = t, *dp;
+	char b[NUM_MAX + 16], *end;
+	size_t len = strlen(t), dl, i, k;
+	int digits = 0;
+	double v;
+
+	if (len == 0 || len > NUM_MAX)
+		return -1;
+	if (*q == '+' || *q == '-')
+		q++;
+	for (; *q >= '0' && *q <= '9'; q++)
+		digits++;
+	if (*q == '.')
+		for (q++; *q >= '0' && *q <= '9'; q++)
+			digits++;
+	if (digits == 0)
+		return -1;
+	if (*q == 'e' || *q == 'E') {
+		q++;
+		if (*q == '+' || *q == '-')
+			q++;
+		if (!(*q >= '0' && *q <= '9'))
+			return -1;
+		while (*q >= '0' && *q <= '9')
+			q++;
+	}
+	if (*q != '\0')
+		return -1;
+	dp = localeconv()->decimal_point;
+	dl = strlen(dp);
+	if (dl == 0 || dl > 8) {
+		dp = ".";
+		dl = 1;
+	}
+	for (i = 0, k = 0; t[i] != '\0'; i++) {
+		if (t[i] == '.') {
+			memcpy(b + k, dp, dl);
+			k += dl;
+		} else {
+			b[k++] = t[i];
+		}
+	}
+	b[k] = '\0';
+	errno = 0;
+	v = strtod(b, &end);
+	if (end != b + k || !isfinite(v))
+		return -1;
+	*out = v;
+	return 0;
+}
+
+/* vx_scn_int: decimal integer in [lo, hi]. */
+int
+vx_scn_int(const char *t, long lo, long hi, long *out)
+{
+	const char *q = t;
+	char *end;
+	long v;
+
+	if (*q == '+' || *q == '-')
+		q++;
+	if (!(*q >= '0' && *q <= '9'))
+		return -1;
+	errno = 0;
+	v = strtol(t, &end, 10);
+	if (*end != '\0' || errno == ERANGE || v < lo || v > hi)
+		return -1;
+	*out = v;
+	return 0;
+}
+
+/* ---- the parser ---- */
+
+typedef struct pctx {
+	vx_scene *s;
+	int code;             /* VX_EDATA for files, VX_EUSAGE for overrides */
+	long line;            /* 1-based line number */
+	int numbered;         /* 1: messages name the line (files) */
+	int ndirective;       /* directives seen so far */
+	int ntok;
+	char *tok[MAXTOK];
+	int quoted[MAXTOK];
+	char *buf;            /* token storage, 2 * VX_SCENE_LINE_MAX + 2 */
+	vx_err *e;
+} pctx;
+
+static int
+perr(pctx *P, const char *fmt, ...)
+	__attribute__((format(printf, 2, 3)));
+
+static int
+perr(pctx *P, const char *fmt, ...)
+{
+	char m[VX_ERR_MSG];
+	va_list ap;
+
+	va_start(ap, fmt);
+	vsnprintf(m, sizeof m, fmt, ap);
+	va_end(ap);
+	if (P->numbered)
+		return vx_err_set(P->e, P->code, "line %ld: %s", P->line, m);
+	return vx_err_set(P->e, P->code, "%s", m);
+}
+
+static int
+is_space(int c)
+{
+	return c == ' ' || c == '\t';
+}
+
+/* tokenize: split a line into words; "..." quotes (with \" and \\), '#'
+ * outside quotes starts a comment. */
+static int
+tokenize(pctx *P, const char *p, size_t n)
+{
+	char *out = P->buf;
+	size_t i = 0;
+
+	P->ntok = 0;
+	while (i < n) {
+		unsigned char ch = (unsigned char)p[i];
+
+		if (is_space(ch)) {
+			i++;
+			continue;
+		}
+		if (ch == '#')
+			break;
+		if (P->ntok == MAXTOK)
+			return perr(P, "more than %d words", MAXTOK);
+		P->tok[P->ntok] = out;
+		P->quoted[P->ntok] = ch == '"';
+		if (ch == '"') {
+			for (i++;;) {
+				if (i >= n)
+					return perr(P, "unterminated quoted string");
+				ch = (unsigned char)p[i++];
+				if (ch == '"')
+					break;
+				if (ch == '\\') {
+					if (i >= n)
+						return perr(P, "unterminated quoted "
+						    "string");
+					ch = (unsigned char)p[i++];
+					if (ch != '"' && ch != '\\')
+						return perr(P, "unknown escape "
+						    "'\\%c' in a quoted string",
+						    ch >= 0x20 && ch < 0x7f ? ch : '?');
+				}
+				if (ch < 0x20 || ch == 0x7f)
+					return perr(P, "control character 0x%02x",
+					    ch);
+				*out++ = (char)ch;
+			}
+			if (i < n && !is_space(p[i]) && p[i] != '#')
+				return perr(P, "a quoted string must be followed "
+				    "by a space");
+		} else {
+			while (i < n && !is_space(p[i]) && p[i] != '#') {
+				ch = (unsigned char)p[i];
+				if (ch < 0x20 || ch == 0x7f)
+					return perr(P, "control character 0x%02x",
+					    ch);
+				if (ch == '"')
+					return perr(P, "a quote inside a word");
+				*out++ = p[i++];
+			}
+		}
+		*out++ = '\0';
+		P->ntok++;
+	}
+	return 0;
+}
+
+/* Key-value pairs after a directive's leading words. */
+enum { K_NUM1 = 1, K_NUM2, K_NUM3, K_INT, K_WORD, K_STR, K_ONOFF, K_WINDOW };
+
+typedef struct keydef {
+	const char *name;
+	int kind;
+} keydef;
+
+typedef struct kval {
+	int seen;
+	double v[3];
+	long i;             /* K_INT value; K_ONOFF 1/0; K_WINDOW 1 numbers */
+	const char *w;      /* K_WORD, K_STR */
+	int quoted;
+} kval;
+
+static int
+parse_keys(pctx *P, const char *dir, int start, const keydef *defs,
+    kval *kv)
+{
+	int i = start, k, nk;
+
+	for (nk = 0; defs[nk].name != NULL; nk++)
+		memset(&kv[nk], 0, sizeof kv[nk]);
+	while (i < P->ntok) {
+		const char *key = P->tok[i];
+		int want = 0, j;
+
+		for (k = 0; k < nk; k++)
+			if (strcmp(defs[k].name, key) == 0)
+				break;
+		if (k == nk || P->quoted[i]) {
+			char known[256];
+			size_t m = 0;
+
+			known[0] = '\0';
+			for (j = 0; j < nk && m < sizeof known; j++)
+				m += (size_t)snprintf(known + m, sizeof known - m,
+				    "%s%s", j ? ", " : "", defs[j].name);
+			return perr(P, "%s: unknown key '%.40s' (keys: %s)", dir,
+			    key, known);
+		}
+		if (kv[k].seen)
+			return perr(P, "%s: key '%s' given twice", dir, key);
+		kv[k].seen = 1;
+		i++;
+		switch (defs[k].kind) {
+		case K_NUM1: want = 1; break;
+		case K_NUM2: want = 2; break;
+		case K_NUM3: want = 3; break;
+		default: want = 0; break;
+		}
+		for (j = 0; j < want; j++, i++)
+			if (i >= P->ntok || P->quoted[i] ||
+			    vx_scn_number(P->tok[i], &kv[k].v[j]) != 0)
+				return perr(P, "%s: %s: expected %d number%s, got "
+				    "'%.40s'", dir, key, want, want > 1 ? "s" : "",
+				    i < P->ntok ? P->tok[i] : "");
+		switch (defs[k].kind) {
+		case K_INT:
+			if (i >= P->ntok || P->quoted[i] ||
+			    vx_scn_int(P->tok[i], -1000000000L, 1000000000L,
+			    &kv[k].i) != 0)
+				return perr(P, "%s: %s: expected an integer, got "
+				    "'%.40s'", dir, key,
+				    i < P->ntok ? P->tok[i] : "");
+			i++;
+			break;
+		case K_WORD:
+		case K_STR:
+			if (i >= P->ntok || (defs[k].kind == K_WORD &&
+			    P->quoted[i]))
+				return perr(P, "%s: %s: expected a %s", dir, key,
+				    defs[k].kind == K_WORD ? "word" : "name");
+			kv[k].w = P->tok[i];
+			kv[k].quoted = P->quoted[i];
+			i++;
+			break;
+		case K_ONOFF:
+			if (i < P->ntok && !P->quoted[i] &&
+			    strcmp(P->tok[i], "on") == 0)
+				kv[k].i = 1;
+			else if (i < P->ntok && !P->quoted[i] &&
+			    strcmp(P->tok[i], "off") == 0)
+				kv[k].i = 0;
+			else
+				return perr(P, "%s: %s: expected on or off, got "
+				    "'%.40s'", dir, key,
+				    i < P->ntok ? P->tok[i] : "");
+			i++;
+			break;
+		case K_WINDOW:
+			if (i < P->ntok && !P->quoted[i] &&
+			    strcmp(P->tok[i], "auto") == 0) {
+				kv[k].i = 0;
+				i++;
+				break;
+			}
+			for (j = 0; j < 2; j++, i++)
+				if (i >= P->ntok || P->quoted[i] ||
+				    vx_scn_number(P->tok[i], &kv[k].v[j]) != 0)
+					return perr(P, "%s: %s: expected auto or 2 "
+					    "numbers, got '%.40s'", dir, key,
+					    i < P->ntok ? P->tok[i] : "");
+			kv[k].i = 1;
+			break;
+		default:
+			break;
+		}
+	}
+	return 0;
+}
+
+/* Range checks; each returns 0 or the error. */
+static int
+need_color(pctx *P, const char *dir, const char *key, const double v[3],
+    double hi)
+{
+	int k;
+
+	for (k = 0; k < 3; k++)
+		if (!(v[k] >= 0 && v[k] <= hi))
+			return perr(P, "%s: %s: component %g outside [0, %g]", dir,
+			    key, v[k], hi);
+	return 0;
+}
+
+static int
+need_range(pctx *P, const char *dir, const char *key, double v, double lo,
+    double hi, int open_lo, int open_hi)
+{
+	if (v < lo || v > hi || (open_lo && v == lo) || (open_hi && v == hi))
+		return perr(P, "%s: %s: %g outside %s%g, %g%s", dir, key, v,
+		    open_lo ? "(" : "[", lo, hi, open_hi ? ")" : "]");
+	return 0;
+}
+
+static int
+need_nonzero(pctx *P, const char *dir, const char *key, const double v[3])
+{
+	if (v[0] == 0 && v[1] == 0 && v[2] == 0)
+		return perr(P, "%s: %s: must not be the zero vector", dir, key);
+	return 0;
+}
+
+static int
+need_word(pctx *P, const char *dir, const char *key, const char *w,
+    const char *const *names, int last, int *out)
+{
+	char list[256];
+	size_t m = 0;
+	int i;
+
+	if ((*out = lookup(names, last, w)) != 0)
+		return 0;
+	list[0] = '\0';
+	for (i = 1; i < last && m < sizeof list; i++)
+		m += (size_t)snprintf(list + m, sizeof list - m, "%s%s",
+		    i > 1 ? ", " : "", names[i]);
+	return perr(P, "%s: %s: unknown value '%.40s' (one of: %s)", dir, key, w,
+	    list);
+}
+
+/* copy_name: NUL-terminated copy into a fixed field, whole field written. */
+static int
+copy_name(pctx *P, const char *dir, char *dst, size_t cap, const char *src)
+{
+	size_t n = strlen(src);
+
+	if (n >= cap)
+		return perr(P, "%s: name longer than %zu bytes", dir, cap - 1);
+	memset(dst, 0, cap);
+	memcpy(dst, src, n);
+	return 0;
+}
+
+/* ---- directives ---- */
+
+static int
+do_version(pctx *P)
+{
+	long v;
+
+	if (P->ndirective != 0)
+		return perr(P, "voxlux-scene: only as the first directive");
+	if (P->ntok != 2 || P->quoted[1] ||
+	    vx_scn_int(P->tok[1], 1, 1000000, &v) != 0)
+		return perr(P, "voxlux-scene: expected a version number");
+	if (v > VX_SCENE_VERSION)
+		return perr(P, "voxlux-scene: version %ld is newer than this "
+		    "reader (%d)", v, VX_SCENE_VERSION);
+	return 0;
+}
+
+static int
+do_camera(pctx *P)
+{
+	enum { C_PROJ, C_VIEW, C_AZ, C_EL, C_DIST, C_FOV, C_EYE, C_LOOK, C_UP,
+	    C_WIDTH, C_N };
+	static const keydef defs[] = {
+		{ "projection", K_WORD }, { "view", K_WORD },
+		{ "azimuth", K_NUM1 }, { "elevation", K_NUM1 },
+		{ "distance", K_NUM1 }, { "fov", K_NUM1 }, { "eye", K_NUM3 },
+		{ "look", K_NUM3 }, { "up", K_NUM3 }, { "width", K_NUM1 },
+		{ NULL, 0 }
+	};
+	static const int auto_only[] = { C_PROJ, C_VIEW, C_AZ, C_EL, C_DIST };
+	static const int explicit_only[] = { C_EYE, C_LOOK, C_WIDTH };
+	vx_camera c = P->s->camera;
+	kval kv[C_N];
+	int start = 1, rc, k;
+	const char *kind;
+
+	if (P->ntok < 2)
+		return perr(P, "camera: expected auto, perspective, orthographic "
+		    "or keys");
+	if (!P->quoted[1] && strcmp(P->tok[1], "auto") == 0) {
+		c.is_auto = 1;
+		start = 2;
+	} else if (!P->quoted[1] &&
+	    vx_projection_parse(P->tok[1]) != VX_PROJECTION_UNKNOWN) {
+		c.is_auto = 0;
+		c.projection = vx_projection_parse(P->tok[1]);
+		start = 2;
+	}
+	if ((rc = parse_keys(P, "camera", start, defs, kv)) != 0)
+		return rc;
+	kind = c.is_auto ? "camera auto" : vx_projection_name(c.projection);
+	for (k = 0; k < 5; k++)
+		if (kv[auto_only[k]].seen && !c.is_auto)
+			return perr(P, "camera: key '%s' applies to auto cameras "
+			    "only", defs[auto_only[k]].name);
+	for (k = 0; k < 3; k++)
+		if (kv[explicit_only[k]].seen && c.is_auto)
+			return perr(P, "camera: key '%s' does not apply to auto "
+			    "cameras", defs[explicit_only[k]].name);
+	if (kv[C_PROJ].seen) {
+		int p;
+
+		if ((rc = need_word(P, kind, "projection", kv[C_PROJ].w,
+		    (const char *const[]){ NULL, "perspective", "orthographic" },
+		    VX_PROJECTION_LAST, &p)) != 0)
+			return rc;
+		c.projection = (vx_projection)p;
+	}
+	if (kv[C_VIEW].seen) {
+		vx_view v = vx_view_parse(kv[C_VIEW].w);
+
+		if (v == VX_VIEW_UNKNOWN || v == VX_VIEW_ANGLES)
+			return perr(P, "%s: view: unknown view '%.40s' (front, "
+			    "back, left, right, top, bottom; or azimuth and "
+			    "elevation)", kind, kv[C_VIEW].w);
+		if (kv[C_AZ].seen || kv[C_EL].seen)
+			return perr(P, "%s: give a view or azimuth and "
+			    "elevation, not both", kind);
+		c.view = v;
+	}
+	if (kv[C_AZ].seen || kv[C_EL].seen) {
+		if (c.view != VX_VIEW_ANGLES) {
+			c.azimuth = 0;
+			c.elevation = 0;
+		}
+		c.view = VX_VIEW_ANGLES;
+		if (kv[C_AZ].seen)
+			c.azimuth = kv[C_AZ].v[0];
+		if (kv[C_EL].seen) {
+			if ((rc = need_range(P, kind, "elevation", kv[C_EL].v[0],
+			    -90, 90, 0, 0)) != 0)
+				return rc;
+			c.elevation = kv[C_EL].v[0];
+		}
+	}
+	if (kv[C_DIST].seen) {
+		if ((rc = need_range(P, kind, "distance", kv[C_DIST].v[0], 0,
+		    1e6, 1, 0)) != 0)
+			return rc;
+		c.distance = kv[C_DIST].v[0];
+	}
+	if (kv[C_FOV].seen) {
+		if (c.projection != VX_PERSPECTIVE)
+			return perr(P, "%s: fov applies to perspective cameras "
+			    "only", kind);
+		if ((rc = need_range(P, kind, "fov", kv[C_FOV].v[0], 0, 180, 1,
+		    1)) != 0)
+			return rc;
+		c.fov = kv[C_FOV].v[0];
+	}
+	if (kv[C_WIDTH].seen) {
+		if (c.projection != VX_ORTHOGRAPHIC)
+			return perr(P, "%s: width applies to orthographic cameras "
+			    "only (the image size is the image directive)", kind);
+		if ((rc = need_range(P, kind, "width", kv[C_WIDTH].v[0], 0,
+		    HUGE_VAL, 1, 0)) != 0)
+			return rc;
+		c.view_width = kv[C_WIDTH].v[0];
+	}
+	if (kv[C_EYE].seen)
+		memcpy(c.eye, kv[C_EYE].v, sizeof c.eye);
+	if (kv[C_LOOK].seen)
+		memcpy(c.look, kv[C_LOOK].v, sizeof c.look);
+	if (kv[C_UP].seen) {
+		if ((rc = need_nonzero(P, kind, "up", kv[C_UP].v)) != 0)
+			return rc;
+		memcpy(c.up, kv[C_UP].v, sizeof c.up);
+	}
+	/* An up given to an auto camera overrides its view's default up; an
+	 * explicit camera's up is not carried into auto framing. */
+	if (c.is_auto) {
+		if (kv[C_UP].seen)
+			c.has_up = 1;
+	} else {
+		c.has_up = 0;
+		if (c.eye[0] == c.look[0] && c.eye[1] == c.look[1] &&
+		    c.eye[2] == c.look[2])
+			return perr(P, "%s: eye and look coincide (give both)",
+			    kind);
+		if (c.projection == VX_ORTHOGRAPHIC && !(c.view_width > 0))
+			return perr(P, "orthographic: width missing");
+		if (c.up[0] == 0 && c.up[1] == 0 && c.up[2] == 0)
+			return perr(P, "%s: up missing", kind);
+	}
+	P->s->camera = c;
+	return 0;
+}
+
+static int
+do_image(pctx *P)
+{
+	enum { I_W, I_H, I_N };
+	static const keydef defs[] = {
+		{ "width", K_INT }, { "height", K_INT }, { NULL, 0 }
+	};
+	kval kv[I_N];
+	int rc, k;
+
+	if (P->ntok < 2)
+		return perr(P, "image: expected width and/or height");
+	if ((rc = parse_keys(P, "image", 1, defs, kv)) != 0)
+		return rc;
+	for (k = 0; k < I_N; k++)
+		if (kv[k].seen && (kv[k].i < 1 || kv[k].i > VX_CAMERA_MAX_PIXELS))
+			return perr(P, "image: %s: %ld outside 1..%d",
+			    defs[k].name, kv[k].i, VX_CAMERA_MAX_PIXELS);
+	if (kv[I_W].seen)
+		P->s->camera.w = (int)kv[I_W].i;
+	if (kv[I_H].seen)
+		P->s->camera.h = (int)kv[I_H].i;
+	return 0;
+}
+
+static int
+do_background(pctx *P)
+{
+	static const keydef defs[] = { { "color", K_NUM3 }, { NULL, 0 } };
+	kval kv[1];
+	int rc;
+
+	if (P->ntok < 2)
+		return perr(P, "background: expected color R G B");
+	if ((rc = parse_keys(P, "background", 1, defs, kv)) != 0 ||
+	    (rc = need_color(P, "background", "color", kv[0].v, HUGE_VAL)) != 0)
+		return rc;
+	memcpy(P->s->background, kv[0].v, sizeof P->s->background);
+	return 0;
+}
+
+static int
+do_ambient(pctx *P)
+{
+	static const keydef defs[] = {
+		{ "color", K_NUM3 }, { "intensity", K_NUM1 }, { NULL, 0 }
+	};
+	kval kv[2];
+	int rc;
+
+	if (P->ntok < 2)
+		return perr(P, "ambient: expected color and/or intensity");
+	if ((rc = parse_keys(P, "ambient", 1, defs, kv)) != 0)
+		return rc;
+	if (kv[0].seen && (rc = need_color(P, "ambient", "color", kv[0].v,
+	    HUGE_VAL)) != 0)
+		return rc;
+	if (kv[1].seen && (rc = need_range(P, "ambient", "intensity",
+	    kv[1].v[0], 0, HUGE_VAL, 0, 0)) != 0)
+		return rc;
+	if (kv[0].seen)
+		memcpy(P->s->ambient, kv[0].v, sizeof P->s->ambient);
+	if (kv[1].seen)
+		P->s->ambient_intensity = kv[1].v[0];
+	return 0;
+}
+
+static int
+do_effects(pctx *P)
+{
+	unsigned set = P->s->effects;
+	int i, signless = 0;
+
+	if (P->ntok < 2)
+		return perr(P, "effects: expected effect names or none");
+	if (P->ntok == 2 && !P->quoted[1] && strcmp(P->tok[1], "none") == 0) {
+		P->s->effects = 0;
+		return 0;
+	}
+	for (i = 1; i < P->ntok; i++)
+		if (P->tok[i][0] != '+' && P->tok[i][0] != '-')
+			signless = 1;
+	if (signless)
+		set = 0;
+	for (i = 1; i < P->ntok; i++) {
+		const char *w = P->tok[i];
+		int remove = w[0] == '-', k;
+
+		if (w[0] == '+' || w[0] == '-')
+			w++;
+		for (k = 0; effect_names[k] != NULL; k++)
+			if (strcmp(effect_names[k], w) == 0)
+				break;
+		if (effect_names[k] == NULL || P->quoted[i])
+			return perr(P, "effects: unknown effect '%.40s' (shadows, "
+			    "specular, transparency, texture, interreflection, "
+			    "volumetric-shadows, scattering; or none)", P->tok[i]);
+		if (remove)
+			set &= ~(1u << k);
+		else
+			set |= 1u << k;
+	}
+	P->s->effects = set;
+	return 0;
+}
+
+static int
+do_volume(pctx *P)
+{
+	static const keydef defs[] = { { "name", K_STR }, { NULL, 0 } };
+	kval kv[1];
+	int rc;
+
+	if (P->ntok < 2)
+		return perr(P, "volume: expected name NAME");
+	if ((rc = parse_keys(P, "volume", 1, defs, kv)) != 0)
+		return rc;
+	return copy_name(P, "volume", P->s->volume, sizeof P->s->volume,
+	    kv[0].w);
+}
+
+static int
+do_light(pctx *P)
+{
+	enum { L_POS, L_DIR, L_COLOR, L_INT, L_FALL, L_SHAD, L_FILE, L_ROT,
+	    L_N };
+	static const keydef defs[] = {
+		{ "position", K_NUM3 }, { "direction", K_NUM3 },
+		{ "color", K_NUM3 }, { "intensity", K_NUM1 },
+		{ "falloff", K_WORD }, { "shadows", K_ONOFF },
+		{ "file", K_STR }, { "rotation", K_NUM3 }, { NULL, 0 }
+	};
+	/* keys each type accepts (bit per key), and the one it requires */
+	static const unsigned allow[VX_LIGHT_LAST] = {
+		0,
+		1u << L_POS | 1u << L_COLOR | 1u << L_INT | 1u << L_FALL |
+		    1u << L_SHAD,
+		1u << L_DIR | 1u << L_COLOR | 1u << L_INT | 1u << L_SHAD,
+		1u << L_COLOR | 1u << L_INT | 1u << L_FALL | 1u << L_SHAD,
+		1u << L_FILE | 1u << L_ROT | 1u << L_COLOR | 1u << L_INT |
+		    1u << L_SHAD,
+		1u << L_COLOR | 1u << L_INT | 1u << L_SHAD,
+	};
+	static const int require[VX_LIGHT_LAST] = { -1, L_POS, L_DIR, -1, L_FILE,
+	    -1 };
+	vx_scene *s = P->s;
+	kval kv[L_N];
+	vx_light l;
+	int type, rc, k;
+	char dir[40];
+
+	if (P->ntok < 2 || P->quoted[1])
+		return perr(P, "light: expected a type (point, directional, "
+		    "headlight, environment, sky) or none");
+	if (strcmp(P->tok[1], "none") == 0) {
+		if (P->ntok != 2)
+			return perr(P, "light none: takes no keys");
+		s->nlight = 0;
+		s->default_lights = 0;
+		return 0;
+	}
+	if ((rc = need_word(P, "light", "type", P->tok[1], light_names,
+	    VX_LIGHT_LAST, &type)) != 0)
+		return rc;
+	snprintf(dir, sizeof dir, "light %s", light_names[type]);
+	if ((rc = parse_keys(P, dir, 2, defs, kv)) != 0)
+		return rc;
+	for (k = 0; k < L_N; k++)
+		if (kv[k].seen && !(allow[type] & 1u << k))
+			return perr(P, "%s: key '%s' does not apply", dir,
+			    defs[k].name);
+	if (require[type] >= 0 && !kv[require[type]].seen)
+		return perr(P, "%s: key '%s' missing", dir,
+		    defs[require[type]].name);
+	vx_light_init(&l, (vx_light_type)type);
+	if (kv[L_POS].seen)
+		memcpy(l.position, kv[L_POS].v, sizeof l.position);
+	if (kv[L_DIR].seen) {
+		if ((rc = need_nonzero(P, dir, "direction", kv[L_DIR].v)) != 0)
+			return rc;
+		memcpy(l.direction, kv[L_DIR].v, sizeof l.direction);
+	}
+	if (kv[L_COLOR].seen) {
+		if ((rc = need_color(P, dir, "color", kv[L_COLOR].v,
+		    HUGE_VAL)) != 0)
+			return rc;
+		memcpy(l.color, kv[L_COLOR].v, sizeof l.color);
+	}
+	if (kv[L_INT].seen) {
+		if ((rc = need_range(P, dir, "intensity", kv[L_INT].v[0], 0,
+		    HUGE_VAL, 0, 0)) != 0)
+			return rc;
+		l.intensity = kv[L_INT].v[0];
+	}
+	if (kv[L_FALL].seen) {
+		int f;
+
+		if ((rc = need_word(P, dir, "falloff", kv[L_FALL].w,
+		    falloff_names, VX_FALLOFF_LAST, &f)) != 0)
+			return rc;
+		l.falloff = (vx_falloff)f;
+	}
+	if (kv[L_SHAD].seen)
+		l.shadows = (int)kv[L_SHAD].i;
+	if (kv[L_FILE].seen) {
+		if (kv[L_FILE].w[0] == '\0')
+			return perr(P, "%s: file: empty name", dir);
+		if ((rc = copy_name(P, dir, l.file, sizeof l.file,
+		    kv[L_FILE].w)) != 0)
+			return rc;
+	}
+	if (kv[L_ROT].seen)
+		memcpy(l.rotation, kv[L_ROT].v, sizeof l.rotation);
+	if (s->default_lights) {
+		s->nlight = 0;
+		s->default_lights = 0;
+	}
+	if (s->nlight == VX_SCENE_MAX_LIGHTS)
+		return perr(P, "light: more than %d lights", VX_SCENE_MAX_LIGHTS);
+	s->light[s->nlight++] = l;
+	return 0;
+}
+
+static int
+do_surface(pctx *P)
+{
+	enum { S_COLOR, S_OPAC, S_KD, S_KS, S_SHINE, S_TEX, S_CMAP, S_WIN,
+	    S_N };
+	static const keydef defs[] = {
+		{ "color", K_NUM3 }, { "opacity", K_NUM1 }, { "kd", K_NUM1 },
+		{ "ks", K_NUM1 }, { "shininess", K_NUM1 }, { "texture", K_STR },
+		{ "colormap", K_WORD }, { "window", K_WINDOW }, { NULL, 0 }
+	};
+	vx_scene *s = P->s;
+	vx_surface sf;
+	kval kv[S_N];
+	double iso;
+	int rc, k, found = -1;
+	char dir[64];
+
+	if (P->ntok == 2 && !P->quoted[1] && strcmp(P->tok[1], "none") == 0) {
+		s->nsurface = 0;
+		return 0;
+	}
+	if (P->ntok < 3 || P->quoted[1] || strcmp(P->tok[1], "iso") != 0)
+		return perr(P, "surface: expected iso VALUE (or none)");
+	if (P->quoted[2] || vx_scn_number(P->tok[2], &iso) != 0)
+		return perr(P, "surface: iso: expected a number, got '%.40s'",
+		    P->tok[2]);
+	snprintf(dir, sizeof dir, "surface iso %.20s", P->tok[2]);
+	if ((rc = parse_keys(P, dir, 3, defs, kv)) != 0)
+		return rc;
+	for (k = 0; k < s->nsurface; k++)
+		if (s->surface[k].iso == iso)
+			found = k;
+	if (found >= 0)
+		sf = s->surface[found];
+	else
+		vx_surface_init(&sf, iso);
+	if (kv[S_COLOR].seen) {
+		if ((rc = need_color(P, dir, "color", kv[S_COLOR].v, 1)) != 0)
+			return rc;
+		memcpy(sf.m.color, kv[S_COLOR].v, sizeof sf.m.color);
+	}
+	if (kv[S_OPAC].seen) {
+		if ((rc = need_range(P, dir, "opacity", kv[S_OPAC].v[0], 0, 1,
+		    0, 0)) != 0)
+			return rc;
+		sf.m.opacity = kv[S_OPAC].v[0];
+	}
+	if (kv[S_KD].seen) {
+		if ((rc = need_range(P, dir, "kd", kv[S_KD].v[0], 0, HUGE_VAL,
+		    0, 0)) != 0)
+			return rc;
+		sf.m.kd = kv[S_KD].v[0];
+	}
+	if (kv[S_KS].seen) {
+		if ((rc = need_range(P, dir, "ks", kv[S_KS].v[0], 0, HUGE_VAL,
+		    0, 0)) != 0)
+			return rc;
+		sf.m.ks = kv[S_KS].v[0];
+	}
+	if (kv[S_SHINE].seen) {
+		if ((rc = need_range(P, dir, "shininess", kv[S_SHINE].v[0], 0,
+		    1e6, 0, 0)) != 0)
+			return rc;
+		sf.m.shininess = kv[S_SHINE].v[0];
+	}
+	if (kv[S_TEX].seen) {
+		const char *t = kv[S_TEX].w;
+
+		if (!kv[S_TEX].quoted && strcmp(t, "none") == 0)
+			t = "";
+		else if (t[0] == '\0')
+			return perr(P, "%s: texture: empty name (none removes "
+			    "it)", dir);
+		if ((rc = copy_name(P, dir, sf.m.texture, sizeof sf.m.texture,
+		    t)) != 0)
+			return rc;
+	}
+	if (kv[S_CMAP].seen) {
+		int m;
+
+		if ((rc = need_word(P, dir, "colormap", kv[S_CMAP].w, cmap_names,
+		    VX_COLORMAP_LAST, &m)) != 0)
+			return rc;
+		sf.m.colormap = (vx_colormap)m;
+	}
+	if (kv[S_WIN].seen) {
+		sf.m.has_window = (int)kv[S_WIN].i;
+		sf.m.window[0] = sf.m.window[1] = 0;
+		if (sf.m.has_window) {
+			if (!(kv[S_WIN].v[0] < kv[S_WIN].v[1]))
+				return perr(P, "%s: window: low %g not below high "
+				    "%g", dir, kv[S_WIN].v[0], kv[S_WIN].v[1]);
+			sf.m.window[0] = kv[S_WIN].v[0];
+			sf.m.window[1] = kv[S_WIN].v[1];
+		}
+	}
+	if (found >= 0) {
+		s->surface[found] = sf;
+		return 0;
+	}
+	if (s->nsurface == VX_SCENE_MAX_SURFACES)
+		return perr(P, "surface: more than %d surfaces",
+		    VX_SCENE_MAX_SURFACES);
+	s->surface[s->nsurface++] = sf;
+	return 0;
+}
+
+static int
+do_interreflection(pctx *P)
+{
+	static const keydef defs[] = {
+		{ "bounces", K_INT }, { "samples", K_INT }, { NULL, 0 }
+	};
+	kval kv[2];
+	int rc;
+
+	if ((rc = parse_keys(P, "interreflection", 1, defs, kv)) != 0)
+		return rc;
+	if (kv[0].seen && (kv[0].i < 0 || kv[0].i > 1000))
+		return perr(P, "interreflection: bounces: %ld outside 0..1000",
+		    kv[0].i);
+	if (kv[1].seen && (kv[1].i < 1 || kv[1].i > 1000000))
+		return perr(P, "interreflection: samples: %ld outside "
+		    "1..1000000", kv[1].i);
+	if (kv[0].seen)
+		P->s->bounces = (int)kv[0].i;
+	if (kv[1].seen)
+		P->s->samples = (int)kv[1].i;
+	P->s->has_interreflection = 1;
+	return 0;
+}
+
+static int
+do_illumination(pctx *P)
+{
+	static const keydef defs[] = {
+		{ "order", K_INT }, { "interpolation", K_WORD }, { NULL, 0 }
+	};
+	kval kv[2];
+	int rc, mode, in;
+
+	if (P->ntok < 2 || P->quoted[1])
+		return perr(P, "illumination: expected local, irradiance or sh");
+	if ((rc = need_word(P, "illumination", "mode", P->tok[1], illum_names,
+	    VX_ILLUM_LAST, &mode)) != 0)
+		return rc;
+	if ((rc = parse_keys(P, "illumination", 2, defs, kv)) != 0)
+		return rc;
+	if (kv[0].seen) {
+		if (mode != VX_ILLUM_SH)
+			return perr(P, "illumination: order applies to sh only");
+		if (kv[0].i < 1 || kv[0].i > 16)
+			return perr(P, "illumination: order: %ld outside 1..16",
+			    kv[0].i);
+		P->s->sh_order = (int)kv[0].i;
+	}
+	if (kv[1].seen) {
+		if (mode == VX_ILLUM_LOCAL)
+			return perr(P, "illumination: interpolation does not "
+			    "apply to local");
+		if ((rc = need_word(P, "illumination", "interpolation", kv[1].w,
+		    interp_names, VX_INTERP_LAST, &in)) != 0)
+			return rc;
+		P->s->interp = (vx_interp)in;
+	}
+	P->s->illumination = (vx_illum)mode;
+	P->s->has_illumination = 1;
+	return 0;
+}
+
+static int
+do_transfer(pctx *P)
+{
+	int color, per, npt, i, j, rc;
+	double pts[VX_SCENE_MAX_TF][4];
+
+	if (P->ntok == 2 && !P->quoted[1] && strcmp(P->tok[1], "none") == 0) {
+		P->s->ntf_opacity = P->s->ntf_color = 0;
+		return 0;
+	}
+	if (P->ntok < 2 || P->quoted[1] || (strcmp(P->tok[1], "opacity") != 0 &&
+	    strcmp(P->tok[1], "color") != 0))
+		return perr(P, "transfer: expected opacity, color or none");
+	color = strcmp(P->tok[1], "color") == 0;
+	per = color ? 4 : 2;
+	if ((P->ntok - 2) % per != 0 || P->ntok == 2)
+		return perr(P, "transfer %s: expected groups of %d numbers (%s)",
+		    P->tok[1], per, color ? "value r g b" : "value opacity");
+	npt = (P->ntok - 2) / per;
+	if (npt > VX_SCENE_MAX_TF)
+		return perr(P, "transfer %s: more than %d points", P->tok[1],
+		    VX_SCENE_MAX_TF);
+	for (i = 0; i < npt; i++) {
+		for (j = 0; j < per; j++) {
+			int t = 2 + i * per + j;
+
+			if (P->quoted[t] || vx_scn_number(P->tok[t], &pts[i][j]) != 0)
+				return perr(P, "transfer %s: expected a number, got "
+				    "'%.40s'", P->tok[1], P->tok[t]);
+			if (j > 0 && (rc = need_range(P, "transfer",
+			    color ? "color" : "opacity", pts[i][j], 0, 1, 0,
+			    0)) != 0)
+				return rc;
+		}
+		if (i > 0 && pts[i][0] < pts[i - 1][0])
+			return perr(P, "transfer %s: values must not decrease "
+			    "(%g after %g)", P->tok[1], pts[i][0], pts[i - 1][0]);
+	}
+	if (color) {
+		memcpy(P->s->tf_color, pts, (size_t)npt * sizeof pts[0]);
+		P->s->ntf_color = npt;
+	} else {
+		for (i = 0; i < npt; i++) {
+			P->s->tf_opacity[i][0] = pts[i][0];
+			P->s->tf_opacity[i][1] = pts[i][1];
+		}
+		P->s->ntf_opacity = npt;
+	}
+	return 0;
+}
+
+static int
+do_medium(pctx *P)
+{
+	static const keydef defs[] = {
+		{ "phase", K_WORD }, { "g", K_NUM1 }, { "albedo", K_NUM3 },
+		{ NULL, 0 }
+	};
+	kval kv[3];
+	vx_phase ph = P->s->phase;
+	int rc, p;
+
+	if (P->ntok < 2)
+		return perr(P, "medium: expected phase, g or albedo");
+	if ((rc = parse_keys(P, "medium", 1, defs, kv)) != 0)
+		return rc;
+	if (kv[0].seen) {
+		if ((rc = need_word(P, "medium", "phase", kv[0].w, phase_names,
+		    VX_PHASE_LAST, &p)) != 0)
+			return rc;
+		ph = (vx_phase)p;
+	}
+	if (kv[1].seen) {
+		if (ph != VX_PHASE_HENYEY_GREENSTEIN)
+			return perr(P, "medium: g applies to the "
+			    "henyey-greenstein phase only");
+		if ((rc = need_range(P, "medium", "g", kv[1].v[0], -1, 1, 1,
+		    1)) != 0)
+			return rc;
+		P->s->phase_g = kv[1].v[0];
+	}
+	if (kv[2].seen) {
+		if ((rc = need_color(P, "medium", "albedo", kv[2].v, 1)) != 0)
+			return rc;
+		memcpy(P->s->albedo, kv[2].v, sizeof P->s->albedo);
+	}
+	P->s->phase = ph;
+	if (ph != VX_PHASE_HENYEY_GREENSTEIN)
+		P->s->phase_g = 0;
+	P->s->has_medium = 1;
+	return 0;
+}
+
+static int
+do_extension(pctx *P)
+{
+	char line[VX_SCENE_EXT_LEN];
+	size_t k = 0;
+	int i, m;
+
+	/* kept when it fits and there is room; otherwise ignored */
+	if (P->s->next == VX_SCENE_MAX_EXT)
+		return 0;
+	for (i = 0; i < P->ntok; i++) {
+		if (i > 0) {
+			if (k + 1 >= sizeof line)
+				return 0;
+			line[k++] = ' ';
+		}
+		if ((m = vx_scn_quote(line + k, sizeof line - k, P->tok[i],
+		    P->quoted[i])) < 0)
+			return 0;
+		k += (size_t)m;
+	}
+	line[k] = '\0';
+	memset(P->s->ext[P->s->next], 0, VX_SCENE_EXT_LEN);
+	memcpy(P->s->ext[P->s->next], line, k);
+	P->s->next++;
+	return 0;
+}
+
+static const struct {
+	const char *name;
+	int (*fn)(pctx *);
+} directives[] = {
+	{ "voxlux-scene", do_version },
+	{ "camera", do_camera },
+	{ "image", do_image },
+	{ "background", do_background },
+	{ "ambient", do_ambient },
+	{ "effects", do_effects },
+	{ "volume", do_volume },
+	{ "light", do_light },
+	{ "surface", do_surface },
+	{ "interreflection", do_interreflection },
+	{ "illumination", do_illumination },
+	{ "transfer", do_transfer },
+	{ "medium", do_medium },
+	{ NULL, NULL }
+};
+
+static int
+dispatch(pctx *P)
+{
+	const char *kw = P->tok[0];
+	int i, rc;
+
+	if (P->quoted[0])
+		return perr(P, "a directive starts with a bare word, not a quoted "
+		    "string");
+	if (strncmp(kw, "x-", 2) == 0 && kw[2] != '\0')
+		rc = do_extension(P);
+	else {
+		for (i = 0; directives[i].name != NULL; i++)
+			if (strcmp(directives[i].name, kw) == 0)
+				break;
+		if (directives[i].name == NULL)
+			return perr(P, "unknown directive '%.40s'", kw);
+		rc = directives[i].fn(P);
+	}
+	P->ndirective++;
+	return rc;
+}
+
+/* parse_lines: apply text to P->s line by line. */
+static int
+parse_lines(pctx *P, const char *text, size_t n)
+{
+	size_t i = 0;
+	int rc;
+
+	while (i < n) {
+		size_t j = i, len;
+
+		while (j < n && text[j] != '\n') {
+			if (text[j] == '\0') {
+				P->line++;
+				return perr(P, "NUL byte");
+			}
+			j++;
+		}
+		len = j - i;
+		P->line++;
+		if (len > VX_SCENE_LINE_MAX)
+			return perr(P, "longer than %d bytes", VX_SCENE_LINE_MAX);
+		if (len > 0 && text[i + len - 1] == '\r')
+			len--;
+		if ((rc = tokenize(P, text + i, len)) != 0)
+			return rc;
+		if (P->ntok > 0 && (rc = dispatch(P)) != 0)
+			return rc;
+		i = j + 1;
+	}
+	return 0;
+}
+
+static int
+pctx_open(pctx *P, vx_scene *s, int code, vx_err *e)
+{
+	memset(P, 0, sizeof *P);
+	P->s = s;
+	P->code = code;
+	P->e = e;
+	P->buf = vx_malloc(2 * (size_t)VX_SCENE_LINE_MAX + 2, e);
+	return P->buf == NULL ? VX_ENOMEM : 0;
+}
+
+int
+vx_scene_parse(vx_scene *s, const char *text, size_t n, vx_err *e)
+{
+	vx_scene *t;
+	pctx P;
+	int rc;
+
+	if (n > VX_SCENE_TEXT_MAX) {
+		vx_scene_init(s);
+		return vx_err_set(e, VX_EDATA, "scene longer than %zu bytes",
+		    VX_SCENE_TEXT_MAX);
+	}
+	if ((t = vx_malloc(sizeof *t, e)) == NULL) {
+		vx_scene_init(s);
+		return VX_ENOMEM;
+	}
+	vx_scene_init(t);
+	if ((rc = pctx_open(&P, t, VX_EDATA, e)) == 0) {
+		P.numbered = 1;
+		rc = parse_lines(&P, text, n);
+	}
+	free(P.buf);
+	if (rc == 0)
+		*s = *t;
+	else
+		vx_scene_init(s);
+	free(t);
+	return rc;
+}
+
+/* ---- one line on top of a scene (command-line overrides) ---- */
+
+int
+vx_scene_apply(vx_scene *s, const char *line, vx_err *e)
+{
+	vx_scene *t;
+	pctx P;
+	int rc;
+
+	if (strchr(line, '\n') != NULL)
+		return vx_err_set(e, VX_EUSAGE, "'%.60s': one directive, no "
+		    "newline", line);
+	if ((t = vx_malloc(sizeof *t, e)) == NULL)
+		return VX_ENOMEM;
+	*t = *s;
+	if ((rc = pctx_open(&P, t, VX_EUSAGE, e)) == 0) {
+		P.ndirective = 1;   /* voxlux-scene is for files only */
+		rc = parse_lines(&P, line, strlen(line));
+	}
+	free(P.buf);
+	if (rc == 0)
+		*s = *t;
+	free(t);
+	return rc;
+}
