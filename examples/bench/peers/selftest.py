@@ -1,0 +1,282 @@
+#!/usr/bin/python3
+"""Self-test of the peers on small synthetic volumes (a few seconds): camera conventions,
+world frame, mesh format, image orientation.  Run by `make -C examples/bench check`.
+
+usage: selftest.py --embree PATH/embree_render --work DIR [--probe PATH/camera_probe]
+
+1. Sphere (anisotropic spacing, non-zero origin) -> extract.py -> embree_render, both
+   orthographic and perspective.  Oracle: analytic ray-sphere intersection written here
+   with numpy from the camera convention in camera.py's docstring; the Lambert headlight
+   shade is |n . d| with the exact sphere normal.  The sphere sits in the upper left of
+   the image, so a flipped axis cannot pass.
+2. mip_ref.py against brute-force trilinear sampling (step 0.002) along a few rays.
+3. teem-mrender and VTK against mip_ref.py on a blob volume (fine steps), axis-aligned
+   views along x, y and z with non-square images: checks that both peers sample the same
+   pixel grid and world box.
+0. With --probe (camera_probe.c, linked with libvoxlux): voxlux's own vx_camera_ray
+   against camera.py and this file's ray generator, for perspective and orthographic
+   cameras, non-square images, a slanted up and an up parallel to the view.
+Prints TAP-style lines; exits 1 if any check fails.
+"""
+import argparse
+import os
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import numpy as np  # noqa: E402
+import volio  # noqa: E402
+
+PY = sys.executable
+failures = 0
+count = 0
+
+
+def check(ok, what):
+    global failures, count
+    count += 1
+    print("%s %d - %s" % ("ok" if ok else "not ok", count, what))
+    if not ok:
+        failures += 1
+
+
+def run(cmd):
+    r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if r.returncode != 0:
+        print(r.stdout, file=sys.stderr)
+        raise SystemExit("selftest: failed: %s" % " ".join(cmd))
+    return r.stdout
+
+
+def rays(eye, look, up, w, h, fov=None, ortho=None):
+    """Origins and directions [h, w, 3] by the convention (independent of the C code)."""
+    eye, look, up = (np.array(x, float) for x in (eye, look, up))
+    f = (look - eye) / np.linalg.norm(look - eye)
+    u = np.cross(f, up)
+    u /= np.linalg.norm(u)
+    v = np.cross(u, f)
+    sx = 2 * (np.arange(w) + 0.5) / w - 1
+    sy = 1 - 2 * (np.arange(h) + 0.5) / h
+    SX, SY = np.meshgrid(sx, sy)
+    if ortho:   # ortho = the view's width, like voxlux's view_width
+        o = eye + (SX * ortho / 2)[..., None] * u + (SY * ortho / 2 * h / w)[..., None] * v
+        d = np.broadcast_to(f, o.shape)
+    else:
+        t = np.tan(np.radians(fov) / 2)
+        d = f + (SX * t * w / h)[..., None] * u + (SY * t)[..., None] * v
+        d = d / np.linalg.norm(d, axis=-1, keepdims=True)
+        o = np.broadcast_to(eye, d.shape)
+    return o, d
+
+
+def sphere_shade(o, d, c, r):
+    """Lambert headlight shade of the sphere (centre c, radius r), 0 where missed."""
+    oc = o - c
+    b = np.sum(oc * d, axis=-1)
+    disc = b * b - (np.sum(oc * oc, axis=-1) - r * r)
+    hit = disc > 0
+    t = -b - np.sqrt(np.where(hit, disc, 0))
+    p = o + t[..., None] * d
+    n = (p - c) / r
+    return np.where(hit, np.abs(np.sum(n * d, axis=-1)), 0.0), hit
+
+
+def test_sphere(embree, work):
+    sp, org, c, r = (1.0, 0.8, 1.25), (-10.0, 4.0, 2.0), np.array([8.0, 20.0, 24.0]), 11.0
+    dims = (40, 44, 36)
+    k, j, i = np.mgrid[0:dims[2], 0:dims[1], 0:dims[0]]
+    pts = [org[a] + idx * sp[a] for a, idx in enumerate((i, j, k))]
+    dist = np.sqrt(sum((pts[a] - c[a]) ** 2 for a in range(3))).astype(np.float32)
+    vol = os.path.join(work, "sphere.nrrd")
+    volio.write_nrrd(vol, volio.Volume(dist, sp, org))
+    mesh = os.path.join(work, "sphere.mesh")
+    out = run([PY, os.path.join(HERE, "extract.py"), vol, "--iso", str(r), "--runs", "1",
+               "-o", mesh])
+    check("triangles" in out, "extract.py writes a sphere mesh")
+    # the look point is offset so that the sphere lands in the upper left quadrant
+    look = c + np.array([9.0, 0.0, -9.0])
+    views = [("ortho", ["--ortho", "60"], dict(ortho=60.0)),
+             ("perspective", ["--fov", "40"], dict(fov=40.0))]
+    for name, flags, kw in views:
+        eye = look + np.array([0.0, -90.0, 0.0])
+        img = os.path.join(work, "sphere-%s.pfm" % name)
+        w, h = 96, 80
+        run([embree, "-m", mesh, "-o", img, "-n", "1", "--size", str(w), str(h),
+             "--eye"] + ["%g" % x for x in eye] + ["--look"] + ["%g" % x for x in look]
+            + ["--up", "0", "0", "1"] + flags)
+        got = volio.read_image(img)
+        o, d = rays(eye, look, (0, 0, 1), w, h, **kw)
+        want, hit = sphere_shade(o, d, c, r)
+        ys, xs = np.nonzero(hit)
+        check(xs.mean() < w / 2 and ys.mean() < h / 2,
+              "%s: analytic sphere in the upper left (oracle sanity)" % name)
+        gy, gx = np.nonzero(got > 0)
+        check(abs(gx.mean() - xs.mean()) < 0.5 and abs(gy.mean() - ys.mean()) < 0.5,
+              "%s: hit centroid (%.2f,%.2f) vs analytic (%.2f,%.2f)"
+              % (name, gx.mean(), gy.mean(), xs.mean(), ys.mean()))
+        mism = np.mean((got > 0) != hit)
+        check(mism < 0.01, "%s: coverage differs on %.4f of the pixels" % (name, mism))
+        inner = hit & (want > 0.4)
+        err = np.abs(got - want)[inner].max()
+        check(err < 0.03, "%s: max shade error %.4f inside the silhouette" % (name, err))
+
+
+PROBE_CAMERAS = [
+    ("perspective", 35.0, 96, 64, (3, -40, 12), (1, 2, 5), (0.2, 0.1, 1)),
+    ("ortho", 70.0, 64, 96, (30, 20, -50), (0, 1, 2), (0, 1, 0)),
+    ("ortho", 25.0, 50, 50, (0, 0, 90), (0, 0, 0), (0, 0, 1)),        # up parallel: fallback
+    ("perspective", 60.0, 40, 30, (5, -80, 3), (5, 0, 3), (0, 1, 0)),  # up parallel: fallback
+]
+
+
+def test_probe(probe):
+    import camera
+    for kind, val, w, h, eye, look, up in PROBE_CAMERAS:
+        px = [0, w - 1, w // 2, 3, w - 2]
+        py = [0, h - 1, h // 3, h - 1, 1]
+        args = ["ortho" if kind == "ortho" else "persp"] + [str(x) for x in
+                                                              (val, w, h) + eye + look + up]
+        pix = [str(v) for pair in zip(px, py) for v in pair]
+        lines = run([probe] + args + pix).split("\n")
+        got = np.array([[float(x) for x in ln.split()[2:]] for ln in lines if ln.strip()])
+        ns = argparse.Namespace(eye=list(eye), look=list(look), up=list(up), size=[w, h],
+                                fov=None if kind == "ortho" else val,
+                                ortho=val if kind == "ortho" else None)
+        f, u, v = camera.frame(ns)
+        sx = 2 * (np.array(px) + 0.5) / w - 1
+        sy = 1 - 2 * (np.array(py) + 0.5) / h
+        if kind == "ortho":
+            hw, hh = camera.half_extents(ns)
+            o = np.array(eye) + sx[:, None] * hw * u + sy[:, None] * hh * v
+            d = np.broadcast_to(f, o.shape)
+        else:
+            t = np.tan(np.radians(val) / 2)
+            d = f + (sx * t * w / h)[:, None] * u + (sy * t)[:, None] * v
+            d /= np.linalg.norm(d, axis=1, keepdims=True)
+            o = np.broadcast_to(np.array(eye, float), d.shape)
+        err = np.abs(got - np.hstack([o, d])).max()
+        check(err < 1e-9, "camera.py vs vx_camera_ray, %s %dx%d up %s: %.3g"
+              % (kind, w, h, up, err))
+        if np.linalg.norm(np.cross(np.subtract(look, eye), up)) > 0:
+            ro, rd = rays(eye, look, up, w, h, **({"ortho": val} if kind == "ortho"
+                                                    else {"fov": val}))
+            err = max(np.abs(ro[py, px] - got[:, :3]).max(), np.abs(rd[py, px] - got[:, 3:]).max())
+            check(err < 1e-9, "selftest rays() vs vx_camera_ray, %s: %.3g" % (kind, err))
+
+
+def trilinear(a, q):
+    """a[k, j, i] at index positions q [n, 3] (x, y, z) inside the lattice."""
+    n = np.array(a.shape[::-1])
+    i0 = np.minimum(np.floor(q).astype(int), n - 2)
+    f = q - i0
+    s = np.zeros(len(q))
+    for dk in (0, 1):
+        for dj in (0, 1):
+            for di in (0, 1):
+                wgt = ((f[:, 0] if di else 1 - f[:, 0]) * (f[:, 1] if dj else 1 - f[:, 1])
+                       * (f[:, 2] if dk else 1 - f[:, 2]))
+                s += wgt * a[i0[:, 2] + dk, i0[:, 1] + dj, i0[:, 0] + di]
+    return s
+
+
+def blob_volume(work):
+    sp, org = (1.5, 1.0, 2.0), (-10.0, 5.0, 3.0)
+    k, j, i = np.mgrid[0:20, 0:30, 0:40]
+    x, y, z = org[0] + i * sp[0], org[1] + j * sp[1], org[2] + k * sp[2]
+    a = (1000 * np.exp(-((x - 20) ** 2 + (y - 18) ** 2 + (z - 20) ** 2) / 72.0)
+         + 300 * np.exp(-((x - 5) ** 2 + (y - 25) ** 2 + (z - 35) ** 2) / 18.0))
+    # a thin bright line off the lattice planes makes the maximum fall between samples
+    a[10, 12, 5:35] += 400 * (np.arange(30) % 3 == 0)
+    path = os.path.join(work, "blob.nrrd")
+    vol = volio.Volume(a.astype(np.float32), sp, org)
+    volio.write_nrrd(path, vol)
+    return path, vol
+
+
+BLOB_VIEWS = [
+    ("along +y", "--eye 19.25 -100 22 --look 19.25 19.5 22 --up 0 0 1 --ortho 50 --size 64 48"),
+    ("along -x", "--eye 100 19.5 22 --look 0 19.5 22 --up 0 0 1 --ortho 45 --size 50 56"),
+    ("along -z", "--eye 19.25 19.5 200 --look 19.25 19.5 22 --up 0 1 0 --ortho 61 --size 40 70"),
+]
+
+
+def test_mip_ref(work):
+    path, vol = blob_volume(work)
+    data = vol.data.astype(np.float64)
+    for name, cam in BLOB_VIEWS:
+        img = os.path.join(work, "blob-ref.pfm")
+        run([PY, os.path.join(HERE, "mip_ref.py"), path, "-o", img] + cam.split())
+        ref = volio.read_image(img)
+        a = cam.split()
+        eye = [float(x) for x in a[1:4]]
+        look = [float(x) for x in a[5:8]]
+        up = [float(x) for x in a[9:12]]
+        w, h = int(a[15]), int(a[16])
+        o, d = rays(eye, look, up, w, h, ortho=float(a[13]))
+        rng = np.random.default_rng(7)
+        worst = 0.0
+        for _ in range(12):
+            py, px = int(rng.integers(h)), int(rng.integers(w))
+            t = np.arange(0, 300, 0.002)
+            q = ((o[py, px] + t[:, None] * d[py, px]) - np.array(vol.origin)) \
+                / np.array(vol.spacing)
+            q = q[np.all((q >= 0) & (q <= np.array(vol.dims) - 1), axis=1)]
+            best = trilinear(data, q).max() if len(q) else 0.0
+            worst = max(worst, abs(best - ref[py, px]))
+        check(worst < 0.05, "mip_ref %s: brute force differs by %.4g" % (name, worst))
+
+
+def test_mip_peers(work):
+    path, _ = blob_volume(work)
+    for name, cam in BLOB_VIEWS:
+        ref_p = os.path.join(work, "blob-ref.pfm")
+        run([PY, os.path.join(HERE, "mip_ref.py"), path, "-o", ref_p] + cam.split())
+        ref = volio.read_image(ref_p)
+        rng = ref.max()
+        tp = os.path.join(work, "blob-teem.pfm")
+        run(["sh", os.path.join(HERE, "mip_teem.sh"), "-n", "1", "-s", "0.01", path, tp]
+            + cam.split())
+        t = volio.read_image(tp)
+        err = np.abs(t - ref).max()
+        check(err < 1e-3 * rng, "teem %s: max error %.4g (range %.4g)" % (name, err, rng))
+        vp = os.path.join(work, "blob-vtk.pfm")
+        run(["xvfb-run", "-a", PY, os.path.join(HERE, "mip_vtk.py"), path, "-o", vp,
+             "--step", "0.01", "--runs", "1"] + cam.split())
+        v = volio.read_image(vp)
+        both = (v != 0) & (ref != 0)
+        err = np.abs(v - ref)[both].max()
+        check(err < 5e-3 * rng, "vtk %s: max error %.4g where it renders" % (name, err))
+        missed = (ref != 0) & (v == 0)
+        # pixels next to the outline: a neighbour (8-connected, or off the image)
+        # whose ray misses the volume
+        out = np.pad(ref == 0, 1, constant_values=True)
+        near = np.zeros_like(missed)
+        for dy in (-1, 0, 1):
+            for dx in (-1, 0, 1):
+                near |= out[1 + dy:out.shape[0] - 1 + dy, 1 + dx:out.shape[1] - 1 + dx]
+        extra = int(np.sum((ref == 0) & (v != 0)))
+        check(not np.any(missed & ~near) and extra == 0,
+              "vtk %s: %d pixels (%.3f of those covered) unrendered, all next to the "
+              "outline; %d extra" % (name, missed.sum(), missed.sum() / np.sum(ref != 0),
+                                     extra))
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("--embree", required=True)
+    p.add_argument("--work", required=True)
+    p.add_argument("--probe", help="camera_probe (voxlux's vx_camera_ray)")
+    args = p.parse_args()
+    os.makedirs(args.work, exist_ok=True)
+    if args.probe:
+        test_probe(args.probe)
+    test_sphere(args.embree, args.work)
+    test_mip_ref(args.work)
+    test_mip_peers(args.work)
+    print("1..%d" % count)
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()
