@@ -63,8 +63,13 @@ if [ -r "$CH2" ]; then
 		check_eq "ch2: unu minmax = vinfo range" \
 		    "$(teem-unu minmax "$T/rt-raw.nrrd" | tr '\n' ' ')" \
 		    "$(vol "$T/ch2.json" '"min: %g max: %g " % tuple(v["range"])')"
+		check_eq "ch2: unu histo = vinfo histogram (16 bins)" \
+		    "$(teem-unu histo -b 16 -min 0 -max 254 -i "$T/rt-raw.nrrd" -o - |
+		      teem-unu save -f text -i - -o - | tr -s '\n ' '  ')" \
+		    "$(vol "$T/ch2.json" '" ".join(map(str, v["histogram"]["counts"])) + " "')"
 	else
 		skip "ch2: unu minmax = vinfo range" "teem-unu not installed (Debian teem-apps)"
+		skip "ch2: unu histo = vinfo histogram" "teem-unu not installed"
 	fi
 else
 	skip "ch2" "$CH2 missing (Debian mricron-data)"
