@@ -507,6 +507,34 @@ out:
 	return rc;
 }
 
+#define RANGE(T)                                                         \
+	do {                                                             \
+		const T *d_ = g->data;                                   \
+		T lo_ = d_[0], hi_ = d_[0];                              \
+		for (i = 1; i < n; i++) {                                \
+			lo_ = d_[i] < lo_ ? d_[i] : lo_;                 \
+			hi_ = d_[i] > hi_ ? d_[i] : hi_;                 \
+		}                                                        \
+		g->vmin = lo_;                                           \
+		g->vmax = hi_;                                           \
+		g->has_range = 1;                                        \
+	} while (0)
+
+/* range: vx_grid_range for the linear, unpadded grids built here, with
+ * typed loops (the generic one costs as much as the whole import). */
+static void
+range(vx_grid *g)
+{
+	size_t n = g->nsample, i;
+
+	switch (g->type) {
+	case VX_U8: RANGE(uint8_t); break;
+	case VX_U16: RANGE(uint16_t); break;
+	case VX_I16: RANGE(int16_t); break;
+	default: vx_grid_range(g); break;    /* f32: NaN and inf excluded */
+	}
+}
+
 int
 imp_conv_end(imp_conv *c, vx_err *e)
 {
@@ -514,6 +542,6 @@ imp_conv_end(imp_conv *c, vx_err *e)
 	if (c->next != c->total)
 		return vx_err_set(e, VX_EDATA, "truncated: %llu of %llu samples",
 		    (unsigned long long)c->next, (unsigned long long)c->total);
-	vx_grid_range(c->g);
+	range(c->g);
 	return 0;
 }

@@ -59,6 +59,24 @@ vread -o "$T/never.vx" "$T/bad.nrrd" 2>/dev/null
 check "no output file after a failure" test ! -e "$T/never.vx"
 check "no temporary left behind" sh -c "! ls '$T' | grep -q never"
 
+# no arguments with a terminal on stdin: the usage; a terminal on stdout
+# is refused (script(1) provides the terminal)
+if command -v script >/dev/null 2>&1; then
+	script -qec "$VX_BIN/vread" /dev/null </dev/null >"$T/tty.txt" 2>&1
+	check_eq "no arguments on a terminal: exit 64" "$?" 64
+	check "no arguments on a terminal: usage" grep -q "usage: vread" "$T/tty.txt"
+	script -qec "$VX_BIN/vread --synth sphere --size 2" /dev/null </dev/null >"$T/tty.txt" 2>&1
+	check_eq "terminal on stdout: exit 64" "$?" 64
+	check "terminal on stdout: message" grep -q "standard output is a terminal" "$T/tty.txt"
+else
+	skip "no arguments on a terminal" "no script(1)"
+	skip "terminal on stdout" "no script(1)"
+fi
+# every option of the usage line is in the man page's synopsis
+for o in $(vread --help | grep -o -- '--[a-z]*\|-[oz] ' | sort -u); do
+	check "man page synopsis has $o" grep -q -- "$(echo "$o" | sed 's/-/\\\\-/g; s/ $//')" man/man1/vread.1
+done
+
 # ---- successes ----
 vread --synth sphere --size 9 >"$T/s1.vx"
 check_eq "output begins with the signature" \

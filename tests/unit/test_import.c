@@ -225,6 +225,7 @@ typedef struct nrrd_case {
 	const char *type;        /* as the header says it */
 	vx_scalar st;
 	int enc, big, frame, df, wholegz, dim2, upper;
+	int lskip, bskip;        /* line skip, byte skip (-1: at the end) */
 } nrrd_case;
 
 static const nrrd_case nrrd_cases[] = {
@@ -277,6 +278,17 @@ static const nrrd_case nrrd_cases[] = {
 	{ "dimension 2", "uchar", VX_S_U8, E_RAW, 0, FR_SPACINGS, 0, 0, 1, 0 },
 	{ "field case and blanks", "Unsigned  Short", VX_S_U16, E_RAW, 1,
 	  FR_DIRS, 0, 0, 0, 1 },
+	/* skips: lines before the data (before gunzip), bytes after it */
+	{ "byte skip", "short", VX_S_I16, E_RAW, 0, FR_SPACINGS, 0, 0, 0, 0,
+	  0, 7 },
+	{ "byte skip -1", "float", VX_S_F32, E_RAW, 1, FR_SPACINGS, DF_SINGLE,
+	  0, 0, 0, 0, -1 },
+	{ "line skip", "uchar", VX_S_U8, E_RAW, 0, FR_SPACINGS, DF_SINGLE, 0, 0,
+	  0, 3, 0 },
+	{ "line and byte skip gzip", "int", VX_S_I32, E_GZIP, 0, FR_SPACINGS,
+	  0, 0, 0, 0, 2, 5 },
+	{ "byte skip ascii", "short", VX_S_I16, E_ASCII, 0, FR_SPACINGS,
+	  DF_SINGLE, 0, 0, 0, 1, 4 },
 };
 
 static void
@@ -338,6 +350,10 @@ nrrd_build(const nrrd_case *c, buf *hdr, const int64_t dims[3], double sp[3],
 		org[0] = 0; org[1] = 0.25; org[2] = -2;
 		break;
 	}
+	if (c->lskip)
+		putf(hdr, "line skip: %d\n", c->lskip);
+	if (c->bskip)
+		putf(hdr, "byte skip: %d\n", c->bskip);
 	(void)a;
 	(void)total;
 }
@@ -359,12 +375,24 @@ nrrd_one(const nrrd_case *c, int k)
 
 	nrrd_build(c, &hdr, dims, sp, org, &flipx);
 	if (c->df == DF_ATTACHED || c->df == DF_SINGLE) {
+		/* bytes skipped after decompression, lines before it */
+		for (int j = 0; j < (c->bskip < 0 ? 13 : c->bskip); j++)
+			put(&data, "#", 1);
 		put_samples(&data, c->st, 0, total, c->big, text);
 		if (c->enc == E_GZIP) {
 			buf z = gz(data.p, data.n);
 
 			free(data.p);
 			data = z;
+		}
+		if (c->lskip) {
+			buf l = { NULL, 0 };
+
+			for (int j = 0; j < c->lskip; j++)
+				putf(&l, "skipped line %d\n", j);
+			put(&l, data.p, data.n);
+			free(data.p);
+			data = l;
 		}
 	}
 	switch (c->df) {
