@@ -245,6 +245,11 @@ read_body(struct png_io *io)
 
 	png_set_read_fn(io->png, io, read_fn);
 	png_set_user_limits(io->png, VX_IMAGE_MAX_DIM, VX_IMAGE_MAX_DIM);
+	/* no chunk (text, profile, unknown) is buffered beyond 8 MB, libpng's
+	 * own recommended ceiling, whatever its length word claims (Debian's
+	 * build leaves it unlimited); at most 1000 ancillary chunks kept */
+	png_set_chunk_malloc_max(io->png, (png_alloc_size_t)8 << 20);
+	png_set_chunk_cache_max(io->png, 1000);
 	png_read_info(io->png, io->info);
 	png_get_IHDR(io->png, io->info, &w, &h, &depth, &ctype, &interlace,
 	    NULL, NULL);
@@ -311,6 +316,33 @@ read_guarded(struct png_io *io)
 	return 0;
 }
 
+/* chunks_fit: every chunk's length word fits in the bytes that follow it.
+ * libpng allocates a chunk's buffer (tEXt, for one) from the length word
+ * before reading the data, so a lying length is refused here first. */
+static int
+chunks_fit(const unsigned char *p, size_t n, vx_err *e)
+{
+	size_t pos = 8;
+
+	while (pos < n) {
+		uint32_t len;
+
+		if (n - pos < 12)
+			return vx_err_set(e, VX_EDATA, "png: truncated chunk at "
+			    "offset %zu", pos);
+		len = (uint32_t)p[pos] << 24 | (uint32_t)p[pos + 1] << 16 |
+		    (uint32_t)p[pos + 2] << 8 | p[pos + 3];
+		if (len > n - pos - 12)
+			return vx_err_set(e, VX_EDATA, "png: chunk at offset %zu "
+			    "claims %lu bytes, %zu remain", pos, (unsigned long)len,
+			    n - pos - 12);
+		if (memcmp(p + pos + 4, "IEND", 4) == 0)
+			break;
+		pos += 12 + (size_t)len;
+	}
+	return 0;
+}
+
 int
 vx_image_png_read_mem(vx_image *img, const void *buf, size_t n, int *bits,
     vx_err *e)
@@ -321,6 +353,8 @@ vx_image_png_read_mem(vx_image *img, const void *buf, size_t n, int *bits,
 	vx_image_init(img);
 	if (n < 8 || png_sig_cmp(buf, 0, 8) != 0)
 		return vx_err_set(e, VX_EDATA, "png: not a PNG file");
+	if ((rc = chunks_fit(buf, n, e)) != 0)
+		return rc;
 	memset(&io, 0, sizeof io);
 	io.buf = buf;
 	io.n = n;

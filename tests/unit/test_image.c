@@ -823,6 +823,23 @@ png_read_bounds(void **state)
 		    VX_EDATA);
 		assert_null(img.px);
 	}
+	/* a chunk whose length word exceeds the file (found by fuzzing: libpng
+	 * 1.6.39 allocated a tEXt buffer of that size before reading) */
+	{
+		unsigned char buf[64], ihdr[13] = { 0, 0, 0, 3, 0, 0, 0, 2, 8, 2,
+		    0, 0, 0 };
+		size_t k = 8;
+		vx_image img;
+		vx_err e = { 0, "" };
+
+		memcpy(buf, "\x89PNG\r\n\x1a\n", 8);
+		k += put_chunk(buf + k, "IHDR", ihdr, 13);
+		memcpy(buf + k, "\x72\x63\x89\x15tEXtSoftware", 16);
+		k += 16;
+		assert_int_equal(vx_image_png_read_mem(&img, buf, k, NULL, &e),
+		    VX_EDATA);
+		assert_non_null(strstr(e.msg, "claims"));
+	}
 	/* not a PNG at all */
 	{
 		vx_image img;
