@@ -123,6 +123,10 @@ vx_import_mem(vx_grid *g, const void *buf, size_t n, const char *name,
 	case VX_FORMAT_VTK:
 		return vx_import_vtk_mem(g, buf, n, e);
 	default:
+		if (n >= VX_SIGNATURE_LEN && memcmp(buf, VX_SIGNATURE,
+		    VX_SIGNATURE_LEN) == 0)
+			return vx_err_set(e, VX_EDATA, "this is a voxlux stream "
+			    "already, not a volume to import");
 		return vx_err_set(e, VX_EDATA, "unknown format (not NRRD, "
 		    "NIfTI-1 or VTK; for raw data give --raw and --type)");
 	}

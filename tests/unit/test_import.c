@@ -230,54 +230,54 @@ typedef struct nrrd_case {
 
 static const nrrd_case nrrd_cases[] = {
 	/* every type, raw little-endian, spacings */
-	{ "uchar", "uchar", VX_S_U8, E_RAW, 0, FR_SPACINGS, 0, 0, 0, 0 },
+	{ "uchar", "uchar", VX_S_U8, E_RAW, 0, FR_SPACINGS, 0, 0, 0, 0, 0, 0 },
 	{ "signed char", "signed char", VX_S_I8, E_RAW, 0, FR_SPACINGS, 0, 0,
-	  0, 0 },
-	{ "short", "short", VX_S_I16, E_RAW, 0, FR_SPACINGS, 0, 0, 0, 0 },
-	{ "ushort", "ushort", VX_S_U16, E_RAW, 0, FR_SPACINGS, 0, 0, 0, 0 },
-	{ "int", "int", VX_S_I32, E_RAW, 0, FR_SPACINGS, 0, 0, 0, 0 },
-	{ "uint", "unsigned int", VX_S_U32, E_RAW, 0, FR_SPACINGS, 0, 0, 0,
-	  0 },
-	{ "int64", "long long int", VX_S_I64, E_RAW, 0, FR_SPACINGS, 0, 0, 0,
-	  0 },
-	{ "uint64", "uint64_t", VX_S_U64, E_RAW, 0, FR_SPACINGS, 0, 0, 0, 0 },
-	{ "float", "float", VX_S_F32, E_RAW, 0, FR_SPACINGS, 0, 0, 0, 0 },
-	{ "double", "double", VX_S_F64, E_RAW, 0, FR_SPACINGS, 0, 0, 0, 0 },
-	/* byte orders */
-	{ "short big", "int16", VX_S_I16, E_RAW, 1, FR_SPACINGS, 0, 0, 0, 0 },
-	{ "float big", "float", VX_S_F32, E_RAW, 1, FR_NONE, 0, 0, 0, 0 },
-	{ "double big", "double", VX_S_F64, E_RAW, 1, FR_DIRS, 0, 0, 0, 0 },
-	/* encodings */
-	{ "gzip short", "short", VX_S_I16, E_GZIP, 0, FR_DIRS, 0, 0, 0, 0 },
-	{ "gzip ushort big", "unsigned short", VX_S_U16, E_GZIP, 1, FR_SPACINGS,
 	  0, 0, 0, 0 },
-	{ "ascii uchar", "unsigned char", VX_S_U8, E_ASCII, 0, FR_SPACINGS, 0,
+	{ "short", "short", VX_S_I16, E_RAW, 0, FR_SPACINGS, 0, 0, 0, 0, 0, 0 },
+	{ "ushort", "ushort", VX_S_U16, E_RAW, 0, FR_SPACINGS, 0, 0, 0, 0, 0, 0 },
+	{ "int", "int", VX_S_I32, E_RAW, 0, FR_SPACINGS, 0, 0, 0, 0, 0, 0 },
+	{ "uint", "unsigned int", VX_S_U32, E_RAW, 0, FR_SPACINGS, 0, 0, 0,
 	  0, 0, 0 },
-	{ "ascii float", "float", VX_S_F32, E_ASCII, 0, FR_DIRS, 0, 0, 0, 0 },
-	{ "ascii int", "int32_t", VX_S_I32, E_ASCII, 0, FR_NONE, 0, 0, 0, 0 },
+	{ "int64", "long long int", VX_S_I64, E_RAW, 0, FR_SPACINGS, 0, 0, 0,
+	  0, 0, 0 },
+	{ "uint64", "uint64_t", VX_S_U64, E_RAW, 0, FR_SPACINGS, 0, 0, 0, 0, 0, 0 },
+	{ "float", "float", VX_S_F32, E_RAW, 0, FR_SPACINGS, 0, 0, 0, 0, 0, 0 },
+	{ "double", "double", VX_S_F64, E_RAW, 0, FR_SPACINGS, 0, 0, 0, 0, 0, 0 },
+	/* byte orders */
+	{ "short big", "int16", VX_S_I16, E_RAW, 1, FR_SPACINGS, 0, 0, 0, 0, 0, 0 },
+	{ "float big", "float", VX_S_F32, E_RAW, 1, FR_NONE, 0, 0, 0, 0, 0, 0 },
+	{ "double big", "double", VX_S_F64, E_RAW, 1, FR_DIRS, 0, 0, 0, 0, 0, 0 },
+	/* encodings */
+	{ "gzip short", "short", VX_S_I16, E_GZIP, 0, FR_DIRS, 0, 0, 0, 0, 0, 0 },
+	{ "gzip ushort big", "unsigned short", VX_S_U16, E_GZIP, 1, FR_SPACINGS,
+	  0, 0, 0, 0, 0, 0 },
+	{ "ascii uchar", "unsigned char", VX_S_U8, E_ASCII, 0, FR_SPACINGS, 0,
+	  0, 0, 0, 0, 0 },
+	{ "ascii float", "float", VX_S_F32, E_ASCII, 0, FR_DIRS, 0, 0, 0, 0, 0, 0 },
+	{ "ascii int", "int32_t", VX_S_I32, E_ASCII, 0, FR_NONE, 0, 0, 0, 0, 0, 0 },
 	{ "hex short big", "short", VX_S_I16, E_HEX, 1, FR_SPACINGS, 0, 0, 0,
-	  0 },
+	  0, 0, 0 },
 	/* frames */
 	{ "space directions mirrored x", "float", VX_S_F32, E_RAW, 0,
-	  FR_DIRS_FLIP, 0, 0, 0, 0 },
+	  FR_DIRS_FLIP, 0, 0, 0, 0, 0, 0 },
 	{ "axis mins and maxs", "uchar", VX_S_U8, E_RAW, 0, FR_MINMAX, 0, 0, 0,
-	  0 },
+	  0, 0, 0 },
 	/* detached data */
 	{ "detached raw", "short", VX_S_I16, E_RAW, 0, FR_SPACINGS, DF_SINGLE,
-	  0, 0, 0 },
+	  0, 0, 0, 0, 0 },
 	{ "detached gzip", "float", VX_S_F32, E_GZIP, 1, FR_DIRS, DF_SINGLE, 0,
-	  0, 0 },
+	  0, 0, 0, 0 },
 	{ "detached LIST", "ushort", VX_S_U16, E_RAW, 0, FR_SPACINGS, DF_LIST,
-	  0, 0, 0 },
+	  0, 0, 0, 0, 0 },
 	{ "detached pattern", "uchar", VX_S_U8, E_GZIP, 0, FR_SPACINGS,
-	  DF_PATTERN, 0, 0, 0 },
+	  DF_PATTERN, 0, 0, 0, 0, 0 },
 	{ "detached ascii", "double", VX_S_F64, E_ASCII, 0, FR_SPACINGS,
-	  DF_SINGLE, 0, 0, 0 },
+	  DF_SINGLE, 0, 0, 0, 0, 0 },
 	/* whole file gzipped, dimension 2, upper-case field names */
-	{ "whole file gzip", "short", VX_S_I16, E_RAW, 0, FR_DIRS, 0, 1, 0, 0 },
-	{ "dimension 2", "uchar", VX_S_U8, E_RAW, 0, FR_SPACINGS, 0, 0, 1, 0 },
+	{ "whole file gzip", "short", VX_S_I16, E_RAW, 0, FR_DIRS, 0, 1, 0, 0, 0, 0 },
+	{ "dimension 2", "uchar", VX_S_U8, E_RAW, 0, FR_SPACINGS, 0, 0, 1, 0, 0, 0 },
 	{ "field case and blanks", "Unsigned  Short", VX_S_U16, E_RAW, 1,
-	  FR_DIRS, 0, 0, 0, 1 },
+	  FR_DIRS, 0, 0, 0, 1, 0, 0 },
 	/* skips: lines before the data (before gunzip), bytes after it */
 	{ "byte skip", "short", VX_S_I16, E_RAW, 0, FR_SPACINGS, 0, 0, 0, 0,
 	  0, 7 },
@@ -798,6 +798,38 @@ raw_variants(void **state)
 		vx_grid_free(&g);
 		free(f.p);
 	}
+}
+
+/* gzip members are read in turn (as gzip -d does); bytes after the last
+ * member are ignored */
+static void
+gzip_members(void **state)
+{
+	buf a = { NULL, 0 }, b = { NULL, 0 }, f = { NULL, 0 }, z;
+	double sp[3] = { 1, 1, 1 }, org[3] = { 0, 0, 0 };
+	vx_raw_info r;
+	vx_grid g;
+	vx_err e = { 0, "" };
+
+	(void)state;
+	put_samples(&a, VX_S_I16, 0, 25, 0, 0);
+	put_samples(&b, VX_S_I16, 25, 35, 0, 0);
+	z = gz(a.p, a.n);
+	put(&f, z.p, z.n);
+	free(z.p);
+	z = gz(b.p, b.n);
+	put(&f, z.p, z.n);
+	free(z.p);
+	put(&f, "\0\0\0\0", 4);      /* padding, as tape tools leave */
+	vx_raw_info_init(&r);
+	memcpy(r.dims, D3, sizeof r.dims);
+	r.type = VX_S_I16;
+	assert_int_equal(vx_import_raw_mem(&g, f.p, f.n, &r, &e), 0);
+	check_grid("two members", &g, D3, VX_I16, VX_S_I16, sp, org, 0, NULL);
+	vx_grid_free(&g);
+	free(a.p);
+	free(b.p);
+	free(f.p);
 }
 
 /* ---- synthetic fields ---- */
@@ -1436,6 +1468,10 @@ detection(void **state)
 		assert_int_equal(vx_import_file(&g, tpath("nonexistent.nrrd"),
 		    &o, &e), VX_ENOINPUT);
 		assert_non_null(strstr(e.msg, "nonexistent.nrrd"));
+		write_file("stream.vx", "\x89VXL\r\n\x1a\n", 8);
+		assert_int_equal(vx_import_file(&g, tpath("stream.vx"), &o,
+		    &e), VX_EDATA);
+		assert_non_null(strstr(e.msg, "voxlux stream already"));
 		write_file("mystery.dat", "hello", 5);
 		assert_int_equal(vx_import_file(&g, tpath("mystery.dat"), &o,
 		    &e), VX_EDATA);
@@ -1506,6 +1542,7 @@ main(void)
 		cmocka_unit_test(nii_variants),
 		cmocka_unit_test(vtk_variants),
 		cmocka_unit_test(raw_variants),
+		cmocka_unit_test(gzip_members),
 		cmocka_unit_test(synth_fields),
 		cmocka_unit_test(malformed),
 		cmocka_unit_test(detached_errors),
