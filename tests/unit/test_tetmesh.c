@@ -11,6 +11,8 @@
 #include <string.h>
 #include <math.h>
 #include <cmocka.h>
+#include <unistd.h>
+#include <zlib.h>
 
 #include "vx_tetmesh.h"
 
@@ -856,35 +858,45 @@ chunk_malformed(void **state)
 
 /* ---- the leaf grid ---- */
 
-/* Oracle (brute force): on a jittered mesh (no coordinate ties), tet t is
- * in leaf l iff its bounding box padded by VX_TETLEAF_PAD leaf widths
- * overlaps the leaf's box; lists ascend; lmin/lmax are the min/max over the
- * listed tets' vertex values; about one leaf per tet. */
+/* Leaf grid oracles, on a jittered and sheared mesh (skewed tets, no
+ * coordinate ties).  Bounding-box mode (brute force): tet t is in leaf l
+ * iff its bounding box padded by VX_TETLEAF_PAD leaf widths overlaps the
+ * leaf's box.  Exact mode: its lists are subsets of those, and complete: a
+ * leaf containing any of 400 sample points of a tet (vertices, random
+ * barycentric points) lists it.  Both: lists ascend, leaf ranges are the
+ * min/max over the listed tets' vertex values, about one leaf per tet. */
 static void
 leaf_grid_brute(void **state)
 {
 	int64_t nc[3] = { 4, 3, 5 };
 	double lo[3] = { 0, -1, 2 }, hi[3] = { 4, 0.5, 7 }, c[3] = { 2, 0, 4 };
 	vx_tetmesh m;
-	vx_tetleaf lg;
 	vx_err e = { 0, "" };
 
 	(void)state;
 	assert_int_equal(vx_tetsynth_grid(&m, nc, lo, hi, 5, bowl_fn, c, &e), 0);
-	for (size_t p = 0; p < m.npoint; p++)
+	for (size_t p = 0; p < m.npoint; p++) {
 		for (int a = 0; a < 3; a++)
 			m.pts[3 * p + a] += 0.1 * u01(70 + (uint64_t)a, p);
+		m.pts[3 * p] += 0.9 * m.pts[3 * p + 1] + 0.4 * m.pts[3 * p + 2];
+	}
 	assert_int_equal(vx_tetmesh_validate(&m, &e), 0);
 	for (double dens = 0.5; dens <= 4; dens *= 2) {
-		assert_int_equal(vx_tetleaf_build(&lg, &m, dens, &e), 0);
-		double ratio = (double)lg.nleaf / ((double)m.ntet * dens);
+		vx_tetleaf bb, ex;
+		int sizes[1][3] = { { 2, 2, 2 } };
+		assert_int_equal(vx_tetleaf_build_levels(&bb, &m, dens,
+		    VX_TETLEAF_BBOX, 1, sizes, 1, &e), 0);
+		assert_int_equal(vx_tetleaf_build_levels(&ex, &m, dens, 0, 1,
+		    sizes, 2, &e), 0);
+		double ratio = (double)bb.nleaf / ((double)m.ntet * dens);
 		assert_true(ratio > 0.4 && ratio < 2.5);
-		for (size_t l = 0; l < lg.nleaf; l++) {
-			int64_t ix[3] = { (int64_t)l % lg.dims[0],
-			    (int64_t)l / lg.dims[0] % lg.dims[1],
-			    (int64_t)l / lg.dims[0] / lg.dims[1] };
-			size_t k = lg.off[l];
-			float vmin = INFINITY, vmax = -INFINITY;
+		assert_int_equal(bb.nleaf, ex.nleaf);
+		assert_true(ex.off[ex.nleaf] < bb.off[bb.nleaf]);
+		for (size_t l = 0; l < bb.nleaf; l++) {
+			int64_t ix[3] = { (int64_t)l % bb.dims[0],
+			    (int64_t)l / bb.dims[0] % bb.dims[1],
+			    (int64_t)l / bb.dims[0] / bb.dims[1] };
+			size_t k = bb.off[l];
 			for (uint32_t t = 0; t < m.ntet; t++) {
 				int ov = 1;
 				for (int a = 0; a < 3; a++) {
@@ -894,32 +906,78 @@ leaf_grid_brute(void **state)
 						bl = fmin(bl, x);
 						bh = fmax(bh, x);
 					}
-					double pad = VX_TETLEAF_PAD * lg.cell[a];
-					double l0 = lg.bmin[a] + (double)ix[a] * lg.cell[a];
-					double l1 = l0 + lg.cell[a];
+					double pad = VX_TETLEAF_PAD * bb.cell[a];
+					double l0 = bb.bmin[a] + (double)ix[a] * bb.cell[a];
+					double l1 = l0 + bb.cell[a];
 					if (ix[a] == 0)
 						l0 = -INFINITY;
-					if (ix[a] == lg.dims[a] - 1)
+					if (ix[a] == bb.dims[a] - 1)
 						l1 = INFINITY;
 					ov &= bl - pad < l1 && bh + pad > l0;
 				}
 				if (!ov)
 					continue;
-				assert_true(k < lg.off[l + 1]);
-				assert_int_equal(lg.idx[k], t);
+				assert_true(k < bb.off[l + 1]);
+				assert_int_equal(bb.idx[k], t);
 				k++;
-				for (int q = 0; q < 4; q++) {
-					vmin = fminf(vmin, m.val[m.tet[4 * t + q]]);
-					vmax = fmaxf(vmax, m.val[m.tet[4 * t + q]]);
-				}
 			}
-			assert_int_equal(k, lg.off[l + 1]);
-			float rlo, rhi;
-			vx_tetleaf_range(&lg, l, &rlo, &rhi);
-			assert_true(rlo == vmin && rhi == vmax);
+			assert_int_equal(k, bb.off[l + 1]);
+			/* exact: a subsequence of the bounding-box list */
+			size_t j = bb.off[l];
+			for (k = ex.off[l]; k < ex.off[l + 1]; k++) {
+				while (j < bb.off[l + 1] && bb.idx[j] != ex.idx[k])
+					j++;
+				assert_true(j < bb.off[l + 1]);
+			}
+			/* ranges from the lists */
+			const vx_tetleaf *g2[2] = { &bb, &ex };
+			for (int gi = 0; gi < 2; gi++) {
+				const vx_tetleaf *g = g2[gi];
+				float vmin = INFINITY, vmax = -INFINITY, rlo, rhi;
+				for (k = g->off[l]; k < g->off[l + 1]; k++) {
+					if (k > g->off[l])
+						assert_true(g->idx[k] > g->idx[k - 1]);
+					for (int q = 0; q < 4; q++) {
+						float v = m.val[m.tet[4 * g->idx[k] + q]];
+						vmin = fminf(vmin, v);
+						vmax = fmaxf(vmax, v);
+					}
+				}
+				vx_tetleaf_range(g, l, &rlo, &rhi);
+				assert_true(rlo == vmin && rhi == vmax);
+			}
 		}
-		assert_true(vx_tetleaf_bytes(&lg) > 0);
-		vx_tetleaf_free(&lg);
+		/* completeness of the exact lists by sampling */
+		for (uint32_t t = 0; t < m.ntet; t++)
+			for (uint64_t sidx = 0; sidx < 400; sidx++) {
+				double w[4], sum = 0, p[3] = { 0, 0, 0 };
+				for (int q = 0; q < 4; q++) {
+					w[q] = sidx < 4 ? (double)(q == (int)sidx) :
+					    -log(1 - u01(75 + (uint64_t)q,
+					    t * 400 + sidx));
+					sum += w[q];
+				}
+				for (int q = 0; q < 4; q++)
+					for (int a = 0; a < 3; a++)
+						p[a] += w[q] / sum *
+						    m.pts[3 * m.tet[4 * t + q] + a];
+				int64_t ix[3];
+				for (int a = 0; a < 3; a++) {
+					double f = (p[a] - ex.bmin[a]) / ex.cell[a];
+					ix[a] = (int64_t)floor(f);
+					if (ix[a] >= ex.dims[a])
+						ix[a] = ex.dims[a] - 1;
+				}
+				size_t l = (size_t)(ix[0] + ex.dims[0] * (ix[1] +
+				    ex.dims[1] * ix[2]));
+				size_t k = ex.off[l];
+				while (k < ex.off[l + 1] && ex.idx[k] != t)
+					k++;
+				assert_true(k < ex.off[l + 1]);
+			}
+		assert_true(vx_tetleaf_bytes(&ex) > 0);
+		vx_tetleaf_free(&bb);
+		vx_tetleaf_free(&ex);
 	}
 	vx_tetmesh_free(&m);
 }
@@ -955,7 +1013,7 @@ leaf_grid_nearest(void **state)
 			double dens = nlev == 3 ? 1.0 / split : 1;
 			memset(&st, 0, sizeof st);
 			assert_int_equal(vx_tetleaf_build_levels(&lg, &m, dens,
-			    nlev % 3, sizes, 1, &e), 0);
+			    (int)(nlev == 1), nlev % 3, sizes, 1, &e), 0);
 			if (nlev == 3)
 				for (int a = 0; a < 3; a++)
 					assert_int_equal(lg.dims[a], nc[a]);
@@ -1032,6 +1090,443 @@ leaf_dims_shape(void **state)
 	assert_true(d[0] == 1 && d[1] == 1 && d[2] == 1);
 }
 
+/* ---- importers ---- */
+
+/* Two tets sharing face (1,2,3), a triangle (skipped), point scalars with a
+ * lookup table, other attributes around them. */
+static const char vtk_ascii[] =
+    "# vtk DataFile Version 3.0\n"
+    "two tets\n"
+    "ASCII\n"
+    "DATASET UNSTRUCTURED_GRID\n"
+    "FIELD FieldData 1\n"
+    "TIME 1 1 double\n"
+    "0.5\n"
+    "POINTS 5 float\n"
+    "0 0 0  1 0 0  0 1 0\n"
+    "0 0 1  1 1 1\n"
+    "CELLS 3 14\n"
+    "4 0 1 2 3\n"
+    "4 1 2 3 4\n"
+    "3 0 1 2\n"
+    "CELL_TYPES 3\n"
+    "10\n10\n5\n"
+    "CELL_DATA 3\n"
+    "SCALARS id int 1\n"
+    "LOOKUP_TABLE default\n"
+    "7 8 9\n"
+    "POINT_DATA 5\n"
+    "VECTORS vel float\n"
+    "1 0 0 1 0 0 1 0 0 1 0 0 1 0 0\n"
+    "SCALARS dens%20ity double\n"
+    "LOOKUP_TABLE default\n"
+    "0.5 1.5 -2 3e2 4.25\n"
+    "FIELD more 1\n"
+    "temp 1 5 float\n"
+    "10 11 12 13 14\n";
+
+static const float vtk_vals[5] = { 0.5f, 1.5f, -2, 300, 4.25f };
+static const uint32_t vtk_tets[8] = { 0, 1, 2, 3, 1, 2, 3, 4 };
+static const double vtk_pts[15] = {
+	0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1,
+};
+
+static void
+check_two_tets(const vx_tetmesh *m)
+{
+	assert_int_equal(m->npoint, 5);
+	assert_int_equal(m->ntet, 2);
+	assert_memory_equal(m->tet, vtk_tets, sizeof vtk_tets);
+	for (int i = 0; i < 15; i++)
+		assert_true(m->pts[i] == vtk_pts[i]);
+}
+
+/* big-endian writers for the binary file */
+typedef struct bbuf { unsigned char *p; size_t n; } bbuf;
+
+static void
+bput(bbuf *b, const void *q, size_t n)
+{
+	b->p = realloc(b->p, b->n + n + 1);
+	memcpy(b->p + b->n, q, n);
+	b->n += n;
+}
+
+static void
+bstr(bbuf *b, const char *s)
+{
+	bput(b, s, strlen(s));
+}
+
+static void
+bbe(bbuf *b, uint64_t v, int n)
+{
+	unsigned char x[8];
+	for (int i = 0; i < n; i++)
+		x[i] = (unsigned char)(v >> (8 * (n - 1 - i)));
+	bput(b, x, (size_t)n);
+}
+
+static void
+bf64(bbuf *b, double d)
+{
+	uint64_t u;
+	memcpy(&u, &d, 8);
+	bbe(b, u, 8);
+}
+
+static void
+bf32(bbuf *b, float f)
+{
+	uint32_t u;
+	memcpy(&u, &f, 4);
+	bbe(b, u, 4);
+}
+
+/* The ASCII file's content as BINARY: points double, cells int32, scalars
+ * float, an unsigned_char point array before them. */
+static bbuf
+vtk_binary(void)
+{
+	bbuf b = { NULL, 0 };
+	bstr(&b, "# vtk DataFile Version 4.2\ntwo tets\nBINARY\n"
+	    "DATASET UNSTRUCTURED_GRID\nPOINTS 5 double\n");
+	for (int i = 0; i < 15; i++)
+		bf64(&b, vtk_pts[i]);
+	bstr(&b, "\nCELLS 3 14\n");
+	static const int cl[14] = { 4, 0, 1, 2, 3, 4, 1, 2, 3, 4, 3, 0, 1, 2 };
+	for (int i = 0; i < 14; i++)
+		bbe(&b, (uint32_t)cl[i], 4);
+	bstr(&b, "\nCELL_TYPES 3\n");
+	bbe(&b, 10, 4);
+	bbe(&b, 10, 4);
+	bbe(&b, 5, 4);
+	bstr(&b, "\nPOINT_DATA 5\nSCALARS flag unsigned_char 2\n"
+	    "LOOKUP_TABLE default\n");
+	for (int i = 0; i < 10; i++)
+		bbe(&b, (uint64_t)i, 1);
+	bstr(&b, "\nSCALARS density float\nLOOKUP_TABLE default\n");
+	for (int i = 0; i < 5; i++)
+		bf32(&b, vtk_vals[i]);
+	bstr(&b, "\n");
+	return b;
+}
+
+/* Oracle: the hand-written files decode to the counts and values written
+ * into them, whatever the encoding (ASCII, BINARY, 5.1 offsets). */
+static void
+vtk_import_good(void **state)
+{
+	vx_tetmesh m;
+	vx_tetimport_info info;
+	vx_tetimport_opt opt = { NULL, 0 };
+	vx_err e = { 0, "" };
+
+	(void)state;
+	/* ASCII, first one-component point array ("dens ity", escaped) */
+	assert_int_equal(vx_tetmesh_import_mem(&m, vtk_ascii,
+	    sizeof vtk_ascii - 1, NULL, &info, &e), 0);
+	check_two_tets(&m);
+	assert_memory_equal(m.val, vtk_vals, sizeof vtk_vals);
+	assert_string_equal(m.scalar, "dens ity");
+	assert_int_equal(info.format, VX_TETFMT_VTK_ASCII);
+	assert_int_equal(info.ncell, 3);
+	assert_int_equal(info.nskip_lower, 1);
+	assert_int_equal(info.narray, 2);
+	assert_true(m.vmin == -2 && m.vmax == 300);
+	vx_tetmesh_free(&m);
+	/* a FIELD array by name */
+	opt.scalar = "temp";
+	assert_int_equal(vx_tetmesh_import_vtk(&m, vtk_ascii,
+	    sizeof vtk_ascii - 1, &opt, NULL, &e), 0);
+	for (int i = 0; i < 5; i++)
+		assert_true(m.val[i] == 10 + i);
+	vx_tetmesh_free(&m);
+	/* BINARY: the multi-component array is passed over */
+	bbuf b = vtk_binary();
+	assert_int_equal(vx_tetmesh_import_mem(&m, b.p, b.n, NULL, &info, &e),
+	    0);
+	check_two_tets(&m);
+	assert_memory_equal(m.val, vtk_vals, sizeof vtk_vals);
+	assert_string_equal(m.scalar, "density");
+	assert_int_equal(info.format, VX_TETFMT_VTK_BINARY);
+	vx_tetmesh_free(&m);
+	free(b.p);
+	/* 5.1: OFFSETS and CONNECTIVITY */
+	static const char v51[] =
+	    "# vtk DataFile Version 5.1\nx\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+	    "POINTS 5 float\n0 0 0 1 0 0 0 1 0 0 0 1 1 1 1\n"
+	    "METADATA\nINFORMATION 0\n\n"
+	    "CELLS 4 11\nOFFSETS vtktypeint64\n0 4 8 11\n"
+	    "CONNECTIVITY vtktypeint64\n0 1 2 3 1 2 3 4 0 1 2\n"
+	    "CELL_TYPES 3\n10 10 5\n"
+	    "POINT_DATA 5\nSCALARS s float 1\nLOOKUP_TABLE default\n"
+	    "0.5 1.5 -2 300 4.25\n";
+	assert_int_equal(vx_tetmesh_import_mem(&m, v51, sizeof v51 - 1, NULL,
+	    &info, &e), 0);
+	check_two_tets(&m);
+	assert_memory_equal(m.val, vtk_vals, sizeof vtk_vals);
+	assert_int_equal(info.nskip_lower, 1);
+	vx_tetmesh_free(&m);
+}
+
+/* Replace the first occurrence of `from` in src by `to`; the result lives
+ * in one of 32 static buffers used in turn. */
+static const char *
+edit(const char *src, const char *from, const char *to)
+{
+	static char out[32][4096];
+	static int next;
+	char *o = out[next++ % 32];
+	const char *p = strstr(src, from);
+	assert_non_null(p);
+	snprintf(o, sizeof out[0], "%.*s%s%s", (int)(p - src), src, to,
+	    p + strlen(from));
+	return o;
+}
+
+/* Oracle: each malformed or unsupported file is refused with VX_EDATA and a
+ * message naming the problem; the skip option turns the unsupported volume
+ * cell into a counted skip. */
+static void
+vtk_import_bad(void **state)
+{
+	struct { const char *what, *text; size_t cut; const char *msg; } t[] = {
+		{ "truncated points", vtk_ascii, 150, "truncated" },
+		{ "index out of range", NULL, 0, "refers to point 9 of 5" },
+		{ "count larger than the data", NULL, 0, "truncated: POINTS" },
+		{ "hexahedron", NULL, 0, "hexahedron (type 12)" },
+		{ "unknown cell type", NULL, 0, "unknown cell type 200" },
+		{ "no scalars", NULL, 0, "no point array named 'nope'" },
+		{ "polydata", NULL, 0, "dataset POLYDATA is not supported" },
+		{ "NaN coordinate", NULL, 0, "point 1 has a NaN coordinate" },
+		{ "cell list overrun", NULL, 0, "runs past" },
+		{ "cell size mismatch", NULL, 0, "CELLS claims 15 entries" },
+		{ "not vtk", "hello", 0, "unknown mesh format" },
+		{ "tetra with 3 points", NULL, 0, "a tetra with 3 points" },
+		{ "bad number", NULL, 0, "'1x' is not a number" },
+		{ "point data count", NULL, 0, "POINT_DATA has a count" },
+		{ "huge cells", NULL, 0, "truncated: CELLS" },
+	};
+	vx_tetimport_opt opt = { NULL, 0 };
+
+	(void)state;
+	t[1].text = edit(vtk_ascii, "4 1 2 3 4", "4 1 2 3 9");
+	t[2].text = edit(vtk_ascii, "POINTS 5 float", "POINTS 50000 float");
+	t[3].text = edit(vtk_ascii, "10\n10\n5", "10\n12\n5");
+	t[4].text = edit(vtk_ascii, "10\n10\n5", "10\n200\n5");
+	t[5].text = vtk_ascii;
+	t[6].text = edit(vtk_ascii, "UNSTRUCTURED_GRID", "POLYDATA");
+	t[7].text = edit(vtk_ascii, "0 0 0  1 0 0", "0 0 0  nan 0 0");
+	t[8].text = edit(vtk_ascii, "3 0 1 2\n", "9 0 1 2\n");
+	t[9].text = edit(vtk_ascii, "CELLS 3 14", "CELLS 3 15");
+	t[9].text = edit(t[9].text, "3 0 1 2\n", "3 0 1 2 0\n");
+	t[11].text = edit(vtk_ascii, "4 0 1 2 3\n4 1", "3 0 1 2 3\n4 1");
+	t[11].text = edit(t[11].text, "CELLS 3 14\n", "CELLS 3 14\n");
+	t[12].text = edit(vtk_ascii, "0 1 0\n", "0 1x 0\n");
+	t[13].text = edit(vtk_ascii, "POINT_DATA 5", "POINT_DATA 4");
+	t[14].text = edit(vtk_ascii, "CELLS 3 14", "CELLS 3 1400000");
+	for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+		vx_tetmesh m;
+		vx_err e = { 0, "" };
+		size_t n = t[i].cut ? t[i].cut : strlen(t[i].text);
+		/* a copy of exactly n bytes, so reading past them is caught */
+		char *c = malloc(n);
+		memcpy(c, t[i].text, n);
+		opt.scalar = i == 5 ? "nope" : NULL;
+		int rc = vx_tetmesh_import_mem(&m, c, n, &opt, NULL, &e);
+		if (rc != VX_EDATA || strstr(e.msg, t[i].msg) == NULL)
+			fail_msg("%s: rc %d, message '%s'", t[i].what, rc, e.msg);
+		assert_null(m.pts);
+		free(c);
+	}
+	/* the hexahedron skipped on request */
+	vx_tetmesh m;
+	vx_tetimport_info info;
+	vx_err e = { 0, "" };
+	opt.scalar = NULL;
+	opt.skip_volume_cells = 1;
+	assert_int_equal(vx_tetmesh_import_mem(&m, t[3].text,
+	    strlen(t[3].text), &opt, &info, &e), 0);
+	assert_int_equal(m.ntet, 1);
+	assert_int_equal(info.nskip_volume, 1);
+	assert_int_equal(info.nskip_lower, 1);
+	vx_tetmesh_free(&m);
+	/* binary: every truncation is refused, none reads past the end */
+	bbuf b = vtk_binary();
+	for (size_t n = 0; n < b.n - 1; n += 7) {
+		char *c = malloc(n + 1);
+		memcpy(c, b.p, n);
+		int rc = vx_tetmesh_import_mem(&m, c, n, NULL, NULL, &e);
+		assert_int_equal(rc, VX_EDATA);
+		free(c);
+	}
+	free(b.p);
+}
+
+static const char gmsh2[] =
+    "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
+    "$PhysicalNames\n1\n3 1 \"fluid region\"\n$EndPhysicalNames\n"
+    "$Nodes\n5\n"
+    "10 0 0 0\n20 1 0 0\n30 0 1 0\n40 0 0 1\n50 1 1 1\n"
+    "$EndNodes\n"
+    "$Elements\n4\n"
+    "1 15 2 0 1 10\n"
+    "2 2 2 0 1 10 20 30\n"
+    "3 4 2 1 1 10 20 30 40\n"
+    "4 4 3 1 1 0 20 30 40 50\n"
+    "$EndElements\n"
+    "$NodeData\n1\n\"velocity\"\n1\n0.0\n3\n0\n3\n1\n10 1 2 3\n"
+    "$EndNodeData\n"
+    "$NodeData\n1\n\"pressure\"\n1\n0.0\n3\n0\n1\n5\n"
+    "10 0.5\n20 1.5\n30 -2\n40 300\n50 4.25\n"
+    "$EndNodeData\n";
+
+static const char gmsh4[] =
+    "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+    "$Entities\n1 0 0 1\n1 0 0 0 0\n1 0 0 0 1 1 1 0 0\n$EndEntities\n"
+    "$Nodes\n2 5 1 5\n"
+    "0 1 0 1\n1\n0 0 0\n"
+    "3 1 1 4\n2\n3\n4\n5\n1 0 0 0.1 0.2 0.3\n0 1 0 0 0 0\n0 0 1 0 0 0\n"
+    "1 1 1 0 0 0\n"
+    "$EndNodes\n"
+    "$Elements\n2 3 1 3\n"
+    "2 1 2 1\n1 1 2 3\n"
+    "3 1 4 2\n2 1 2 3 4\n3 2 3 4 5\n"
+    "$EndElements\n"
+    "$NodeData\n1\n\"pressure\"\n1\n0.0\n3\n0\n1\n5\n"
+    "1 0.5\n2 1.5\n3 -2\n4 300\n5 4.25\n"
+    "$EndNodeData\n";
+
+/* Oracle: the gmsh files (node tags 10..50 in v2, parametric nodes and
+ * blocks in v4.1) decode to the mesh of vtk_ascii; points and triangles are
+ * skipped and counted; the multi-component view is passed over. */
+static void
+gmsh_import_good(void **state)
+{
+	vx_tetmesh m;
+	vx_tetimport_info info;
+	vx_err e = { 0, "" };
+
+	(void)state;
+	assert_int_equal(vx_tetmesh_import_mem(&m, gmsh2, sizeof gmsh2 - 1,
+	    NULL, &info, &e), 0);
+	check_two_tets(&m);
+	assert_memory_equal(m.val, vtk_vals, sizeof vtk_vals);
+	assert_string_equal(m.scalar, "pressure");
+	assert_int_equal(info.format, VX_TETFMT_GMSH2);
+	assert_int_equal(info.ncell, 4);
+	assert_int_equal(info.nskip_lower, 2);
+	vx_tetmesh_free(&m);
+	assert_int_equal(vx_tetmesh_import_mem(&m, gmsh4, sizeof gmsh4 - 1,
+	    NULL, &info, &e), 0);
+	check_two_tets(&m);
+	assert_memory_equal(m.val, vtk_vals, sizeof vtk_vals);
+	assert_int_equal(info.format, VX_TETFMT_GMSH4);
+	assert_int_equal(info.ncell, 3);
+	assert_int_equal(info.nskip_lower, 1);
+	vx_tetmesh_free(&m);
+}
+
+static void
+gmsh_import_bad(void **state)
+{
+	struct { const char *what, *text; size_t cut; const char *msg; } t[] = {
+		{ "truncated", gmsh2, 200, "truncated" },
+		{ "undefined node", NULL, 0, "undefined node 60" },
+		{ "binary", NULL, 0, "binary .msh files are not supported" },
+		{ "version 3", NULL, 0, "version 3 is not supported" },
+		{ "hexahedron", NULL, 0, "8-node hexahedron" },
+		{ "no node data", NULL, 0, "no one-component $NodeData" },
+		{ "missing value", NULL, 0, "node 50 of tetrahedron 1 has no value" },
+		{ "count larger than the data", NULL, 0, "count out of range" },
+		{ "unknown element type", NULL, 0, "unknown element type 77" },
+		{ "duplicate node", NULL, 0, "node 20 is defined twice" },
+		{ "v4 block overrun", NULL, 0, "more elements than announced" },
+		{ "unterminated section", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
+		    "$Comments\nhello\n", 0, "has no end" },
+		{ "NaN coordinate", NULL, 0, "point 1 has a NaN coordinate" },
+	};
+
+	(void)state;
+	t[1].text = edit(gmsh2, "1 0 20 30 40 50", "1 0 20 30 40 60");
+	t[2].text = edit(gmsh2, "2.2 0 8", "2.2 1 8");
+	t[3].text = edit(gmsh2, "2.2 0 8", "3 0 8");
+	t[4].text = edit(gmsh2, "2 2 2 0 1 10 20 30", "2 5 2 0 1 10 20 30 40 "
+	    "50 10 20 30");
+	t[5].text = edit(gmsh2, "\"pressure\"\n1\n0.0\n3\n0\n1\n5\n",
+	    "\"pressure\"\n1\n0.0\n3\n0\n2\n5\n");
+	t[5].text = edit(t[5].text, "10 0.5\n20 1.5\n30 -2\n40 300\n50 4.25\n",
+	    "10 0.5 0\n20 1.5 0\n30 -2 0\n40 300 0\n50 4.25 0\n");
+	t[6].text = edit(gmsh2, "1\n5\n10 0.5", "1\n4\n10 0.5");
+	t[6].text = edit(t[6].text, "50 4.25\n", "");
+	t[7].text = edit(gmsh2, "$Nodes\n5\n", "$Nodes\n5000\n");
+	t[8].text = edit(gmsh2, "1 15 2 0 1 10", "1 77 2 0 1 10");
+	t[9].text = edit(gmsh2, "30 0 1 0", "20 0 1 0");
+	t[10].text = edit(gmsh4, "3 1 4 2\n", "3 1 4 3\n");
+	t[12].text = edit(gmsh2, "20 1 0 0", "20 nan 0 0");
+	for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+		vx_tetmesh m;
+		vx_err e = { 0, "" };
+		size_t n = t[i].cut ? t[i].cut : strlen(t[i].text);
+		char *c = malloc(n);
+		memcpy(c, t[i].text, n);
+		int rc = vx_tetmesh_import_mem(&m, c, n, NULL, NULL, &e);
+		if (rc != VX_EDATA || strstr(e.msg, t[i].msg) == NULL)
+			fail_msg("%s: rc %d, message '%s'", t[i].what, rc, e.msg);
+		assert_null(m.pts);
+		free(c);
+	}
+	/* every truncation of both files is refused */
+	const char *files[2] = { gmsh2, gmsh4 };
+	for (int f = 0; f < 2; f++)
+		for (size_t n = 0; n < strlen(files[f]) - 14; n += 5) {
+			vx_tetmesh m;
+			vx_err e = { 0, "" };
+			char *c = malloc(n + 1);
+			memcpy(c, files[f], n);
+			assert_int_equal(vx_tetmesh_import_mem(&m, c, n, NULL,
+			    NULL, &e), VX_EDATA);
+			free(c);
+		}
+}
+
+/* Oracle: a gzip-compressed file on disk imports like the plain buffer,
+ * named after the file; a missing file is VX_ENOINPUT; the imported mesh
+ * round-trips through its TETM chunk. */
+static void
+import_path_gzip(void **state)
+{
+	char dir[] = "/tmp/vxtetXXXXXX", path[256];
+	vx_tetmesh m, b;
+	vx_err e = { 0, "" };
+	vx_chunk c;
+
+	(void)state;
+	assert_non_null(mkdtemp(dir));
+	snprintf(path, sizeof path, "%s/fin.grid.vtk.gz", dir);
+	gzFile z = gzopen(path, "wb9");
+	assert_non_null(z);
+	assert_int_equal(gzwrite(z, vtk_ascii, sizeof vtk_ascii - 1),
+	    (int)(sizeof vtk_ascii - 1));
+	assert_int_equal(gzclose(z), Z_OK);
+	assert_int_equal(vx_tetmesh_import(&m, path, NULL, NULL, &e), 0);
+	check_two_tets(&m);
+	assert_string_equal(m.name, "fin");
+	assert_int_equal(vx_tetmesh_to_chunk(&m, 6, &c, &e), 0);
+	assert_int_equal(vx_tetmesh_from_chunk(&b, &c, &e), 0);
+	assert_memory_equal(b.val, m.val, sizeof vtk_vals);
+	assert_string_equal(b.name, "fin");
+	assert_string_equal(b.scalar, "dens ity");
+	vx_chunk_free(&c);
+	vx_tetmesh_free(&b);
+	vx_tetmesh_free(&m);
+	remove(path);
+	assert_int_equal(vx_tetmesh_import(&m, path, NULL, NULL, &e),
+	    VX_ENOINPUT);
+	rmdir(dir);
+}
+
 int
 main(void)
 {
@@ -1050,6 +1545,11 @@ main(void)
 		cmocka_unit_test(leaf_grid_brute),
 		cmocka_unit_test(leaf_grid_nearest),
 		cmocka_unit_test(leaf_dims_shape),
+		cmocka_unit_test(vtk_import_good),
+		cmocka_unit_test(vtk_import_bad),
+		cmocka_unit_test(gmsh_import_good),
+		cmocka_unit_test(gmsh_import_bad),
+		cmocka_unit_test(import_path_gzip),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
