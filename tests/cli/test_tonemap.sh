@@ -269,6 +269,15 @@ tonemap --compare "$T/z.pfm" --diff "$T/sd.png" --diff-map signed --diff-scale 2
 check_eq "signed diff" "$(py png "$T/sd.png")" \
     "2 2 3 8 255 255 255 236 192 201 255 255 255 255 255 255"
 
+# an output path that is not a regular file (here a FIFO; /dev/null alike)
+# is written in place, not replaced by the atomic rename
+mkfifo "$T/fifo"
+cat "$T/fifo" >"$T/fromfifo" & catpid=$!
+tonemap -o "$T/fifo" "$T/g.pfm"; rc=$?
+if [ -p "$T/fifo" ]; then wait $catpid; else kill $catpid; wait $catpid; fi
+check_eq "output to a FIFO, written in place" \
+    "$rc $(test -p "$T/fifo" && echo fifo) $(py png "$T/fromfifo" 2>&1 | cut -d' ' -f1-4)" "0 fifo 4 1 1 8"
+
 # ---- errors: one line, the right code, nothing on stdout, no file ----
 printf 'hello' >"$T/junk"
 expect_fail "missing input" 66 "nope.pfm" tonemap -o "$T/x.png" "$T/nope.pfm"

@@ -163,6 +163,7 @@ tool_read_stream(vx_stream *s, const char *path)
 void
 tool_out_open(tool_out *o, const char *path)
 {
+	struct stat st;
 	mode_t um;
 	int fd;
 
@@ -176,6 +177,12 @@ tool_out_open(tool_out *o, const char *path)
 	if (strlen(path) + 16 >= sizeof o->path)
 		tool_fail(VX_EUSAGE, "%s: path too long", path);
 	snprintf(o->path, sizeof o->path, "%s", path);
+	if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
+		if ((o->f = fopen(path, "wb")) == NULL)
+			tool_fail(VX_ECANTCREAT, "%s: %s", path, strerror(errno));
+		o->is_direct = 1;
+		return;
+	}
 	snprintf(o->tmp, sizeof o->tmp, "%s.tmpXXXXXX", path);
 	if ((fd = mkstemp(o->tmp)) < 0)
 		tool_fail(VX_ECANTCREAT, "%s: %s", path, strerror(errno));
@@ -199,7 +206,8 @@ tool_out_abort(tool_out *o)
 		return;
 	fclose(o->f);
 	o->f = NULL;
-	unlink(o->tmp);
+	if (!o->is_direct)
+		unlink(o->tmp);
 	if (live_out == o)
 		live_out = NULL;
 }
@@ -213,6 +221,18 @@ tool_out_close(tool_out *o)
 		return;
 	}
 	live_out = NULL;
+	if (o->is_direct) {
+		int bad = fflush(o->f) != 0 || ferror(o->f), err = errno;
+
+		if (fclose(o->f) != 0 && !bad) {
+			bad = 1;
+			err = errno;
+		}
+		o->f = NULL;
+		if (bad)
+			tool_fail(VX_EIO, "write %s: %s", o->path, strerror(err));
+		return;
+	}
 	if (fflush(o->f) != 0 || ferror(o->f) || fsync(fileno(o->f)) != 0) {
 		int err = errno;
 

@@ -42,7 +42,9 @@ void tool_write_stream(vx_stream *s, const char *path);
 /* tool_history_line: "name version arg1 arg2 ..." (static buffer). */
 const char *tool_history_line(void);
 
-/* Atomic output files: tool_out_open returns a FILE for path ("-": stdout);
+/* Atomic output files: tool_out_open returns a FILE for path ("-": stdout;
+ * an existing path that is not a regular file, such as /dev/null or a FIFO,
+ * is written directly, since renaming over it would replace the node);
  * tool_out_close flushes, checks, closes and renames into place, or removes
  * the temporary and exits on error.  tool_out_abort removes the temporary. */
 typedef struct tool_out {
@@ -50,6 +52,8 @@ typedef struct tool_out {
 	char path[4096];
 	char tmp[4096];
 	int is_stdout;
+	int is_direct;   /* path is not a regular file (device, FIFO): written
+	                    in place, never replaced by a rename */
 } tool_out;
 
 void tool_out_open(tool_out *o, const char *path);
