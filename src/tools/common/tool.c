@@ -75,11 +75,13 @@ tool_usage_fail(const char *usage, const char *fmt, ...)
 {
 	va_list ap;
 
+	/* one line, like every other error; the synopsis is in --help */
+	(void)usage;
 	fprintf(stderr, "%s: ", tool_name);
 	va_start(ap, fmt);
 	vfprintf(stderr, fmt, ap);
 	va_end(ap);
-	fprintf(stderr, "\nusage: %s\n", usage);
+	fprintf(stderr, " (see %s --help)\n", tool_name);
 	die(VX_EUSAGE);
 }
 
