@@ -75,13 +75,16 @@ tool_usage_fail(const char *usage, const char *fmt, ...)
 {
 	va_list ap;
 
-	/* one line, like every other error; the synopsis is in --help */
-	(void)usage;
+	/* one line, like every other error, for scripts and logs; a person
+	 * at a terminal also gets the synopsis */
 	fprintf(stderr, "%s: ", tool_name);
 	va_start(ap, fmt);
 	vfprintf(stderr, fmt, ap);
 	va_end(ap);
-	fprintf(stderr, " (see %s --help)\n", tool_name);
+	if (isatty(STDERR_FILENO))
+		fprintf(stderr, "\nusage: %s\n", usage);
+	else
+		fprintf(stderr, " (see %s --help)\n", tool_name);
 	die(VX_EUSAGE);
 }
 

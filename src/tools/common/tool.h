@@ -21,8 +21,9 @@ _Noreturn void tool_fail(int code, const char *fmt, ...)
 	__attribute__((format(printf, 2, 3)));
 /* tool_fail_err: print "name: e->msg" and exit with e->code. */
 _Noreturn void tool_fail_err(const vx_err *e);
-/* tool_usage_fail: print "name: message (see name --help)", exit 64.
- * One line, like every error; usage is kept for the call sites. */
+/* tool_usage_fail: print "name: message (see name --help)", exit 64: one
+ * line, like every error; when stderr is a terminal, the message and then
+ * the usage synopsis instead. */
 _Noreturn void tool_usage_fail(const char *usage, const char *fmt, ...)
 	__attribute__((format(printf, 2, 3)));
 
