@@ -1,0 +1,443 @@
+/* raycast.c: the ray-cast isosurface renderer (see vx_raycast.h). */
+#include "vx_raycast.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "vx_camera.h"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+/* What every thread reads. */
+typedef struct rc_shared {
+	const vx_scene *s;
+	const vx_plan *p;
+	const vx_grid *g;
+	const vx_grid *const *tex;
+	const vx_raycast_opts *o;
+	vx_iso_tracer tr;
+	float iso[VX_ISO_MAX];        /* drawn isovalues */
+	int surf[VX_ISO_MAX];         /* iso index -> scene surface index */
+	int niso;
+	int composite;
+	double tex_lo[VX_SCENE_MAX_SURFACES], tex_hi[VX_SCENE_MAX_SURFACES];
+} rc_shared;
+
+/* What each thread owns. */
+typedef struct rc_local {
+	vx_iso_stats st;
+	uint64_t primary, shadow, shaded, covered;
+	uint64_t cyc_total, cyc_shade, cyc_shadow;
+} rc_local;
+
+void
+vx_raycast_opts_init(vx_raycast_opts *o)
+{
+	memset(o, 0, sizeof *o);
+	o->solver = VX_CELL_EXACT;
+	o->aa = 1;
+	o->tile = 16;
+	o->shadow_offset = 1e-3;
+}
+
+static double
+dot3(const double a[3], const double b[3])
+{
+	return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void
+normalize3(double a[3])
+{
+	double l = sqrt(dot3(a, a));
+
+	if (l > 0 && isfinite(l)) {
+		a[0] /= l;
+		a[1] /= l;
+		a[2] /= l;
+	}
+}
+
+/* sample: the trilinear value of g at world point w, clamped to the box;
+ * NaN where a corner is not finite. */
+static double
+sample(const vx_grid *g, const double w[3])
+{
+	double p[3], l[3];
+	int64_t i[3];
+	float c[8];
+	int a;
+
+	vx_world_to_index(g, w, p);
+	for (a = 0; a < 3; a++) {
+		double hi = (double)(g->dims[a] - 1);
+
+		if (!(p[a] >= 0))
+			p[a] = 0;
+		if (p[a] > hi)
+			p[a] = hi;
+		i[a] = (int64_t)p[a];
+		if (i[a] > g->dims[a] - 2)
+			i[a] = g->dims[a] - 2;
+		if (i[a] < 0)
+			i[a] = 0;
+		l[a] = p[a] - (double)i[a];
+		if (g->dims[a] == 1)
+			l[a] = 0;
+	}
+	/* a dimension of 1 has no cells: fetch with x+1 clamped by the guard
+	 * entry of the offset tables */
+	vx_grid_cell(g, i[0], i[1], i[2], c);
+	return vx_cell_trilinear(c, l);
+}
+
+typedef struct shadow_ctx {
+	const rc_shared *S;
+	double T;                 /* transmission so far */
+} shadow_ctx;
+
+static int
+shadow_hit(void *ctx, const vx_iso_hit *h)
+{
+	shadow_ctx *x = ctx;
+	const vx_surface *sf = &x->S->s->surface[x->S->surf[h->surface]];
+	double a = x->S->composite ? sf->m.opacity : 1.0;
+
+	x->T *= 1.0 - a;
+	return x->T <= 1e-4;      /* opaque enough: stop */
+}
+
+/* light_dir: unit direction from world point P toward light k, its
+ * distance (INFINITY for directional lights) and radiance. */
+static void
+light_at(const rc_shared *S, int k, const double P[3], double L[3],
+    double *dist, double rad[3])
+{
+	const vx_light *lt = &S->s->light[k];
+	const vx_camera *cam = &S->s->camera;
+	double scale = lt->intensity;
+	int a, point = 0;
+
+	switch (lt->type) {
+	case VX_LIGHT_POINT:
+		for (a = 0; a < 3; a++)
+			L[a] = lt->position[a] - P[a];
+		point = 1;
+		break;
+	case VX_LIGHT_DIRECTIONAL:
+		for (a = 0; a < 3; a++)
+			L[a] = -lt->direction[a];
+		break;
+	case VX_LIGHT_HEADLIGHT:
+	default:
+		if (cam->projection == VX_ORTHOGRAPHIC) {
+			for (a = 0; a < 3; a++)
+				L[a] = -cam->fwd[a];
+		} else {
+			for (a = 0; a < 3; a++)
+				L[a] = cam->o[a] - P[a];
+			point = 1;
+		}
+		break;
+	}
+	*dist = point ? sqrt(dot3(L, L)) : INFINITY;
+	normalize3(L);
+	if (point && lt->falloff == VX_FALLOFF_INVERSE_SQUARE && *dist > 0)
+		scale /= *dist * *dist;
+	for (a = 0; a < 3; a++)
+		rad[a] = lt->color[a] * scale;
+}
+
+/* shade: outgoing radiance at hit h seen along world direction dw. */
+static void
+shade(const rc_shared *S, rc_local *L, const vx_iso_hit *h,
+    const double dw[3], double col[3], double nout[3])
+{
+	const vx_scene *s = S->s;
+	const vx_plan *p = S->p;
+	int k = S->surf[h->surface], a, l;
+	const vx_material *m = &s->surface[k].m;
+	double n[3], P[3], V[3], alb[3], amb[3];
+
+	vx_iso_normal(S->g, h, dw, n);
+	memcpy(nout, n, sizeof n);
+	vx_index_to_world(S->g, h->p, P);
+	for (a = 0; a < 3; a++)
+		V[a] = -dw[a];
+	normalize3(V);
+	if (p->texture_on[k] && S->tex[k] != NULL) {
+		double v = sample(S->tex[k], P);
+		double t = (v - S->tex_lo[k]) / (S->tex_hi[k] - S->tex_lo[k]);
+
+		if (!isfinite(t))
+			t = 0;
+		vx_colormap_eval(m->colormap, t, alb);
+	} else
+		memcpy(alb, m->color, sizeof alb);
+	for (a = 0; a < 3; a++) {
+		amb[a] = s->ambient[a] * s->ambient_intensity;
+		col[a] = amb[a] * alb[a];
+	}
+	for (l = 0; l < s->nlight; l++) {
+		double Ld[3], rad[3], dist, ndl, vis = 1, spec = 0;
+
+		if (!p->light_on[l])
+			continue;
+		light_at(S, l, P, Ld, &dist, rad);
+		ndl = dot3(n, Ld);
+		if (!(ndl > 0))
+			continue;
+		if (p->shadow_on[l]) {
+			double oi[3], di[3], ni[3];
+			shadow_ctx x = { S, 1.0 };
+			uint64_t c0 = S->o->timing ? vx_cycles() : 0;
+
+			/* start a small step off the surface, on the lit side */
+			vx_world_to_index_dir(S->g, n, ni);
+			normalize3(ni);
+			for (a = 0; a < 3; a++)
+				oi[a] = h->p[a] + S->o->shadow_offset * ni[a];
+			vx_world_to_index_dir(S->g, Ld, di);
+			L->shadow++;
+			vx_iso_trace(&S->tr, oi, di, 0, dist, S->iso, S->niso,
+			    shadow_hit, &x, &L->st);
+			vis = x.T;
+			if (S->o->timing)
+				L->cyc_shadow += vx_cycles() - c0;
+			if (vis <= 1e-4)
+				continue;
+		}
+		if (p->specular && m->ks > 0) {
+			double H[3];
+
+			for (a = 0; a < 3; a++)
+				H[a] = Ld[a] + V[a];
+			normalize3(H);
+			double ndh = dot3(n, H);
+			if (ndh > 0)
+				spec = m->ks * pow(ndh, m->shininess);
+		}
+		for (a = 0; a < 3; a++)
+			col[a] += vis * rad[a] * (m->kd * alb[a] * ndl + spec);
+	}
+	L->shaded++;
+}
+
+typedef struct layer_ctx {
+	const rc_shared *S;
+	rc_local *L;
+	const double *dw;
+	double C[3], A;
+	int first;
+	double depth, n[3];
+} layer_ctx;
+
+static int
+layer(void *ctx, const vx_iso_hit *h)
+{
+	layer_ctx *x = ctx;
+	const rc_shared *S = x->S;
+	const vx_surface *sf = &S->s->surface[S->surf[h->surface]];
+	double a = S->composite ? sf->m.opacity : 1.0, col[3], n[3];
+	uint64_t c0 = S->o->timing ? vx_cycles() : 0;
+	int i;
+
+	shade(S, x->L, h, x->dw, col, n);
+	if (S->o->timing)
+		x->L->cyc_shade += vx_cycles() - c0;
+	if (x->first) {
+		x->first = 0;
+		x->depth = h->t;
+		memcpy(x->n, n, sizeof n);
+	}
+	for (i = 0; i < 3; i++)
+		x->C[i] += (1 - x->A) * a * col[i];
+	x->A += (1 - x->A) * a;
+	return x->A >= 0.9999;
+}
+
+/* pixel: one camera sample; returns 1 if it hit a surface. */
+static int
+pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
+    double *depth, double n[3])
+{
+	double ow[3], dw[3], oi[3], di[3];
+	layer_ctx x;
+
+	memset(&x, 0, sizeof x);
+	x.S = S;
+	x.L = L;
+	x.dw = dw;
+	x.first = 1;
+	x.depth = INFINITY;
+	vx_camera_ray(&S->s->camera, px, py, ow, dw);
+	vx_world_to_index(S->g, ow, oi);
+	vx_world_to_index_dir(S->g, dw, di);
+	L->primary++;
+	vx_iso_trace(&S->tr, oi, di, 0, INFINITY, S->iso, S->niso, layer, &x,
+	    &L->st);
+	for (int i = 0; i < 3; i++)
+		out[i] = x.C[i] + (1 - x.A) * S->s->background[i];
+	out[3] = x.A;
+	*depth = x.depth;
+	memcpy(n, x.n, sizeof x.n);
+	return !x.first;
+}
+
+static void
+add_local(vx_raycast_stats *st, const rc_local *L, double *cyc)
+{
+	int l;
+
+	st->primary += L->primary;
+	st->shadow += L->shadow;
+	st->cells += L->st.cells;
+	st->roots += L->st.roots;
+	st->hits += L->st.hits;
+	st->nonfinite += L->st.nonfinite;
+	st->shaded += L->shaded;
+	st->covered += L->covered;
+	for (l = 0; l <= VX_MACRO_MAXLEV; l++)
+		st->macro[l] += L->st.trav.macro[l];
+	cyc[0] += (double)L->cyc_total;
+	cyc[1] += (double)L->st.cyc_isect;
+	cyc[2] += (double)(L->cyc_shade - L->cyc_shadow);
+}
+
+int
+vx_raycast_render(const vx_scene *s, const vx_plan *p, const vx_grid *g,
+    const vx_macro *m, const vx_grid *const *tex, const vx_raycast_opts *o,
+    vx_image *color, vx_image *depth, vx_image *normal, vx_raycast_stats *st,
+    vx_err *e)
+{
+	const vx_camera *cam = &s->camera;
+	rc_shared S;
+	vx_raycast_stats local_st;
+	double cyc[3] = { 0, 0, 0 };
+	struct timespec t0, t1;
+	int k, tile, ntx, nty, ntile, nthr, rc;
+	int aa = o->aa >= 1 ? o->aa : 1;
+
+	if (st == NULL)
+		st = &local_st;
+	memset(st, 0, sizeof *st);
+	if (!cam->ready)
+		return vx_err_set(e, VX_EINTERNAL, "raycast: camera not resolved");
+	memset(&S, 0, sizeof S);
+	S.s = s;
+	S.p = p;
+	S.g = g;
+	S.tex = tex;
+	S.o = o;
+	S.tr.g = g;
+	S.tr.m = m;
+	S.tr.flat = o->flat || m == NULL;
+	S.tr.solver = o->solver;
+	S.composite = p->composite;
+	for (k = 0; k < s->nsurface && S.niso < VX_ISO_MAX; k++) {
+		if (!p->surface_on[k])
+			continue;
+		S.iso[S.niso] = (float)s->surface[k].iso;
+		S.surf[S.niso++] = k;
+		if (p->texture_on[k] && tex != NULL && tex[k] != NULL) {
+			const vx_material *mt = &s->surface[k].m;
+
+			S.tex_lo[k] = mt->has_window ? mt->window[0] : tex[k]->vmin;
+			S.tex_hi[k] = mt->has_window ? mt->window[1] : tex[k]->vmax;
+		}
+	}
+	if (S.niso == 0)
+		return vx_err_set(e, VX_EDATA, "raycast: no surface to draw "
+		    "(give --iso or a surface line in the scene)");
+	if ((rc = vx_image_alloc(color, cam->w, cam->h, 4, e)) != 0)
+		return rc;
+	snprintf(color->name, sizeof color->name, "color");
+	if (depth != NULL) {
+		if ((rc = vx_image_alloc(depth, cam->w, cam->h, 1, e)) != 0)
+			return rc;
+		snprintf(depth->name, sizeof depth->name, "depth");
+	}
+	if (normal != NULL) {
+		if ((rc = vx_image_alloc(normal, cam->w, cam->h, 3, e)) != 0)
+			return rc;
+		snprintf(normal->name, sizeof normal->name, "normal");
+	}
+	tile = o->tile > 0 ? o->tile : 16;
+	ntx = (cam->w + tile - 1) / tile;
+	nty = (cam->h + tile - 1) / tile;
+	ntile = ntx * nty;
+#ifdef _OPENMP
+	nthr = o->nthreads > 0 ? o->nthreads : omp_get_num_procs();
+#else
+	nthr = 1;
+#endif
+	rc_local *loc = calloc((size_t)nthr, sizeof *loc);
+	if (loc == NULL)
+		return vx_err_set(e, VX_ENOMEM, "raycast: out of memory");
+	for (k = 0; k < nthr; k++)
+		loc[k].st.timing = o->timing;
+	clock_gettime(CLOCK_MONOTONIC, &t0);
+#ifdef _OPENMP
+#pragma omp parallel for num_threads(nthr) schedule(dynamic, 1)
+#endif
+	for (int ti = 0; ti < ntile; ti++) {
+#ifdef _OPENMP
+		rc_local *L = &loc[omp_get_thread_num()];
+#else
+		rc_local *L = &loc[0];
+#endif
+		int x0 = (ti % ntx) * tile, y0 = (ti / ntx) * tile;
+		int x1 = x0 + tile < cam->w ? x0 + tile : cam->w;
+		int y1 = y0 + tile < cam->h ? y0 + tile : cam->h;
+		uint64_t c0 = o->timing ? vx_cycles() : 0;
+
+		for (int y = y0; y < y1; y++)
+			for (int x = x0; x < x1; x++) {
+				double acc[4] = { 0, 0, 0, 0 }, px[4], dep, n[3];
+				double best = INFINITY, bn[3] = { 0, 0, 0 };
+				int hit = 0;
+
+				for (int sy = 0; sy < aa; sy++)
+					for (int sx = 0; sx < aa; sx++) {
+						if (pixel(&S, L, x + (sx + 0.5) / aa,
+						    y + (sy + 0.5) / aa, px, &dep, n)) {
+							hit = 1;
+							if (dep < best) {
+								best = dep;
+								memcpy(bn, n, sizeof bn);
+							}
+						}
+						for (int c = 0; c < 4; c++)
+							acc[c] += px[c];
+					}
+				float *out = vx_image_pixel(color, x, y);
+				for (int c = 0; c < 4; c++)
+					out[c] = (float)(acc[c] / (aa * aa));
+				if (depth != NULL)
+					*vx_image_pixel(depth, x, y) = (float)best;
+				if (normal != NULL)
+					for (int c = 0; c < 3; c++)
+						vx_image_pixel(normal, x, y)[c] =
+						    (float)bn[c];
+				L->covered += hit;
+			}
+		if (o->timing)
+			L->cyc_total += vx_cycles() - c0;
+	}
+	clock_gettime(CLOCK_MONOTONIC, &t1);
+	for (k = 0; k < nthr; k++)
+		add_local(st, &loc[k], cyc);
+	free(loc);
+	st->seconds = (double)(t1.tv_sec - t0.tv_sec) +
+	    1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+	if (o->timing && cyc[0] > 0) {
+		st->share_isect = cyc[1] / cyc[0];
+		st->share_shade = cyc[2] / cyc[0];
+		st->share_traverse = 1 - st->share_isect - st->share_shade;
+	}
+	return 0;
+}

@@ -1,0 +1,59 @@
+/* vx_raycast.h: the ray-cast isosurface renderer (Parker et al. 1999 §4.1):
+ * one primary ray per pixel sample through the macrocell hierarchy, the
+ * analytic cell intersection, Lambert and Blinn-Phong shading from point,
+ * directional and head lights, hard shadows through the same traversal,
+ * transparent layers composited front to back in one traversal, and a second
+ * volume mapped as color onto a surface.  What is computed is what the plan
+ * (vx_plan.h, from the scene) says, no more.
+ *
+ * Output: linear RGBA radiance (alpha = coverage; color already composited
+ * over the scene's background), and on request the depth of the first hit
+ * (distance along the unit camera ray, +Inf where nothing was hit) and its
+ * world-space unit normal.  Bit-identical for any thread count. */
+#ifndef VX_RAYCAST_H
+#define VX_RAYCAST_H
+
+#include <stdint.h>
+
+#include "vx_grid.h"
+#include "vx_image.h"
+#include "vx_iso.h"
+#include "vx_macro.h"
+#include "vx_plan.h"
+#include "vx_scene.h"
+
+typedef struct vx_raycast_opts {
+	int nthreads;            /* <= 0: all cores */
+	int solver;              /* vx_cell_solver */
+	int flat;                /* 1: no hierarchy (benchmarks) */
+	int aa;                  /* samples per pixel edge (aa x aa grid), >= 1 */
+	int tile;                /* tile edge in pixels (default 16) */
+	double shadow_offset;    /* shadow-ray start offset along the normal,
+	                            in voxels (default 1e-3) */
+	int timing;              /* 1: measure the share of time per phase */
+} vx_raycast_opts;
+
+typedef struct vx_raycast_stats {
+	uint64_t primary, shadow;        /* rays */
+	uint64_t cells, roots, hits;     /* cell kernel work, all rays */
+	uint64_t macro[VX_MACRO_MAXLEV + 1];
+	uint64_t nonfinite;              /* cells skipped for NaN/Inf corners */
+	uint64_t shaded;                 /* surface points shaded */
+	uint64_t covered;                /* pixels with a hit */
+	double seconds;                  /* wall time of the render */
+	double share_traverse, share_isect, share_shade;   /* when timing */
+} vx_raycast_stats;
+
+void vx_raycast_opts_init(vx_raycast_opts *o);
+
+/* vx_raycast_render: render scene s (its camera must be resolved) as planned
+ * by p over volume g with hierarchy m (NULL: flat).  tex[k] is surface k's
+ * texture volume (NULL when p->texture_on[k] is 0).  color is allocated as
+ * w x h x 4; depth (w x h x 1) and normal (w x h x 3) when non-NULL.
+ * st may be NULL.  Errors: VX_ENOMEM, VX_EDATA (no surface to draw). */
+int vx_raycast_render(const vx_scene *s, const vx_plan *p, const vx_grid *g,
+    const vx_macro *m, const vx_grid *const *tex,
+    const vx_raycast_opts *o, vx_image *color, vx_image *depth,
+    vx_image *normal, vx_raycast_stats *st, vx_err *e);
+
+#endif

@@ -1,0 +1,369 @@
+/* mip: exact maximum-intensity projection (Parker et al. 1999 §4.3). */
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "tool.h"
+#include "vx_camera.h"
+#include "vx_grid.h"
+#include "vx_image.h"
+#include "vx_macro.h"
+#include "vx_mip.h"
+#include "vx_plan.h"
+#include "vx_scene.h"
+#include "vx_tonemap.h"
+
+static const char usage[] =
+    "mip [--scene FILE] [--size WxH] [--view NAME|AZ,EL] [--perspective]\n"
+    "    [--fov DEG] [--name VOLUME] [--window LO,HI] [--colormap NAME]\n"
+    "    [--bits 8|16] [--no-last-t] [--exhaustive] [-j N] [--stats]\n"
+    "    [--explain] [-n] [--hdr] [--depth FILE.pfm] [-o OUT] [STREAM|-]";
+
+typedef struct opts {
+	const char *in, *out, *scene, *name, *depth;
+	int bits, stats, explain, dry, hdr, lastt, exhaustive, persp;
+	int has_window;
+	double window[2];
+	vx_colormap cmap;
+	long threads;
+	int nset;
+	const char *set_name[32], *set_val[32];
+} opts;
+
+static void
+parse(opts *o, int argc, char **argv)
+{
+	enum { O_SCENE = 256, O_SIZE, O_VIEW, O_PERSP, O_FOV, O_NAME, O_WINDOW,
+	    O_CMAP, O_BITS, O_NOLAST, O_EXH, O_STATS, O_EXPLAIN, O_HDR,
+	    O_DEPTH };
+	static const struct option lo[] = {
+		{ "scene", 1, 0, O_SCENE }, { "size", 1, 0, O_SIZE },
+		{ "view", 1, 0, O_VIEW }, { "perspective", 0, 0, O_PERSP },
+		{ "fov", 1, 0, O_FOV }, { "name", 1, 0, O_NAME },
+		{ "window", 1, 0, O_WINDOW }, { "colormap", 1, 0, O_CMAP },
+		{ "bits", 1, 0, O_BITS }, { "no-last-t", 0, 0, O_NOLAST },
+		{ "exhaustive", 0, 0, O_EXH }, { "stats", 0, 0, O_STATS },
+		{ "explain", 0, 0, O_EXPLAIN }, { "dry-run", 0, 0, 'n' },
+		{ "hdr", 0, 0, O_HDR }, { "depth", 1, 0, O_DEPTH },
+		{ "output", 1, 0, 'o' }, { "threads", 1, 0, 'j' },
+		{ "help", 0, 0, 'h' }, { 0, 0, 0, 0 }
+	};
+	int c;
+
+	memset(o, 0, sizeof *o);
+	o->in = o->out = "-";
+	o->bits = 8;
+	o->lastt = 1;
+	o->cmap = VX_COLORMAP_GRAY;
+	while ((c = getopt_long(argc, argv, "o:j:nh", lo, NULL)) != -1) {
+		switch (c) {
+		case 'o': o->out = optarg; break;
+		case 'j': o->threads = tool_parse_long("-j", optarg, 0, 4096); break;
+		case 'n': o->dry = o->explain = 1; break;
+		case 'h':
+			printf("usage: %s\n", usage);
+			exit(0);
+		case O_SCENE: o->scene = optarg; break;
+		case O_SIZE: case O_VIEW: case O_FOV:
+			if (o->nset == 32)
+				tool_fail(VX_EUSAGE, "too many options");
+			o->set_name[o->nset] = c == O_SIZE ? "size" :
+			    c == O_VIEW ? "view" : "fov";
+			o->set_val[o->nset++] = optarg;
+			break;
+		case O_PERSP: o->persp = 1; break;
+		case O_NAME: o->name = optarg; break;
+		case O_WINDOW:
+			tool_parse_doubles("--window", optarg, o->window, 2);
+			if (!(o->window[0] < o->window[1]))
+				tool_usage_fail(usage, "--window: LO must be below HI");
+			o->has_window = 1;
+			break;
+		case O_CMAP:
+			if ((o->cmap = vx_colormap_parse(optarg)) ==
+			    VX_COLORMAP_UNKNOWN)
+				tool_usage_fail(usage, "--colormap: unknown map '%s'",
+				    optarg);
+			break;
+		case O_BITS:
+			o->bits = (int)tool_parse_long("--bits", optarg, 8, 16);
+			if (o->bits != 8 && o->bits != 16)
+				tool_usage_fail(usage, "--bits: 8 or 16");
+			break;
+		case O_NOLAST: o->lastt = 0; break;
+		case O_EXH: o->exhaustive = 1; break;
+		case O_STATS: o->stats = 1; break;
+		case O_EXPLAIN: o->explain = 1; break;
+		case O_HDR: o->hdr = 1; break;
+		case O_DEPTH: o->depth = optarg; break;
+		default:
+			tool_usage_fail(usage, "unknown option");
+		}
+	}
+	if (optind < argc)
+		o->in = argv[optind++];
+	if (optind < argc)
+		tool_usage_fail(usage, "too many arguments");
+}
+
+static void
+explain(const opts *o, const vx_scene *s, const vx_macro *m, int nthr)
+{
+	vx_plan p;
+	char buf[4096];
+	int i, nl = 0;
+
+	vx_plan_init(&p, "mip");
+	vx_plan_add(&p, "maximum", VX_PLAN_ON, 1, "%s",
+	    o->exhaustive ? "every cell along each ray solved (reference mode)" :
+	    "priority queue over macrocells; exact cubic maximum per cell");
+	vx_plan_add(&p, "use last t", o->lastt && !o->exhaustive ? VX_PLAN_ON :
+	    VX_PLAN_OFF, 0, "%s", o->lastt ? "lower bound from the previous "
+	    "ray's maximum in the tile" : "switched off (--no-last-t)");
+	for (i = 0; i < s->nlight; i++)
+		nl++;
+	vx_plan_add(&p, "lights", VX_PLAN_OFF, 0, "a projection is not shaded: "
+	    "%d light%s and %d surface%s of the scene ignored", nl,
+	    nl == 1 ? "" : "s", s->nsurface, s->nsurface == 1 ? "" : "s");
+	vx_plan_format(&p, buf, sizeof buf);
+	fprintf(stderr, "%s", buf);
+	fprintf(stderr, "mip: %dx%d %s, %d hierarchy level%s, %d thread%s\n",
+	    s->camera.w, s->camera.h, s->camera.projection == VX_ORTHOGRAPHIC ?
+	    "orthographic" : "perspective", m->nlev, m->nlev == 1 ? "" : "s",
+	    nthr, nthr == 1 ? "" : "s");
+}
+
+int
+main(int argc, char **argv)
+{
+	opts o;
+	vx_stream st;
+	vx_grid g;
+	vx_macro m;
+	vx_scene s;
+	vx_image val, dep;
+	vx_err e = { 0, "" };
+	vx_mip_stats ms;
+	double lo[3], hi[3], wlo, whi;
+	int status, nthr, i;
+	struct timespec t0, t1;
+
+	tool_init("mip", argc, argv);
+	parse(&o, argc, argv);
+	vx_stream_init(&st);
+	tool_read_stream(&st, o.in);
+	vx_scene_init(&s);
+	if (o.scene != NULL) {
+		FILE *f = fopen(o.scene, "r");
+
+		if (f == NULL)
+			tool_fail(VX_ENOINPUT, "%s: cannot open scene", o.scene);
+		if (vx_scene_read(&s, f, &e) != 0) {
+			vx_err_push(&e, "%s", o.scene);
+			tool_fail_err(&e);
+		}
+		fclose(f);
+	} else if (vx_scene_from_stream(&s, &st, NULL, &e) != 0)
+		tool_fail_err(&e);
+	if (o.scene == NULL && vx_stream_find(&st, VX_CHUNK_SCENE, 0) < 0)
+		s.camera.projection = VX_ORTHOGRAPHIC;
+	if (o.persp)
+		s.camera.projection = VX_PERSPECTIVE;
+	for (i = 0; i < o.nset; i++)
+		if (vx_scene_option(&s, o.set_name[i], o.set_val[i], &e) != 0)
+			tool_fail_err(&e);
+	if (vx_grid_from_stream(&g, &st, o.name, NULL, &e) != 0)
+		tool_fail_err(&e);
+	for (int a = 0; a < 3; a++)
+		if (g.dims[a] < 2)
+			tool_fail(VX_EDATA, "volume '%s': needs at least 2 samples "
+			    "per axis", g.name);
+	nthr = tool_threads(o.threads);
+	vx_macro_init(&m);
+	if (vx_macro_from_stream(&m, &st, &g, &status, NULL, &e) != 0)
+		tool_fail_err(&e);
+	if (status != VX_MACRO_LOADED) {
+		int sizes[VX_MACRO_MAXLEV][3];
+		int nlev = vx_macro_default_sizes(g.type, VX_MACRO_DEFAULT_LEVELS,
+		    sizes);
+
+		if (!o.dry)
+			fprintf(stderr, "mip: note: %s macrocells for '%s'; building "
+			    "them (run macrocell(1) in the pipeline to keep them)\n",
+			    status == VX_MACRO_STALE ? "stale" : "no", g.name);
+		if (vx_macro_build(&m, &g, nlev, (const int (*)[3])sizes, nthr,
+		    &e) != 0)
+			tool_fail_err(&e);
+	}
+	if (o.explain)
+		explain(&o, &s, &m, nthr);
+	if (o.dry)
+		return tool_finish();
+	vx_grid_box(&g, lo, hi);
+	if (vx_camera_resolve(&s.camera, lo, hi, &e) != 0)
+		tool_fail_err(&e);
+	int w = s.camera.w, h = s.camera.h, tile = 16;
+	int ntx = (w + tile - 1) / tile, nty = (h + tile - 1) / tile;
+	vx_image_init(&val);
+	vx_image_init(&dep);
+	if (vx_image_alloc(&val, w, h, 1, &e) != 0 ||
+	    vx_image_alloc(&dep, w, h, 1, &e) != 0)
+		tool_fail_err(&e);
+	snprintf(val.name, sizeof val.name, "mip");
+	snprintf(dep.name, sizeof dep.name, "depth");
+	vx_mip_work *wk = calloc((size_t)nthr, sizeof *wk);
+	vx_mip_stats *mst = calloc((size_t)nthr, sizeof *mst);
+	if (wk == NULL || mst == NULL)
+		tool_fail(VX_ENOMEM, "out of memory");
+	for (i = 0; i < nthr; i++)
+		if (vx_mip_work_init(&wk[i], &m, &e) != 0)
+			tool_fail_err(&e);
+	double miss = g.has_range ? g.vmin : 0;
+	clock_gettime(CLOCK_MONOTONIC, &t0);
+#ifdef _OPENMP
+#pragma omp parallel for num_threads(nthr) schedule(dynamic, 1)
+#endif
+	for (int ti = 0; ti < ntx * nty; ti++) {
+#ifdef _OPENMP
+		int me = omp_get_thread_num();
+#else
+		int me = 0;
+#endif
+		int x0 = (ti % ntx) * tile, y0 = (ti / ntx) * tile;
+
+		wk[me].last_t = NAN;      /* the bound starts fresh per tile */
+		for (int y = y0; y < y0 + tile && y < h; y++)
+			for (int x = x0; x < x0 + tile && x < w; x++) {
+				double ow[3], dw[3], oi[3], di[3], v, t;
+				int hit;
+
+				vx_camera_ray(&s.camera, x + 0.5, y + 0.5, ow, dw);
+				vx_world_to_index(&g, ow, oi);
+				vx_world_to_index_dir(&g, dw, di);
+				hit = o.exhaustive ?
+				    vx_mip_ray_exhaustive(&g, oi, di, 0, INFINITY, &v,
+				    &t) : vx_mip_ray(&g, &m, &wk[me], oi, di, 0,
+				    INFINITY, o.lastt, &v, &t, &mst[me]);
+				*vx_image_pixel(&val, x, y) = (float)(hit ? v : miss);
+				*vx_image_pixel(&dep, x, y) = (float)(hit ? t :
+				    INFINITY);
+			}
+	}
+	clock_gettime(CLOCK_MONOTONIC, &t1);
+	memset(&ms, 0, sizeof ms);
+	for (i = 0; i < nthr; i++) {
+		ms.rays += mst[i].rays;
+		ms.pushes += mst[i].pushes;
+		ms.pops += mst[i].pops;
+		ms.macro_opened += mst[i].macro_opened;
+		ms.cells += mst[i].cells;
+		ms.cells_skipped += mst[i].cells_skipped;
+		ms.bound_pruned += mst[i].bound_pruned;
+		if (mst[i].max_queue > ms.max_queue)
+			ms.max_queue = mst[i].max_queue;
+		vx_mip_work_free(&wk[i]);
+	}
+	free(wk);
+	free(mst);
+	if (o.stats) {
+		double sec = (double)(t1.tv_sec - t0.tv_sec) +
+		    1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+
+		fprintf(stderr, "mip: %dx%d, %d thread%s, %.3f s\n", w, h, nthr,
+		    nthr == 1 ? "" : "s", sec);
+		fprintf(stderr, "mip: queue pushes %llu, pops %llu, longest "
+		    "queue %llu, pushes saved by last t %llu\n",
+		    (unsigned long long)ms.pushes, (unsigned long long)ms.pops,
+		    (unsigned long long)ms.max_queue,
+		    (unsigned long long)ms.bound_pruned);
+		fprintf(stderr, "mip: cells solved %llu (%.1f per ray), cells "
+		    "pruned by corners %llu, macrocells opened %llu\n",
+		    (unsigned long long)ms.cells,
+		    (double)ms.cells / (double)(w * h),
+		    (unsigned long long)ms.cells_skipped,
+		    (unsigned long long)ms.macro_opened);
+	}
+	if (o.depth != NULL) {
+		tool_out out;
+
+		tool_out_open(&out, o.depth);
+		if (vx_pfm_write(&dep, out.f, &e) != 0) {
+			tool_out_abort(&out);
+			tool_fail_err(&e);
+		}
+		tool_out_close(&out);
+	}
+	if (o.hdr) {
+		vx_stream os;
+		vx_chunk c;
+
+		vx_stream_init(&os);
+		for (size_t k = 0; k < st.n; k++) {
+			const char *ty = st.chunk[k].type;
+
+			if (memcmp(ty, VX_CHUNK_VOLUME, 4) == 0 ||
+			    memcmp(ty, VX_CHUNK_MACRO, 4) == 0 ||
+			    memcmp(ty, VX_CHUNK_IMAGE, 4) == 0)
+				continue;
+			c = st.chunk[k];
+			memset(&st.chunk[k], 0, sizeof st.chunk[k]);
+			if (vx_stream_append(&os, &c, &e) != 0)
+				tool_fail_err(&e);
+		}
+		if (vx_image_to_chunk(&val, 6, &c, &e) != 0 ||
+		    vx_stream_append(&os, &c, &e) != 0 ||
+		    vx_image_to_chunk(&dep, 6, &c, &e) != 0 ||
+		    vx_stream_append(&os, &c, &e) != 0)
+			tool_fail_err(&e);
+		tool_write_stream(&os, o.out);
+		vx_stream_free(&os);
+	} else {
+		vx_image disp;
+		tool_out out;
+		int nc = o.cmap == VX_COLORMAP_GRAY ? 1 : 3;
+		vx_text text[2] = { { "Software", "voxlux mip" },
+		    { "voxlux-history", tool_history_line() } };
+
+		wlo = o.has_window ? o.window[0] : g.vmin;
+		whi = o.has_window ? o.window[1] : g.vmax;
+		if (!(whi > wlo))
+			whi = wlo + 1;
+		if (vx_image_alloc(&disp, w, h, nc, &e) != 0)
+			tool_fail_err(&e);
+		for (int y = 0; y < h; y++)
+			for (int x = 0; x < w; x++) {
+				double t = (*vx_image_pixel(&val, x, y) - wlo) /
+				    (whi - wlo), rgb[3];
+
+				t = !(t > 0) ? 0 : t > 1 ? 1 : t;
+				if (nc == 1)
+					*vx_image_pixel(&disp, x, y) = (float)t;
+				else {
+					vx_colormap_eval(o.cmap, t, rgb);
+					for (int k = 0; k < 3; k++)
+						vx_image_pixel(&disp, x, y)[k] =
+						    (float)vx_srgb_oetf(rgb[k]);
+				}
+			}
+		tool_out_open(&out, o.out);
+		if (vx_image_png_write(&disp, out.f, o.bits, text, 2, &e) != 0) {
+			tool_out_abort(&out);
+			tool_fail_err(&e);
+		}
+		tool_out_close(&out);
+		vx_image_free(&disp);
+	}
+	vx_image_free(&val);
+	vx_image_free(&dep);
+	vx_macro_free(&m);
+	vx_grid_free(&g);
+	vx_stream_free(&st);
+	return tool_finish();
+}

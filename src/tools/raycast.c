@@ -1,0 +1,397 @@
+/* raycast: ray-traced isosurfaces of a volume (Parker et al. 1999 §4.1). */
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tool.h"
+#include "vx_camera.h"
+#include "vx_grid.h"
+#include "vx_image.h"
+#include "vx_macro.h"
+#include "vx_plan.h"
+#include "vx_raycast.h"
+#include "vx_scene.h"
+#include "vx_tonemap.h"
+
+static const char usage[] =
+    "raycast [--scene FILE] [--iso V[,V...]] [--size WxH] [--view NAME|AZ,EL]\n"
+    "        [--ortho] [--fov DEG] [--light SPEC] [--lights none]\n"
+    "        [--effects WORDS] [--background R,G,B] [--set LINE]\n"
+    "        [--name VOLUME] [--solver exact|neubauer|linear] [--flat]\n"
+    "        [--aa N] [-j N] [--stats] [--explain] [-n]\n"
+    "        [--hdr] [--bits 8|16] [--exposure STOPS] [--depth FILE.pfm]\n"
+    "        [--normals FILE.pfm] [-o OUT] [STREAM|-]";
+
+typedef struct opts {
+	const char *in, *out, *scene, *name, *depth, *normals;
+	int hdr, bits, stats, explain, dry, flat, aa, solver;
+	long threads;
+	double exposure;
+	int ortho;
+	/* scene options in command-line order: (name, value) */
+	int nset;
+	const char *set_name[64], *set_val[64];
+} opts;
+
+static void
+add_set(opts *o, const char *name, const char *val)
+{
+	if (o->nset == 64)
+		tool_fail(VX_EUSAGE, "too many scene options");
+	o->set_name[o->nset] = name;
+	o->set_val[o->nset++] = val;
+}
+
+static void
+parse(opts *o, int argc, char **argv)
+{
+	enum { O_SCENE = 256, O_ISO, O_SIZE, O_VIEW, O_ORTHO, O_FOV, O_LIGHT,
+	    O_LIGHTS, O_EFFECTS, O_BG, O_SET, O_NAME, O_SOLVER, O_FLAT, O_AA,
+	    O_STATS, O_EXPLAIN, O_HDR, O_BITS, O_EXPOSURE, O_DEPTH, O_NORMALS };
+	static const struct option lo[] = {
+		{ "scene", 1, 0, O_SCENE }, { "iso", 1, 0, O_ISO },
+		{ "size", 1, 0, O_SIZE }, { "view", 1, 0, O_VIEW },
+		{ "ortho", 0, 0, O_ORTHO }, { "fov", 1, 0, O_FOV },
+		{ "light", 1, 0, O_LIGHT }, { "lights", 1, 0, O_LIGHTS },
+		{ "effects", 1, 0, O_EFFECTS }, { "background", 1, 0, O_BG },
+		{ "set", 1, 0, O_SET }, { "name", 1, 0, O_NAME },
+		{ "solver", 1, 0, O_SOLVER }, { "flat", 0, 0, O_FLAT },
+		{ "aa", 1, 0, O_AA }, { "stats", 0, 0, O_STATS },
+		{ "explain", 0, 0, O_EXPLAIN }, { "dry-run", 0, 0, 'n' },
+		{ "hdr", 0, 0, O_HDR }, { "bits", 1, 0, O_BITS },
+		{ "exposure", 1, 0, O_EXPOSURE }, { "depth", 1, 0, O_DEPTH },
+		{ "normals", 1, 0, O_NORMALS }, { "output", 1, 0, 'o' },
+		{ "threads", 1, 0, 'j' }, { "help", 0, 0, 'h' },
+		{ 0, 0, 0, 0 }
+	};
+	int c;
+
+	memset(o, 0, sizeof *o);
+	o->in = "-";
+	o->out = "-";
+	o->bits = 8;
+	o->aa = 1;
+	o->solver = VX_CELL_EXACT;
+	while ((c = getopt_long(argc, argv, "o:j:nh", lo, NULL)) != -1) {
+		switch (c) {
+		case 'o': o->out = optarg; break;
+		case 'j': o->threads = tool_parse_long("-j", optarg, 0, 4096); break;
+		case 'n': o->dry = o->explain = 1; break;
+		case 'h':
+			printf("usage: %s\n", usage);
+			exit(0);
+		case O_SCENE: o->scene = optarg; break;
+		case O_ISO: add_set(o, "iso", optarg); break;
+		case O_SIZE: add_set(o, "size", optarg); break;
+		case O_VIEW: add_set(o, "view", optarg); break;
+		case O_ORTHO: o->ortho = 1; break;
+		case O_FOV: add_set(o, "fov", optarg); break;
+		case O_LIGHT: add_set(o, "light", optarg); break;
+		case O_LIGHTS: add_set(o, "lights", optarg); break;
+		case O_EFFECTS: add_set(o, "effects", optarg); break;
+		case O_BG: add_set(o, "background", optarg); break;
+		case O_SET: add_set(o, "set", optarg); break;
+		case O_NAME: o->name = optarg; break;
+		case O_SOLVER:
+			if ((o->solver = vx_cell_solver_parse(optarg)) < 0)
+				tool_usage_fail(usage, "--solver: unknown solver '%s'",
+				    optarg);
+			break;
+		case O_FLAT: o->flat = 1; break;
+		case O_AA: o->aa = (int)tool_parse_long("--aa", optarg, 1, 16); break;
+		case O_STATS: o->stats = 1; break;
+		case O_EXPLAIN: o->explain = 1; break;
+		case O_HDR: o->hdr = 1; break;
+		case O_BITS:
+			o->bits = (int)tool_parse_long("--bits", optarg, 8, 16);
+			if (o->bits != 8 && o->bits != 16)
+				tool_usage_fail(usage, "--bits: 8 or 16");
+			break;
+		case O_EXPOSURE:
+			o->exposure = tool_parse_double("--exposure", optarg, -64, 64);
+			break;
+		case O_DEPTH: o->depth = optarg; break;
+		case O_NORMALS: o->normals = optarg; break;
+		default:
+			tool_usage_fail(usage, "unknown option");
+		}
+	}
+	if (optind < argc)
+		o->in = argv[optind++];
+	if (optind < argc)
+		tool_usage_fail(usage, "too many arguments");
+}
+
+/* load_scene: the stream's scene, replaced by --scene, then the options. */
+static void
+load_scene(vx_scene *s, const opts *o, const vx_stream *st)
+{
+	vx_err e = { 0, "" };
+	int i;
+
+	if (o->scene != NULL) {
+		FILE *f = fopen(o->scene, "r");
+
+		if (f == NULL)
+			tool_fail(VX_ENOINPUT, "%s: cannot open scene", o->scene);
+		if (vx_scene_read(s, f, &e) != 0) {
+			fclose(f);
+			vx_err_push(&e, "%s", o->scene);
+			tool_fail_err(&e);
+		}
+		fclose(f);
+	} else if (vx_scene_from_stream(s, st, NULL, &e) != 0)
+		tool_fail_err(&e);
+	for (i = 0; i < o->nset; i++)
+		if (vx_scene_option(s, o->set_name[i], o->set_val[i], &e) != 0)
+			tool_fail_err(&e);
+	if (o->ortho)
+		s->camera.projection = VX_ORTHOGRAPHIC;
+}
+
+static void
+write_pfm(const char *path, const vx_image *img)
+{
+	vx_err e = { 0, "" };
+	tool_out out;
+
+	tool_out_open(&out, path);
+	if (vx_pfm_write(img, out.f, &e) != 0) {
+		tool_out_abort(&out);
+		vx_err_push(&e, "%s", path);
+		tool_fail_err(&e);
+	}
+	tool_out_close(&out);
+}
+
+static void
+print_stats(const vx_raycast_stats *st, const vx_macro *m, int w, int h,
+    int nthr)
+{
+	double px = (double)w * h;
+	int l;
+
+	fprintf(stderr, "raycast: %dx%d, %d thread%s, %.3f s (%.1f Mrays/s)\n",
+	    w, h, nthr, nthr == 1 ? "" : "s", st->seconds,
+	    (double)(st->primary + st->shadow) / st->seconds * 1e-6);
+	fprintf(stderr, "raycast: rays: %llu primary, %llu shadow; "
+	    "covered pixels %.1f%%\n", (unsigned long long)st->primary,
+	    (unsigned long long)st->shadow,
+	    100.0 * (double)st->covered / (px > 0 ? px : 1));
+	fprintf(stderr, "raycast: cells visited %llu (%.1f per ray), roots "
+	    "solved %llu, hits %llu, shaded %llu, non-finite cells %llu\n",
+	    (unsigned long long)st->cells,
+	    (double)st->cells / (double)(st->primary + st->shadow + 1e-300),
+	    (unsigned long long)st->roots, (unsigned long long)st->hits,
+	    (unsigned long long)st->shaded, (unsigned long long)st->nonfinite);
+	if (m != NULL) {
+		fprintf(stderr, "raycast: macrocells examined:");
+		for (l = m->nlev; l >= 1; l--)
+			fprintf(stderr, " level %d: %llu", l,
+			    (unsigned long long)st->macro[l]);
+		fputc('\n', stderr);
+	}
+	fprintf(stderr, "raycast: time: traversal %.0f%%, intersection %.0f%%, "
+	    "shading %.0f%%\n", 100 * st->share_traverse,
+	    100 * st->share_isect, 100 * st->share_shade);
+}
+
+int
+main(int argc, char **argv)
+{
+	opts o;
+	vx_stream st;
+	vx_grid g;
+	vx_macro m;
+	vx_scene s;
+	vx_plan plan;
+	vx_raycast_opts ro;
+	vx_raycast_stats rs;
+	vx_image color, depth, normal;
+	const vx_grid *tex[VX_SCENE_MAX_SURFACES];
+	vx_grid texg[VX_SCENE_MAX_SURFACES];
+	vx_err e = { 0, "" };
+	double lo[3], hi[3];
+	long gi;
+	int status, k, nthr;
+
+	tool_init("raycast", argc, argv);
+	parse(&o, argc, argv);
+	vx_stream_init(&st);
+	tool_read_stream(&st, o.in);
+	vx_scene_init(&s);
+	load_scene(&s, &o, &st);
+	if (vx_grid_from_stream(&g, &st, o.name ? o.name :
+	    (s.volume[0] ? s.volume : NULL), &gi, &e) != 0)
+		tool_fail_err(&e);
+	for (int a = 0; a < 3; a++)
+		if (g.dims[a] < 2)
+			tool_fail(VX_EDATA, "volume '%s': dims %lld %lld %lld: "
+			    "needs at least 2 samples per axis", g.name,
+			    (long long)g.dims[0], (long long)g.dims[1],
+			    (long long)g.dims[2]);
+	vx_scene_plan_isosurface(&s, &plan);
+	nthr = tool_threads(o.threads);
+	if (o.explain) {
+		size_t n = vx_plan_format(&plan, NULL, 0) + 1;
+		char *buf = malloc(n);
+
+		if (buf == NULL)
+			tool_fail(VX_ENOMEM, "out of memory");
+		vx_plan_format(&plan, buf, n);
+		fprintf(stderr, "%s", buf);
+		fprintf(stderr, "raycast: %dx%d pixels, %d sample%s per pixel, "
+		    "about %.0f rays; solver %s, %s traversal, %d thread%s\n",
+		    s.camera.w, s.camera.h, o.aa * o.aa, o.aa > 1 ? "s" : "",
+		    plan.rays_per_pixel * s.camera.w * s.camera.h * o.aa * o.aa,
+		    vx_cell_solver_name(o.solver), o.flat ? "flat" :
+		    "hierarchical", nthr, nthr == 1 ? "" : "s");
+		free(buf);
+	}
+	if (plan.nsurface_on == 0)
+		tool_fail(VX_EUSAGE, "no surface to draw: give --iso V or a "
+		    "surface line in the scene");
+	/* the hierarchy: from the stream, else built here */
+	vx_macro_init(&m);
+	if (!o.flat) {
+		if (vx_macro_from_stream(&m, &st, &g, &status, NULL, &e) != 0)
+			tool_fail_err(&e);
+		if (status != VX_MACRO_LOADED) {
+			int sizes[VX_MACRO_MAXLEV][3];
+			int nlev = vx_macro_default_sizes(g.type,
+			    VX_MACRO_DEFAULT_LEVELS, sizes);
+
+			if (!o.dry)
+				fprintf(stderr, "raycast: note: %s macrocells for "
+				    "'%s'; building them (run macrocell(1) in the "
+				    "pipeline to keep them)\n", status ==
+				    VX_MACRO_STALE ? "stale" : "no", g.name);
+			if (vx_macro_build(&m, &g, nlev,
+			    (const int (*)[3])sizes, nthr, &e) != 0)
+				tool_fail_err(&e);
+		}
+	}
+	if (o.dry) {
+		vx_macro_free(&m);
+		vx_grid_free(&g);
+		vx_stream_free(&st);
+		return tool_finish();
+	}
+	/* texture volumes named by the surfaces */
+	for (k = 0; k < VX_SCENE_MAX_SURFACES; k++) {
+		tex[k] = NULL;
+		vx_grid_init(&texg[k]);
+	}
+	for (k = 0; k < s.nsurface; k++)
+		if (plan.texture_on[k]) {
+			if (vx_grid_from_stream(&texg[k], &st,
+			    s.surface[k].m.texture, NULL, &e) != 0) {
+				vx_err_push(&e, "surface %d texture", k + 1);
+				tool_fail_err(&e);
+			}
+			tex[k] = &texg[k];
+		}
+	vx_grid_box(&g, lo, hi);
+	if (vx_camera_resolve(&s.camera, lo, hi, &e) != 0)
+		tool_fail_err(&e);
+	vx_raycast_opts_init(&ro);
+	ro.nthreads = nthr;
+	ro.solver = o.solver;
+	ro.flat = o.flat;
+	ro.aa = o.aa;
+	ro.timing = o.stats;
+	vx_image_init(&color);
+	vx_image_init(&depth);
+	vx_image_init(&normal);
+	if (vx_raycast_render(&s, &plan, &g, o.flat ? NULL : &m, tex, &ro,
+	    &color, (o.depth || o.hdr) ? &depth : NULL,
+	    (o.normals || o.hdr) ? &normal : NULL, &rs, &e) != 0)
+		tool_fail_err(&e);
+	if (o.stats)
+		print_stats(&rs, o.flat ? NULL : &m, s.camera.w, s.camera.h, nthr);
+	if (o.depth)
+		write_pfm(o.depth, &depth);
+	if (o.normals)
+		write_pfm(o.normals, &normal);
+	if (o.hdr) {
+		/* the stream out: history, scene, images and every chunk we did
+		 * not consume (volumes and macrocells are consumed) */
+		vx_stream out;
+		vx_chunk c;
+		size_t i;
+
+		vx_stream_init(&out);
+		for (i = 0; i < st.n; i++) {
+			const char *t = st.chunk[i].type;
+
+			if (memcmp(t, VX_CHUNK_VOLUME, 4) == 0 ||
+			    memcmp(t, VX_CHUNK_MACRO, 4) == 0 ||
+			    memcmp(t, VX_CHUNK_SCENE, 4) == 0 ||
+			    memcmp(t, VX_CHUNK_IMAGE, 4) == 0)
+				continue;
+			c = st.chunk[i];
+			memset(&st.chunk[i], 0, sizeof st.chunk[i]);
+			if (vx_stream_append(&out, &c, &e) != 0)
+				tool_fail_err(&e);
+		}
+		if (vx_scene_to_stream(&s, &out, &e) != 0)
+			tool_fail_err(&e);
+		const vx_image *imgs[3] = { &color, &depth, &normal };
+		for (k = 0; k < 3; k++) {
+			if (vx_image_to_chunk(imgs[k], 6, &c, &e) != 0 ||
+			    vx_stream_append(&out, &c, &e) != 0)
+				tool_fail_err(&e);
+		}
+		tool_write_stream(&out, o.out);
+		vx_stream_free(&out);
+	} else {
+		vx_tonemap_opts tm;
+		vx_image disp;
+		tool_out out;
+		size_t hl;
+		const char *h = vx_stream_history(&st, &hl);
+		char *hist = malloc(hl + strlen(tool_history_line()) + 2);
+		vx_text text[2];
+
+		if (hist == NULL)
+			tool_fail(VX_ENOMEM, "out of memory");
+		memcpy(hist, h ? h : "", hl);
+		strcpy(hist + hl, tool_history_line());
+		text[0].key = "Software";
+		text[0].value = "voxlux raycast";
+		text[1].key = "voxlux-history";
+		text[1].value = hist;
+		/* color is already composited over the background: keep
+		 * RGB, drop the coverage */
+		vx_image rgb;
+		if (vx_image_alloc(&rgb, color.w, color.h, 3, &e) != 0)
+			tool_fail_err(&e);
+		for (size_t i = 0; i < (size_t)color.w * color.h; i++)
+			memcpy(rgb.px + 3 * i, color.px + 4 * i, 3 * sizeof(float));
+		vx_tonemap_defaults(&tm);
+		tm.exposure = o.exposure;
+		if (vx_tonemap_image(&disp, &rgb, &tm, NULL, &e) != 0)
+			tool_fail_err(&e);
+		vx_image_free(&rgb);
+		tool_out_open(&out, o.out);
+		if (vx_image_png_write_gamma(&disp, out.f, o.bits, 0, text, 2,
+		    &e) != 0) {
+			tool_out_abort(&out);
+			tool_fail_err(&e);
+		}
+		tool_out_close(&out);
+		vx_image_free(&disp);
+		free(hist);
+	}
+	for (k = 0; k < VX_SCENE_MAX_SURFACES; k++)
+		vx_grid_free(&texg[k]);
+	vx_image_free(&color);
+	vx_image_free(&depth);
+	vx_image_free(&normal);
+	vx_macro_free(&m);
+	vx_grid_free(&g);
+	vx_stream_free(&st);
+	return tool_finish();
+}

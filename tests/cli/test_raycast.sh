@@ -1,0 +1,84 @@
+#!/bin/sh
+# test_raycast.sh: raycast(1) and mip(1) in real pipelines, checked by
+# numbers: depths against geometry, pixel values against hand-worked
+# shading, bit-identical images across threads, layouts and hierarchy,
+# the plan --explain prints, and errors.  Images are decoded by
+# tests/cli/vximg.py (PFM and the stream's IMAG chunks, from their specs).
+. tests/cli/lib.sh
+if ! command -v python3 >/dev/null 2>&1; then
+	skip "raycast CLI tests" "python3 not installed"; done_testing; exit
+fi
+px() { python3 tests/cli/vximg.py "$@"; }
+
+# A sphere field: distance from the centre of [-1,1]^3 (vread(1)); the
+# isosurface 0.5 is a sphere of radius 0.5 around the origin.
+vread --synth sphere --size 48 > "$T/sph.vx"
+cam="camera perspective eye 0 -5 0 look 0 0 0 up 0 0 1 fov 30"
+
+# 1. depth of the centre pixel: |eye| - r = 4.5 (oracle: geometry; the
+# sampled distance field's trilinear isosurface is within 1e-3 of it)
+raycast --iso 0.5 --size 65x65 --set "$cam" --depth "$T/d.pfm" "$T/sph.vx" > "$T/s.png"
+check_close "centre depth is |eye| - r" "$(px pfm "$T/d.pfm" 32 32 0)" 4.5 0.001
+check_eq "corner pixel misses (depth inf)" "$(px pfm "$T/d.pfm" 0 0 0)" inf
+
+# 2. headlight shading at the centre: n = l = v, so radiance =
+# ambient 0.1 * 0.8 + kd 1 * 0.8 * 1 + ks 0.2 * 1 = 1.08 (defaults of
+# formats/scene.md; oracle: the shading formula by hand)
+raycast --iso 0.5 --size 65x65 --set "$cam" --hdr "$T/sph.vx" > "$T/s.vx"
+check_close "centre radiance (headlight, defaults)" "$(px img "$T/s.vx" color 32 32 0)" 1.08 0.002
+check_close "centre coverage" "$(px img "$T/s.vx" color 32 32 3)" 1 0
+check_close "background coverage" "$(px img "$T/s.vx" color 1 1 3)" 0 0
+
+# 3. the same picture for 1 and 2 threads, bricked or linear, flat or
+# hierarchical (oracle: -j 1 over the linear volume without hierarchy)
+raycast --iso 0.3,0.6 --set "surface iso 0.6 opacity 0.4" --size 80x60 --view 30,20 \
+    --light "directional direction 1 1 -1" -j 1 --flat "$T/sph.vx" > "$T/a.png"
+raycast --iso 0.3,0.6 --set "surface iso 0.6 opacity 0.4" --size 80x60 --view 30,20 \
+    --light "directional direction 1 1 -1" -j 2 "$T/sph.vx" > "$T/b.png"
+check_eq "2 threads + hierarchy = 1 thread flat, pixel for pixel" "$(px pngsame "$T/a.png" "$T/b.png")" same
+if [ -x "$VX_BIN/brick" ] && [ -x "$VX_BIN/macrocell" ]; then
+	brick < "$T/sph.vx" | macrocell > "$T/sphb.vx"
+	raycast --iso 0.3,0.6 --set "surface iso 0.6 opacity 0.4" --size 80x60 --view 30,20 \
+	    --light "directional direction 1 1 -1" -j 2 "$T/sphb.vx" > "$T/c.png"
+	check_eq "bricked + stored macrocells = linear, pixel for pixel" "$(px pngsame "$T/a.png" "$T/c.png")" same
+else
+	skip "bricked = linear" "brick or macrocell not built"
+fi
+
+# 4. --stats counts what was spent: one primary ray per pixel
+raycast --iso 0.5 --size 65x65 --set "$cam" --stats "$T/sph.vx" 2>"$T/st" >/dev/null
+check_eq "stats: primary rays" "$(sed -n 's/.*rays: \([0-9]*\) primary.*/\1/p' "$T/st")" 4225
+check "stats: time shares" grep -q 'traversal [0-9]*%, intersection [0-9]*%, shading [0-9]*%' "$T/st"
+
+# 5. the plan: only what the scene calls for
+raycast --iso 0.5 -n "$T/sph.vx" 2>"$T/ex"
+check "explain: no shadows without a shadow-casting light" grep -q 'off .*shadows' "$T/ex"
+check "explain: no compositing for one opaque surface" grep -q 'off .*transparency' "$T/ex"
+raycast --iso 0.5 --light "directional direction 0 0 -1 shadows on" -n "$T/sph.vx" 2>"$T/ex"
+check "explain: shadow rays for a shadow-casting light" grep -q 'on .*shadows' "$T/ex"
+
+# 6. the PNG says how it was made
+check "PNG carries the history" grep -a -q 'vread 0.1.0 --synth sphere' "$T/s.png"
+
+# 7. errors: one line, documented codes
+expect_fail "no surface: usage" 64 "no surface" raycast "$T/sph.vx"
+expect_fail "bad solver: usage" 64 "solver" raycast --iso 0.5 --solver quartic "$T/sph.vx"
+expect_fail "missing input" 66 "cannot open\|No such" raycast --iso 0.5 "$T/none.vx"
+printf 'not a stream' > "$T/bad.vx"
+expect_fail "not a stream" 65 "signature" raycast --iso 0.5 "$T/bad.vx"
+
+# 8. mip: the central ray of an orthographic front view runs along the y
+# axis, midway between samples in x and z (48 samples over [-1,1]): its
+# maximum is on the faces y = +-1, the bilinear mean of four samples each at
+# distance sqrt(1 + 2 (1/47)^2) = 1.00045259 (oracle: geometry)
+mip --size 65x65 --hdr "$T/sph.vx" > "$T/m.vx"
+check_close "mip: centre maximum" "$(px img "$T/m.vx" mip 32 32 0)" 1.000452591 1e-6
+mip --size 65x65 --hdr --no-last-t "$T/sph.vx" > "$T/m2.vx"
+check_eq "mip: last-t bound on = off, bit for bit" "$(px same "$T/m.vx" "$T/m2.vx")" same
+mip --size 65x65 --hdr -j 1 "$T/sph.vx" > "$T/m3.vx"
+check_eq "mip: 1 thread = 2 threads" "$(px same "$T/m.vx" "$T/m3.vx")" same
+mip --size 65x65 --hdr --exhaustive "$T/sph.vx" > "$T/m4.vx"
+check_eq "mip: queue = exhaustive at the centre" "$(px img "$T/m4.vx" mip 32 32 0)" "$(px img "$T/m.vx" mip 32 32 0)"
+mip --size 65x65 --stats "$T/sph.vx" 2>"$T/mst" >/dev/null
+check "mip: stats report queue work" grep -q 'queue pushes [0-9]*, pops [0-9]*' "$T/mst"
+done_testing

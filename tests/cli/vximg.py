@@ -1,0 +1,88 @@
+"""vximg.py: read one value from a PFM file or from an IMAG chunk of a
+voxlux stream, written from formats/stream.md and the PFM definition only
+(no voxlux code), for the command-line tests.
+
+    vximg.py pfm FILE X Y C          value at column X, row Y (top row 0)
+    vximg.py img STREAM NAME X Y C   the same in the IMAG chunk named NAME
+    vximg.py same A B                "same" if the two streams' IMAG chunks
+                                     decode to the same bytes, else "differ"
+    vximg.py pngsame A B             "same" if two PNGs hold the same pixel
+                                     bytes (text chunks ignored)
+Prints the value with repr() precision ("inf", "nan" as Python prints).
+"""
+import struct, sys, zlib
+
+def pfm(path, x, y, c):
+    data = open(path, 'rb').read()
+    parts = data.split(maxsplit=4)           # PF|Pf, w, h, scale, rest
+    kind, w, h, scale = parts[0], int(parts[1]), int(parts[2]), float(parts[3])
+    nc = 3 if kind == b'PF' else 1
+    # the raster starts after the scale's single whitespace byte
+    off = len(data) - w * h * nc * 4
+    fmt = ('<' if scale < 0 else '>') + 'f'
+    row = h - 1 - y                          # stored bottom row first
+    i = off + ((row * w + x) * nc + c) * 4
+    return struct.unpack(fmt, data[i:i + 4])[0]
+
+def chunks(data):
+    assert data[:8] == b'\x89VXL\r\n\x1a\n'
+    p = 8
+    while p < len(data):
+        t = data[p:p + 4]
+        n = struct.unpack('<Q', data[p + 4:p + 12])[0]
+        yield t, data[p + 12:p + 12 + n]
+        p += 16 + n
+
+def img(path, name, x, y, c):
+    for t, pay in chunks(open(path, 'rb').read()):
+        if t != b'IMAG':
+            continue
+        head, body = pay.split(b'\n\n', 1)
+        h = dict(l.split(': ', 1) for l in head.decode().split('\n'))
+        if h.get('name') != name:
+            continue
+        if h.get('encoding') == 'zlib':
+            body = zlib.decompress(body)
+        w, nc = int(h['width']), int(h['channels'])
+        i = ((y * w + x) * nc + c) * 4
+        return struct.unpack('<f', body[i:i + 4])[0]
+    raise SystemExit('no IMAG chunk named %s' % name)
+
+def images(path):
+    out = []
+    for t, pay in chunks(open(path, 'rb').read()):
+        if t == b'IMAG':
+            head, body = pay.split(b'\n\n', 1)
+            h = dict(l.split(': ', 1) for l in head.decode().split('\n'))
+            if h.get('encoding') == 'zlib':
+                body = zlib.decompress(body)
+            out.append((h.get('name'), h['width'], h['height'],
+                        h['channels'], body))
+    return out
+
+def png_pixels(path):
+    data = open(path, 'rb').read()
+    assert data[:8] == b'\x89PNG\r\n\x1a\n'
+    p, head, idat = 8, None, b''
+    while p < len(data):
+        n = struct.unpack('>I', data[p:p + 4])[0]
+        t = data[p + 4:p + 8]
+        if t == b'IHDR':
+            head = data[p + 8:p + 8 + n]
+        elif t == b'IDAT':
+            idat += data[p + 8:p + 8 + n]
+        p += 12 + n
+    return head, zlib.decompress(idat)
+
+a = sys.argv[1:]
+if a[0] == 'same':
+    print('same' if images(a[1]) == images(a[2]) and images(a[1]) else 'differ')
+    raise SystemExit
+if a[0] == 'pngsame':
+    print('same' if png_pixels(a[1]) == png_pixels(a[2]) else 'differ')
+    raise SystemExit
+if a[0] == 'pfm':
+    v = pfm(a[1], int(a[2]), int(a[3]), int(a[4]))
+else:
+    v = img(a[1], a[2], int(a[3]), int(a[4]), int(a[5]))
+print(repr(v))

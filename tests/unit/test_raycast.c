@@ -1,0 +1,318 @@
+/* test_raycast.c: the isosurface renderer as a whole: depth against the
+ * geometry, thread count / hierarchy / bricking invariance bit for bit,
+ * non-finite voxels, shadows and transparent layers against hand-worked
+ * values. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <math.h>
+#include <cmocka.h>
+
+#include "vx_camera.h"
+#include "vx_raycast.h"
+
+/* A sphere (distance from c) and, optionally, a floor: the field is the
+ * smaller of the distance to the centre and the height above z = zf plus
+ * r, so the isosurface r is the sphere and the plane z = zf. */
+static void
+make_scene_volume(vx_grid *g, int n, const char *layout, double r,
+    int floor_on, double zf)
+{
+	int64_t d[3] = { n, n, n };
+	vx_err e = { 0, "" };
+	double c = (n - 1) / 2.0;
+
+	assert_int_equal(vx_grid_alloc(g, d, VX_F32, layout, &e), 0);
+	for (int z = 0; z < n; z++)
+		for (int y = 0; y < n; y++)
+			for (int x = 0; x < n; x++) {
+				double f = sqrt((x - c) * (x - c) + (y - c) * (y - c) +
+				    (z - c) * (z - c));
+				if (floor_on && (z - zf) + r < f)
+					f = (z - zf) + r;
+				vx_grid_set(g, x, y, z, f);
+			}
+	vx_grid_range(g);
+}
+
+static void
+base_scene(vx_scene *s, int w, int h, double iso)
+{
+	vx_err e = { 0, "" };
+
+	vx_scene_init(s);
+	s->camera.w = w;
+	s->camera.h = h;
+	assert_int_equal(vx_scene_set_iso(s, &iso, 1, &e), 0);
+}
+
+static void
+render(const vx_scene *s0, const vx_grid *g, const vx_macro *m, int threads,
+    int flat, vx_image *color, vx_image *depth, vx_image *normal)
+{
+	vx_scene s = *s0;
+	vx_plan p;
+	vx_raycast_opts o;
+	vx_err e = { 0, "" };
+	double lo[3], hi[3];
+
+	vx_grid_box(g, lo, hi);
+	assert_int_equal(vx_camera_resolve(&s.camera, lo, hi, &e), 0);
+	vx_scene_plan_isosurface(&s, &p);
+	vx_raycast_opts_init(&o);
+	o.nthreads = threads;
+	o.flat = flat;
+	vx_image_init(color);
+	vx_image_init(depth);
+	vx_image_init(normal);
+	if (vx_raycast_render(&s, &p, g, m, NULL, &o, color, depth, normal, NULL,
+	    &e) != 0)
+		fail_msg("render: %s", e.msg);
+}
+
+static void
+build(vx_macro *m, const vx_grid *g)
+{
+	int sizes[VX_MACRO_MAXLEV][3] = { { 4, 4, 4 }, { 2, 2, 2 } };
+	vx_err e = { 0, "" };
+
+	assert_int_equal(vx_macro_build(m, g, 2, (const int (*)[3])sizes, 1,
+	    &e), 0);
+}
+
+static int
+same(const vx_image *a, const vx_image *b)
+{
+	return a->w == b->w && a->h == b->h && a->nc == b->nc &&
+	    memcmp(a->px, b->px, vx_image_nvalue(a) * sizeof(float)) == 0;
+}
+
+static void
+free3(vx_image *a, vx_image *b, vx_image *c)
+{
+	vx_image_free(a);
+	vx_image_free(b);
+	vx_image_free(c);
+}
+
+/* Depth of the centre pixel: an explicit camera on the +y axis looking at
+ * the centre sees the sphere at distance |eye - c| - r (oracle: geometry;
+ * the trilinear isosurface of a sampled distance field lies within 0.05
+ * voxel of the sphere at this radius). */
+static void
+depth_matches_geometry(void **state)
+{
+	vx_grid g;
+	vx_macro m;
+	vx_scene s;
+	vx_image c, d, n;
+	double cc = 15.5;
+
+	(void)state;
+	make_scene_volume(&g, 32, NULL, 9, 0, 0);
+	build(&m, &g);
+	base_scene(&s, 65, 65, 9);
+	s.camera.is_auto = 0;
+	s.camera.projection = VX_PERSPECTIVE;
+	double eye[3] = { cc, cc + 60, cc }, look[3] = { cc, cc, cc },
+	    up[3] = { 0, 0, 1 };
+	memcpy(s.camera.eye, eye, sizeof eye);
+	memcpy(s.camera.look, look, sizeof look);
+	memcpy(s.camera.up, up, sizeof up);
+	s.camera.fov = 30;
+	render(&s, &g, &m, 2, 0, &c, &d, &n);
+	double dep = vx_image_get(&d, 32, 32, 0);
+	assert_true(fabs(dep - (60 - 9)) < 0.05);
+	/* the normal there faces the eye: (0, 1, 0) */
+	assert_true(vx_image_get(&n, 32, 32, 1) > 0.999);
+	/* a corner pixel misses: depth +Inf, alpha 0 */
+	assert_true(isinf(vx_image_get(&d, 0, 0, 0)));
+	assert_true(vx_image_get(&c, 0, 0, 3) == 0);
+	assert_true(vx_image_get(&c, 32, 32, 3) == 1);
+	free3(&c, &d, &n);
+	vx_macro_free(&m);
+	vx_grid_free(&g);
+}
+
+/* 1 thread = 3 threads, hierarchical = flat, bricked = linear, bit for
+ * bit in color, depth and normal (oracle: the single-threaded flat render
+ * of the linear volume), with a shadow-casting light and two surfaces. */
+static void
+invariance(void **state)
+{
+	vx_grid g, b;
+	vx_macro m, mb;
+	vx_scene s;
+	vx_err e = { 0, "" };
+	vx_image c1, d1, n1, c2, d2, n2;
+	double iso[2] = { 9, 4 };
+
+	(void)state;
+	make_scene_volume(&g, 29, NULL, 9, 1, 6);
+	make_scene_volume(&b, 29, "bricked 4x2x2 4x4x4", 9, 1, 6);
+	build(&m, &g);
+	build(&mb, &b);
+	base_scene(&s, 48, 40, 9);
+	assert_int_equal(vx_scene_set_iso(&s, iso, 2, &e), 0);
+	s.surface[0].m.opacity = 0.5;
+	assert_int_equal(vx_scene_apply(&s, "light directional direction 0.3 0.2 -1",
+	    &e), 0);
+	render(&s, &g, NULL, 1, 1, &c1, &d1, &n1);
+	struct { const vx_grid *g; const vx_macro *m; int th, flat; } t[] = {
+		{ &g, &m, 1, 0 }, { &g, &m, 3, 0 }, { &g, NULL, 3, 1 },
+		{ &b, &mb, 2, 0 }, { &b, NULL, 1, 1 },
+	};
+	for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+		render(&s, t[i].g, t[i].m, t[i].th, t[i].flat, &c2, &d2, &n2);
+		if (!same(&c1, &c2) || !same(&d1, &d2) || !same(&n1, &n2))
+			fail_msg("configuration %zu differs from the reference", i);
+		free3(&c2, &d2, &n2);
+	}
+	free3(&c1, &d1, &n1);
+	vx_macro_free(&m);
+	vx_macro_free(&mb);
+	vx_grid_free(&g);
+	vx_grid_free(&b);
+}
+
+/* NaN and infinite voxels: no NaN anywhere in the color, depth or normal
+ * images (oracle: the policy: cells with non-finite corners have no
+ * surface). */
+static void
+nonfinite_pixels(void **state)
+{
+	vx_grid g;
+	vx_macro m;
+	vx_scene s;
+	vx_image c, d, n;
+
+	(void)state;
+	make_scene_volume(&g, 24, NULL, 8, 0, 0);
+	for (int k = 0; k < 24; k++) {
+		vx_grid_set(&g, k, 12, 12, NAN);
+		vx_grid_set(&g, 12, k, 5, INFINITY);
+		vx_grid_set(&g, 5, 12, k, -INFINITY);
+	}
+	vx_grid_range(&g);
+	build(&m, &g);
+	base_scene(&s, 40, 40, 8);
+	render(&s, &g, &m, 2, 0, &c, &d, &n);
+	for (size_t i = 0; i < vx_image_nvalue(&c); i++)
+		assert_false(isnan(c.px[i]));
+	for (size_t i = 0; i < vx_image_nvalue(&d); i++)
+		assert_false(isnan(d.px[i]));
+	for (size_t i = 0; i < vx_image_nvalue(&n); i++)
+		assert_false(isnan(n.px[i]));
+	free3(&c, &d, &n);
+	vx_macro_free(&m);
+	vx_grid_free(&g);
+}
+
+/* Shadows: a sphere above a floor, lit straight from above.  The floor
+ * point under the sphere's centre receives only the ambient term; a floor
+ * point far from it gets ambient + kd * albedo * 1 (oracle: the shading
+ * formula with n = l = (0,0,1)).  With the shadows effect off both get the
+ * full light. */
+static void
+shadow_under_sphere(void **state)
+{
+	vx_grid g;
+	vx_macro m;
+	vx_scene s;
+	vx_err e = { 0, "" };
+	vx_image c, d, n;
+	double zf = 4, cc = 15.5, lo[3], hi[3];
+
+	(void)state;
+	make_scene_volume(&g, 32, NULL, 6, 1, zf);
+	build(&m, &g);
+	for (int fx = 0; fx < 2; fx++) {
+		base_scene(&s, 96, 96, 6);
+		s.surface[0].m.ks = 0;
+		s.surface[0].m.kd = 1;
+		s.surface[0].m.color[0] = s.surface[0].m.color[1] =
+		    s.surface[0].m.color[2] = 0.5;
+		s.ambient_intensity = 0.1;
+		s.ambient[0] = s.ambient[1] = s.ambient[2] = 1;
+		assert_int_equal(vx_scene_apply(&s,
+		    "light directional direction 0 0 -1 shadows on", &e), 0);
+		if (fx == 1)
+			assert_int_equal(vx_scene_apply(&s, "effects -shadows", &e), 0);
+		/* from high above, a little tilted, so the floor under the
+		 * sphere is not hidden by it */
+		assert_int_equal(vx_scene_set_view(&s, VX_VIEW_ANGLES, 0, 60, &e), 0);
+		render(&s, &g, &m, 2, 0, &c, &d, &n);
+		vx_scene sr = s;
+		vx_grid_box(&g, lo, hi);
+		assert_int_equal(vx_camera_resolve(&sr.camera, lo, hi, &e), 0);
+		double under[3] = { cc, cc + 3, zf }, far[3] = { cc, cc + 12, zf };
+		double px, py, dep;
+		assert_true(vx_camera_project(&sr.camera, under, &px, &py, &dep));
+		double v_under = vx_image_get(&c, (int)px, (int)py, 0);
+		assert_true(vx_camera_project(&sr.camera, far, &px, &py, &dep));
+		double v_far = vx_image_get(&c, (int)px, (int)py, 0);
+		if (fx == 0) {
+			assert_true(fabs(v_under - 0.05) < 1e-3);  /* ambient only */
+			assert_true(fabs(v_far - 0.55) < 1e-2);
+		} else {
+			assert_true(fabs(v_under - 0.55) < 1e-2);
+			assert_true(fabs(v_far - 0.55) < 1e-2);
+		}
+		free3(&c, &d, &n);
+	}
+	vx_macro_free(&m);
+	vx_grid_free(&g);
+}
+
+/* Transparent layers: a shell of opacity a seen where the ray passes
+ * through it but misses the opaque inner sphere is crossed twice (in and
+ * out): coverage 1 - (1 - a)^2 (oracle: front-to-back compositing); where
+ * it hits the inner sphere, coverage 1. */
+static void
+transparent_shell(void **state)
+{
+	vx_grid g;
+	vx_macro m;
+	vx_scene s;
+	vx_err e = { 0, "" };
+	vx_image c, d, n;
+	double iso[2] = { 11, 5 };
+
+	(void)state;
+	make_scene_volume(&g, 32, NULL, 11, 0, 0);
+	build(&m, &g);
+	base_scene(&s, 64, 64, 11);
+	assert_int_equal(vx_scene_set_iso(&s, iso, 2, &e), 0);
+	s.surface[0].m.opacity = 0.4;
+	s.surface[1].m.opacity = 1;
+	render(&s, &g, &m, 2, 0, &c, &d, &n);
+	/* the centre pixel hits the inner sphere; find a pixel whose
+	 * coverage is that of the shell alone */
+	assert_true(fabs(vx_image_get(&c, 32, 32, 3) - 1) < 1e-6);
+	int shell = 0;
+	for (int x = 32; x < 64; x++) {
+		double a = vx_image_get(&c, x, 32, 3);
+		if (fabs(a - (1 - 0.6 * 0.6)) < 1e-6)
+			shell++;
+	}
+	assert_true(shell >= 3);
+	free3(&c, &d, &n);
+	vx_macro_free(&m);
+	vx_grid_free(&g);
+}
+
+int
+main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(depth_matches_geometry),
+		cmocka_unit_test(invariance),
+		cmocka_unit_test(nonfinite_pixels),
+		cmocka_unit_test(shadow_under_sphere),
+		cmocka_unit_test(transparent_shell),
+	};
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
