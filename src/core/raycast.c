@@ -281,7 +281,7 @@ pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
 	vx_iso_trace(&S->tr, oi, di, 0, INFINITY, S->iso, S->niso, layer, &x,
 	    &L->st);
 	for (int i = 0; i < 3; i++)
-		out[i] = x.C[i] + (1 - x.A) * S->s->background[i];
+		out[i] = x.C[i];          /* premultiplied (formats/image.md) */
 	out[3] = x.A;
 	*depth = x.depth;
 	memcpy(n, x.n, sizeof x.n);

@@ -6,8 +6,9 @@
  * volume mapped as color onto a surface.  What is computed is what the plan
  * (vx_plan.h, from the scene) says, no more.
  *
- * Output: linear RGBA radiance (alpha = coverage; color already composited
- * over the scene's background), and on request the depth of the first hit
+ * Output: linear RGBA radiance, premultiplied by alpha = coverage
+ * (formats/image.md; the background is not in it: composite with
+ * vx_image_flatten or tonemap --background), and on request the depth of the first hit
  * (distance along the unit camera ray, +Inf where nothing was hit) and its
  * world-space unit normal.  Bit-identical for any thread count. */
 #ifndef VX_RAYCAST_H

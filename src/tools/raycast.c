@@ -363,13 +363,15 @@ main(int argc, char **argv)
 		text[0].value = "voxlux raycast";
 		text[1].key = "voxlux-history";
 		text[1].value = hist;
-		/* color is already composited over the background: keep
-		 * RGB, drop the coverage */
+		/* color is premultiplied by coverage: composite it over the
+		 * scene's background, drop the coverage */
 		vx_image rgb;
 		if (vx_image_alloc(&rgb, color.w, color.h, 3, &e) != 0)
 			tool_fail_err(&e);
 		for (size_t i = 0; i < (size_t)color.w * color.h; i++)
-			memcpy(rgb.px + 3 * i, color.px + 4 * i, 3 * sizeof(float));
+			for (int c = 0; c < 3; c++)
+				rgb.px[3 * i + c] = color.px[4 * i + c] +
+				    (1 - color.px[4 * i + 3]) * (float)s.background[c];
 		vx_tonemap_defaults(&tm);
 		tm.exposure = o.exposure;
 		if (vx_tonemap_image(&disp, &rgb, &tm, NULL, &e) != 0)
