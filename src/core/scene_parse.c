@@ -1105,7 +1105,8 @@ do_extension(pctx *P)
 	size_t k = 0;
 	int i, m;
 
-	/* kept when it fits and there is room; otherwise ignored */
+	/* kept word for word (bare words bare, quoted ones quoted) when it
+	 * fits and there is room; otherwise ignored */
 	if (P->s->next == VX_SCENE_MAX_EXT)
 		return 0;
 	for (i = 0; i < P->ntok; i++) {
@@ -1114,9 +1115,16 @@ do_extension(pctx *P)
 				return 0;
 			line[k++] = ' ';
 		}
-		if ((m = vx_scn_quote(line + k, sizeof line - k, P->tok[i],
-		    P->quoted[i])) < 0)
-			return 0;
+		if (P->quoted[i]) {
+			if ((m = vx_scn_quote(line + k, sizeof line - k, P->tok[i],
+			    1)) < 0)
+				return 0;
+		} else {
+			m = (int)strlen(P->tok[i]);
+			if (k + (size_t)m + 1 > sizeof line)
+				return 0;
+			memcpy(line + k, P->tok[i], (size_t)m);
+		}
 		k += (size_t)m;
 	}
 	line[k] = '\0';

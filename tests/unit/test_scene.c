@@ -234,6 +234,13 @@ static void ex_ext(vx_scene *s)
 	strcpy(s->ext[0], "x-future-light glow 3 \"two words\"");
 	strcpy(s->ext[1], "x-note");
 }
+static void ex_ext_verbatim(vx_scene *s)
+{
+	/* found by fuzz_scene: a backslash in a bare directive word must not
+	 * make the kept line quote it */
+	s->next = 1;
+	strcpy(s->ext[0], "x-a\\b none c\\d \"none\" \"q\\\"\"");
+}
 
 static const struct {
 	const char *text;
@@ -286,6 +293,7 @@ static const struct {
 	{ "medium phase henyey-greenstein g -0.3 albedo 0.9 0.8 0.7",
 	    ex_medium },
 	{ "x-future-light glow 3 \"two words\" # kept\nx-note", ex_ext },
+	{ "x-a\\b   none c\\d \"none\" \"q\\\"\"", ex_ext_verbatim },
 };
 
 static void
