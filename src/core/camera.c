@@ -348,7 +348,14 @@ vx_camera_ray(const vx_camera *c, double px, double py, double o[3],
 		o[k] = c->o[k];
 		d[k] = c->fwd[k] + a * c->right[k] + b * c->upv[k];
 	}
-	unit(d);
+	/* |d| >= 1 (a unit vector plus orthogonal terms): no scaling needed */
+	{
+		double inv = 1 / sqrt(dot3(d, d));
+
+		d[0] *= inv;
+		d[1] *= inv;
+		d[2] *= inv;
+	}
 }
 
 int

@@ -179,9 +179,9 @@ void vx_surface_init(vx_surface *sf, double iso);
  * headlight, environment and sky lights. */
 void vx_light_init(vx_light *l, vx_light_type type);
 
-/* vx_scene_parse: initialize s to the defaults and apply text (n bytes; need
- * not be NUL-terminated).  Errors: VX_EDATA with "line N: ..." naming the
- * first bad line; s is then left at the defaults.  Needs no NUL at text[n]. */
+/* vx_scene_parse: initialize s to the defaults and apply text (n bytes, not
+ * necessarily NUL-terminated).  Errors: VX_EDATA with "line N: ..." naming
+ * the first bad line (s is then left at the defaults), VX_ENOMEM. */
 int vx_scene_parse(vx_scene *s, const char *text, size_t n, vx_err *e);
 
 /* vx_scene_read: vx_scene_parse of everything f holds (at most
