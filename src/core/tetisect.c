@@ -103,11 +103,25 @@ edge_sign(double xi, double yi, double xj, double yj, double *e)
 	              no area and are never crossed */
 }
 
-/* The four vertices of a tet in ascending index order, in ray space. */
+/* The four vertices of a tet in canonical order, in ray space.  The order
+ * is by position (x, then y, then z), then by index: faces shared by two
+ * tets are evaluated identically, and so are geometrically identical faces
+ * over duplicated points (unmerged seams), whatever their indices. */
 typedef struct tetv {
 	uint32_t id[4];
 	double x[4], y[4], z[4], f[4];
 } tetv;
+
+static int
+before(const vx_tetmesh *m, uint32_t a, uint32_t b)
+{
+	const double *p = m->pts + 3 * (size_t)a, *q = m->pts + 3 * (size_t)b;
+
+	for (int k = 0; k < 3; k++)
+		if (p[k] != q[k])
+			return p[k] < q[k];
+	return a < b;
+}
 
 static void
 load_sorted(const vx_tetmesh *m, size_t t, const vx_tetray *r, tetv *v)
@@ -118,7 +132,7 @@ load_sorted(const vx_tetmesh *m, size_t t, const vx_tetray *r, tetv *v)
 
 	/* insertion sort of four */
 	for (i = 1; i < 4; i++)
-		for (j = i; j > 0 && a[j - 1] > a[j]; j--) {
+		for (j = i; j > 0 && before(m, a[j], a[j - 1]); j--) {
 			s = a[j];
 			a[j] = a[j - 1];
 			a[j - 1] = s;
@@ -131,16 +145,32 @@ load_sorted(const vx_tetmesh *m, size_t t, const vx_tetray *r, tetv *v)
 	}
 }
 
+/* Depth and value where the ray meets edge (p, q), p before q in canonical
+ * order: the point of the edge's 2D image nearest the origin. */
+static void
+edge_point(const tetv *v, int p, int q, double *t, double *f)
+{
+	double ex = v->x[q] - v->x[p], ey = v->y[q] - v->y[p];
+	double l2 = ex * ex + ey * ey, s = 0.5;
+
+	if (l2 > 0) {
+		s = -(v->x[p] * ex + v->y[p] * ey) / l2;
+		s = s < 0 ? 0 : s > 1 ? 1 : s;
+	}
+	*t = v->z[p] + s * (v->z[q] - v->z[p]);
+	*f = v->f[p] + s * (v->f[q] - v->f[p]);
+}
+
 int
 vx_tet_segment(const vx_tetmesh *m, size_t t, const vx_tetray *r,
     double *t0, double *f0, double *t1, double *f1)
 {
-	/* faces in ascending vertex order: the face opposite vertex k */
+	/* faces in canonical vertex order: the face opposite vertex k */
 	static const int face[4][3] = {
 		{ 1, 2, 3 }, { 0, 2, 3 }, { 0, 1, 3 }, { 0, 1, 2 },
 	};
 	double E[4][4], ht[2], hf[2];
-	int S[4][4], i, j, k, nhit = 0;
+	int S[4][4], i, j, k, nhit = 0, side[2];
 	tetv v;
 
 	load_sorted(m, t, r, &v);
@@ -157,11 +187,28 @@ vx_tet_segment(const vx_tetmesh *m, size_t t, const vx_tetray *r,
 			continue;
 		if (nhit == 2)
 			return 0;  /* cannot happen with exact signs */
+		/* sab > 0: the face (a, b, c) turns counterclockwise around
+		 * the ray, i.e. its normal (b - a) x (c - a) has a positive
+		 * component along d */
+		side[nhit] = sab * ((k & 1) ? 1 : -1);
 		/* barycentric weights: the edge opposite each vertex */
-		double U = E[b][c], V = -E[a][c], W = E[a][b], det = U + V + W;
-		if (det != 0) {
+		double U = E[b][c], V = -E[a][c], W = E[a][b];
+		int nz = (U != 0) + (V != 0) + (W != 0);
+		if (nz == 3) {
+			double det = U + V + W;
 			ht[nhit] = (U * v.z[a] + V * v.z[b] + W * v.z[c]) / det;
 			hf[nhit] = (U * v.f[a] + V * v.f[b] + W * v.f[c]) / det;
+		} else if (nz == 2) {
+			/* the ray meets an edge: evaluate on the edge alone, so
+			 * every face around it gives the same value */
+			int p = W == 0 ? a : V == 0 ? a : b;
+			int q = W == 0 ? b : c;
+			edge_point(&v, p, q, &ht[nhit], &hf[nhit]);
+		} else if (nz == 1) {
+			/* the ray meets a vertex: its own depth and value */
+			int p = U != 0 ? a : V != 0 ? b : c;
+			ht[nhit] = v.z[p];
+			hf[nhit] = v.f[p];
 		} else {
 			/* a face of no visible area that the perturbed ray
 			 * still crosses: its centroid stands for the point */
@@ -177,7 +224,19 @@ vx_tet_segment(const vx_tetmesh *m, size_t t, const vx_tetray *r,
 	}
 	if (nhit != 2)
 		return 0;
-	i = ht[1] < ht[0];
+	/* The normal of the face opposite vertex k, with its vertices in
+	 * order, points to vertex k (inwards) when o * (-1)^(k+1) > 0, o the
+	 * orientation det(v1 - v0, v2 - v0, v3 - v0) of the ordered tet (the
+	 * parity of the permutation (a, b, c, k)); the ray enters through the
+	 * face whose inward normal has a positive component along d, i.e.
+	 * where side * o > 0, side = sab * (-1)^(k+1). */
+	int o = vx_orient3d(m->pts + 3 * (size_t)v.id[0],
+	    m->pts + 3 * (size_t)v.id[1], m->pts + 3 * (size_t)v.id[2],
+	    m->pts + 3 * (size_t)v.id[3]);
+	if (o != 0)
+		i = side[0] * o < 0;  /* index of the entry face */
+	else
+		i = ht[1] < ht[0];
 	*t0 = ht[i];
 	*f0 = hf[i];
 	*t1 = ht[!i];

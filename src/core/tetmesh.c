@@ -238,21 +238,20 @@ orient3d_exact(const double *p[4])
 }
 
 int
-vx_tetmesh_degenerate(const vx_tetmesh *m, size_t t)
+vx_orient3d(const double *pa, const double *pb, const double *pc,
+    const double *pd)
 {
-	const uint32_t *v = m->tet + 4 * t;
-	const double *p[4];
+	const double *p[4] = { pa, pb, pc, pd };
 	double a[3], b[3], c[3], det, perm;
 	/* Shewchuk's first-stage bound for orient3d: (7 + 56 eps) eps */
 	const double eps = 0x1p-53, bound = (7.0 + 56.0 * eps) * eps;
 	int k;
 
-	for (k = 0; k < 4; k++)
-		p[k] = m->pts + 3 * (size_t)v[k];
+	/* det(a-d, b-d, c-d) = det [a 1; b 1; c 1; d 1] = -det(b-a, c-a, d-a) */
 	for (k = 0; k < 3; k++) {
-		a[k] = p[0][k] - p[3][k];
-		b[k] = p[1][k] - p[3][k];
-		c[k] = p[2][k] - p[3][k];
+		a[k] = pa[k] - pd[k];
+		b[k] = pb[k] - pd[k];
+		c[k] = pc[k] - pd[k];
 	}
 	double bc = b[0] * c[1], cb = c[0] * b[1];
 	double ca = c[0] * a[1], ac = a[0] * c[1];
@@ -261,9 +260,20 @@ vx_tetmesh_degenerate(const vx_tetmesh *m, size_t t)
 	perm = (fabs(bc) + fabs(cb)) * fabs(a[2]) +
 	    (fabs(ca) + fabs(ac)) * fabs(b[2]) +
 	    (fabs(ab) + fabs(ba)) * fabs(c[2]);
-	if (fabs(det) > bound * perm)
-		return 0;
-	return orient3d_exact(p) == 0;
+	if (det > bound * perm)
+		return -1;
+	if (-det > bound * perm)
+		return 1;
+	return -orient3d_exact(p);
+}
+
+int
+vx_tetmesh_degenerate(const vx_tetmesh *m, size_t t)
+{
+	const uint32_t *v = m->tet + 4 * t;
+
+	return vx_orient3d(m->pts + 3 * (size_t)v[0], m->pts + 3 * (size_t)v[1],
+	    m->pts + 3 * (size_t)v[2], m->pts + 3 * (size_t)v[3]) == 0;
 }
 
 /* ---- the TETM chunk ---- */

@@ -75,9 +75,14 @@ void vx_tetmesh_range(vx_tetmesh *m);
  * double arithmetic (positive for a right-handed vertex order). */
 double vx_tetmesh_volume(const vx_tetmesh *m, size_t t);
 
+/* vx_orient3d: the exact sign (-1, 0, 1) of det(b - a, c - a, d - a): a
+ * filtered double evaluation (Shewchuk's first-stage bound), exact
+ * expansion arithmetic when the filter cannot decide. */
+int vx_orient3d(const double *a, const double *b, const double *c,
+    const double *d);
+
 /* vx_tetmesh_degenerate: 1 if the four vertices of tet t are exactly
- * coplanar (exact orientation predicate: a filtered double evaluation, exact
- * expansion arithmetic when the filter cannot decide), else 0. */
+ * coplanar (vx_orient3d is 0), else 0. */
 int vx_tetmesh_degenerate(const vx_tetmesh *m, size_t t);
 
 /* ---- the TETM chunk (formats/tetmesh.md) ----
@@ -254,15 +259,22 @@ vx_tetleaf_range(const vx_tetleaf *lg, size_t l, float *lo, float *hi)
  * exact (the rounded value's sign, with an exact fallback when it rounds to
  * zero) and whose zeros are resolved by a fixed symbolic perturbation of the
  * ray; every quantity of a face is computed from its three vertices taken in
- * ascending index order.  So a face shared by two tets gives both the same
- * decision, t and value, bit for bit, and a ray through a shared face, edge or
+ * a canonical order (by position, then index).  So a face shared by two
+ * tets gives both the same decision, t and value, bit for bit (also across
+ * an unmerged seam, where the two faces have equal positions and values
+ * but different vertex indices), and a ray through a shared face, edge or
  * vertex of a conforming mesh crosses a chain of tets with no gap and no
  * overlap: every change of sign of (f - iso) along it is reported by exactly
  * one tet.  "Inside" is f >= iso (sign(0) = +): an isovalue equal to a
- * vertex value puts that vertex inside, so a surface that only touches iso
- * reports either nothing or two hits at the same t, never one.
+ * vertex value puts that vertex inside, so where the field only touches iso
+ * (a vertex at a local maximum equal to iso, say) a ray through that point
+ * reports nothing or an even number of hits at that t (up to rounding),
+ * never one; the parity of the crossings along a ray is always right.
  * Tets with exactly coplanar vertices (zero volume) and tets with a
- * non-finite vertex value never hit. */
+ * non-finite vertex value never hit.  A zero-volume tet still links its
+ * neighbours' faces in the chain; where its faces carry different values
+ * (coincident points with different values: a jump of the field), a
+ * crossing inside that jump is not reported. */
 
 typedef struct vx_tetray {
 	double o[3], d[3];     /* origin, direction (not necessarily unit) */
@@ -274,11 +286,16 @@ typedef struct vx_tetray {
  * finite). */
 void vx_tetray_init(vx_tetray *r, const double o[3], const double d[3]);
 
-/* vx_tet_segment: where ray r crosses tet t: 1 and t0 <= t1 with the field
- * values f0, f1 there (computed from the crossed faces alone), or 0 when the
- * ray misses the tet (or only grazes it: faces seen edge-on are never
- * crossed).  f0 and f1 lie within the values of their faces' vertices.
- * Degenerate tets are not excluded here. */
+/* vx_tet_segment: where ray r crosses tet t: 1 with the depths t0, t1 and
+ * field values f0, f1 where the ray enters and leaves it (computed from the
+ * crossed faces alone), or 0 when the ray misses the tet (or only grazes
+ * it: faces seen edge-on are never crossed).  Entry and exit are told apart
+ * by orientation, not by depth, so they are right for a zero-length
+ * crossing too (a ray through an edge or vertex); t0 <= t1 but for rounding
+ * in slivers.  At an edge or vertex the ray meets exactly, depth and value
+ * come from that edge or vertex alone.  f0, f1 lie within the values of
+ * their faces' vertices.  For a flat tet (no orientation) the ends are
+ * ordered by depth; such tets never hit (vx_tet_nearest). */
 int vx_tet_segment(const vx_tetmesh *m, size_t t, const vx_tetray *r,
     double *t0, double *f0, double *t1, double *f1);
 

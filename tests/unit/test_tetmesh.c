@@ -56,11 +56,15 @@ bowl_fn(const double p[3], void *ctx)
 
 typedef struct xing { double t; int enter; uint32_t tet; } xing;
 
+/* By t; at equal t (a surface touching iso at a point, met from outside:
+ * sign(0) = + makes that point inside) the entry first. */
 static int
 xing_cmp(const void *a, const void *b)
 {
 	const xing *x = a, *y = b;
-	return (x->t > y->t) - (x->t < y->t);
+	if (x->t != y->t)
+		return (x->t > y->t) - (x->t < y->t);
+	return y->enter - x->enter;
 }
 
 /* All crossings of the whole line o + t d with iso, tet by tet (no
@@ -90,6 +94,34 @@ all_crossings(const vx_tetmesh *m, const double o[3], const double d[3],
 	assert_true(n <= cap);
 	qsort(x, n, sizeof *x, xing_cmp);
 	return n;
+}
+
+/* Oracle (parity) for the crossings x[0..n) of a line that starts and ends
+ * outside (f < iso): along t they alternate entry, exit, entry, ..., and
+ * their number is even.  Crossings within 1e-12 of each other form a
+ * cluster whose order is rounding's: a ray through a vertex or an edge at
+ * an isovalue equal to the value there may cross back and forth there.
+ * Each cluster must then leave the state unchanged or toggle it the right
+ * way. */
+static void
+check_alternation(const xing *x, size_t n)
+{
+	int inside = 0;
+
+	assert_int_equal(n % 2, 0);
+	for (size_t i = 0; i < n;) {
+		size_t j = i;
+		int delta = 0;
+		while (j < n && x[j].t - x[i].t <= 1e-12 * (1 + fabs(x[i].t)))
+			delta += x[j++].enter ? 1 : -1;
+		if (inside)
+			assert_true(delta == 0 || delta == -1);
+		else
+			assert_true(delta == 0 || delta == 1);
+		inside ^= delta != 0;
+		i = j;
+	}
+	assert_int_equal(inside, 0);
 }
 
 /* ---- synthetic meshes ---- */
@@ -349,10 +381,10 @@ kuhn_exact_aim(void **state)
 
 /* Closed isosurface of 2 - |p - c|^2 over a split grid; rays through lattice
  * vertices, along grid lines and cell diagonals (exactly representable),
- * and through edge midpoints.  Oracle (parity): the line starts and ends
- * outside (f < iso at the mesh boundary), so over all tets the crossings
- * alternate enter/exit along t, starting with an entry, and their number is
- * even; a line passing within 0.5 of the centre crosses at least twice.
+ * and through edge midpoints.  Oracle (parity, check_alternation): the
+ * line starts and ends outside (f < iso at the mesh boundary), so over all
+ * tets the crossings alternate entry/exit along t and their number is even;
+ * a line passing within 0.5 of the centre crosses at least twice.
  * Isovalues include values equal to vertex values (sign(0) = + policy). */
 static void
 closed_surface_parity(void **state)
@@ -397,9 +429,7 @@ closed_surface_parity(void **state)
 					xing x[64];
 					size_t n = all_crossings(&m, o, d, isos[ii], x,
 					    64);
-					assert_int_equal(n % 2, 0);
-					for (size_t i = 0; i < n; i++)
-						assert_int_equal(x[i].enter, i % 2 == 0);
+					check_alternation(x, n);
 					if (dist2 < 0.25 && isos[ii] < 1.5)
 						assert_true(n >= 2);
 					total += n;
@@ -452,9 +482,7 @@ jittered_parity(void **state)
 			}
 			xing x[64];
 			size_t n = all_crossings(&m, o, d, 0.8, x, 64);
-			assert_int_equal(n % 2, 0);
-			for (size_t i = 0; i < n; i++)
-				assert_int_equal(x[i].enter, i % 2 == 0);
+			check_alternation(x, n);
 		}
 		vx_tetmesh_free(&m);
 	}
@@ -539,6 +567,103 @@ chain_bit_identical(void **state)
 	}
 }
 
+/* An unmerged seam (as in post_tets' O-grid): the points of the plane
+ * x = 0 are duplicated, in reversed index order, for the tets on the x > 0
+ * side, with equal values.  Oracles: the chain property (segment ends pair
+ * up bit for bit across the seam: each (t, f) occurs an even number of
+ * times except the line's entry into and exit from the box) and the
+ * parity/alternation of crossings, for random rays and rays through seam
+ * vertices. */
+static void
+seam_watertight(void **state)
+{
+	double c[3] = { 0, 0.1, -0.05 }, lo[3] = { -1.5, -1.5, -1.5 };
+	double hi[3] = { 1.5, 1.5, 1.5 };
+	int64_t nc[3] = { 6, 6, 6 };
+	vx_tetmesh g, m;
+	vx_err e = { 0, "" };
+
+	(void)state;
+	assert_int_equal(vx_tetsynth_grid(&g, nc, lo, hi, 5, bowl_fn, c, &e), 0);
+	size_t nseam = 0, *dup = calloc(g.npoint, sizeof *dup);
+	for (size_t p = 0; p < g.npoint; p++)
+		nseam += g.pts[3 * p] == 0;
+	assert_int_equal(nseam, 49);
+	assert_int_equal(vx_tetmesh_alloc(&m, g.npoint + nseam, g.ntet, &e), 0);
+	memcpy(m.pts, g.pts, 24 * g.npoint);
+	memcpy(m.val, g.val, 4 * g.npoint);
+	memcpy(m.tet, g.tet, 16 * g.ntet);
+	for (size_t p = g.npoint, k = 0; p-- > 0;)
+		if (g.pts[3 * p] == 0) {
+			dup[p] = g.npoint + k++;
+			memcpy(m.pts + 3 * dup[p], g.pts + 3 * p, 24);
+			m.val[dup[p]] = g.val[p];
+		}
+	for (size_t t = 0; t < m.ntet; t++) {
+		double cx = 0;
+		for (int k = 0; k < 4; k++)
+			cx += m.pts[3 * m.tet[4 * t + (size_t)k]];
+		if (cx > 0)
+			for (int k = 0; k < 4; k++)
+				if (dup[m.tet[4 * t + (size_t)k]])
+					m.tet[4 * t + (size_t)k] =
+					    (uint32_t)dup[m.tet[4 * t + (size_t)k]];
+	}
+	assert_int_equal(vx_tetmesh_validate(&m, &e), 0);
+	double (*tf)[2] = malloc(2 * m.ntet * sizeof *tf);
+	for (uint64_t r = 0; r < 300; r++) {
+		double o[3], d[3], p[3];
+		for (int a = 0; a < 3; a++) {
+			d[a] = 2 * u01(110 + (uint64_t)a, r) - 1;
+			p[a] = 1.6 * u01(113 + (uint64_t)a, r) - 0.8;
+		}
+		if (r % 2 == 0) {
+			/* through a seam vertex (y, z on the lattice) */
+			p[0] = 0;
+			p[1] = 0.5 * (double)(int)(u01(116, r) * 5 - 2);
+			p[2] = 0.5 * (double)(int)(u01(117, r) * 5 - 2);
+		}
+		for (int a = 0; a < 3; a++)
+			o[a] = p[a] - 4 * d[a];
+		vx_tetray ray;
+		size_t n = 0, single = 0;
+		vx_tetray_init(&ray, o, d);
+		for (size_t t = 0; t < m.ntet; t++) {
+			double t0, f0, t1, f1;
+			if (!vx_tet_segment(&m, t, &ray, &t0, &f0, &t1, &f1))
+				continue;
+			tf[n][0] = t0;
+			tf[n++][1] = f0;
+			tf[n][0] = t1;
+			tf[n++][1] = f1;
+		}
+		qsort(tf, n, sizeof *tf, tf_cmp);
+		for (size_t i = 0; i < n;) {
+			size_t j = i + 1;
+			while (j < n && tf_cmp(tf[i], tf[j]) == 0)
+				j++;
+			/* zero-length links at a vertex the ray meets
+			 * exactly repeat its value: count parities */
+			single += (j - i) % 2;
+			i = j;
+		}
+		assert_true(single == 2 || (single == 0 && n == 0));
+		xing x[64];
+		/* 1, or the value of a vertex near the centre (above every
+		 * boundary value, so lines start and end outside) */
+		double q[3] = { 0.5 * (double)(int)(u01(118, r) * 3 - 1),
+		    0.5 * (double)(int)(u01(119, r) * 3 - 1),
+		    0.5 * (double)(int)(u01(120, r) * 3 - 1) };
+		double iso = r % 3 ? 1.0 : (float)bowl_fn(q, c);
+		n = all_crossings(&m, o, d, iso, x, 64);
+		check_alternation(x, n);
+	}
+	free(tf);
+	free(dup);
+	vx_tetmesh_free(&m);
+	vx_tetmesh_free(&g);
+}
+
 /* Slivers and flat tets.  Oracles: a flat tet (exactly coplanar vertices,
  * repeated index, coincident points) never hits and never yields NaN; a
  * sliver of height 1e-13 whose field crosses iso at half height is hit
@@ -596,9 +721,11 @@ slivers_and_flat(void **state)
 			int hit = vx_tet_intersect(&m, t, o, d, 0.5, -1e300, 1e300,
 			    &th, n);
 			vx_tetray_init(&ray, o, d);
-			if (vx_tet_segment(&m, t, &ray, &t0, &f0, &t1, &f1))
+			if (vx_tet_segment(&m, t, &ray, &t0, &f0, &t1, &f1)) {
 				assert_true(isfinite(t0) && isfinite(t1) &&
-				    isfinite(f0) && isfinite(f1) && t0 <= t1);
+				    isfinite(f0) && isfinite(f1) &&
+				    t0 <= t1 + 1e-12);
+			}
 			if (t > 0) {
 				assert_int_equal(hit, 0);
 				continue;
@@ -1538,6 +1665,7 @@ main(void)
 		cmocka_unit_test(closed_surface_parity),
 		cmocka_unit_test(jittered_parity),
 		cmocka_unit_test(chain_bit_identical),
+		cmocka_unit_test(seam_watertight),
 		cmocka_unit_test(slivers_and_flat),
 		cmocka_unit_test(nearest_multi_iso),
 		cmocka_unit_test(chunk_roundtrip),
