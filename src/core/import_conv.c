@@ -3,7 +3,6 @@
  * mirrored axes). */
 #include "import_priv.h"
 
-#include <ctype.h>
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
