@@ -204,6 +204,23 @@ vx_layout_bricked(vx_layout *lay, const int64_t dims[3], int nlev,
 	return 0;
 }
 
+int
+vx_layout_default_bricks(vx_type t, int bricks[][3])
+{
+	static const int line[][3] = {
+		[VX_U8] = { 4, 4, 4 }, [VX_U16] = { 4, 4, 2 },
+		[VX_I16] = { 4, 4, 2 }, [VX_F32] = { 4, 2, 2 },
+	};
+
+	if (t <= VX_TYPE_UNKNOWN || t >= VX_TYPE_LAST)
+		return 0;
+	for (int a = 0; a < 3; a++) {
+		bricks[0][a] = line[t][a];
+		bricks[1][a] = 4;
+	}
+	return 2;
+}
+
 void
 vx_layout_string(const vx_layout *lay, char *buf, size_t n)
 {

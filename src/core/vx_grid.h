@@ -71,6 +71,11 @@ int vx_layout_linear(vx_layout *lay, const int64_t dims[3], vx_err *e);
 int vx_layout_bricked(vx_layout *lay, const int64_t dims[3], int nlev,
     const int bricks[][3], vx_err *e);
 void vx_layout_free(vx_layout *lay);
+/* vx_layout_default_bricks: Parker's two-level bricking for sample type t:
+ * level 0 is one 64-byte cache line of samples (u8 4x4x4, u16/i16 4x4x2,
+ * f32 4x2x2), level 1 one 4 KiB page of those (4x4x4 of them).  Fills
+ * bricks[0..1] and returns 2, or 0 for an unknown type. */
+int vx_layout_default_bricks(vx_type t, int bricks[][3]);
 /* vx_layout_nsample: samples the layout needs (product of pdims). */
 size_t vx_layout_nsample(const vx_layout *lay);
 /* vx_layout_string: "linear" or "bricked 4x4x4 4x4x4" (innermost first). */

@@ -359,6 +359,26 @@ relayout_identical(void **state)
 	vx_grid_free(&b);
 }
 
+/* Default bricks: the inner brick is one 64-byte cache line of samples, the
+ * outer one a 4 KiB page (Parker §3.1), for every sample type. */
+static void
+default_bricks(void **state)
+{
+	static const vx_type t[] = { VX_U8, VX_U16, VX_I16, VX_F32 };
+	int b[2][3];
+
+	(void)state;
+	for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+		size_t ts = vx_type_size(t[i]);
+
+		assert_int_equal(vx_layout_default_bricks(t[i], b), 2);
+		assert_int_equal((size_t)(b[0][0] * b[0][1] * b[0][2]) * ts, 64);
+		assert_int_equal((size_t)(b[0][0] * b[0][1] * b[0][2] * b[1][0] *
+		    b[1][1] * b[1][2]) * ts, 4096);
+	}
+	assert_int_equal(vx_layout_default_bricks(VX_TYPE_UNKNOWN, b), 0);
+}
+
 int
 main(void)
 {
@@ -372,6 +392,7 @@ main(void)
 		cmocka_unit_test(spec_example_bytes),
 		cmocka_unit_test(range_ignores_nonfinite),
 		cmocka_unit_test(relayout_identical),
+		cmocka_unit_test(default_bricks),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
