@@ -190,9 +190,11 @@ int vx_tetsynth_from_grid(vx_tetmesh *m, const vx_grid *g, int split,
  * * cell ... + cell.  Its tets are
  * idx[off[l] .. off[l+1]-1] (ascending), every tet that overlaps the leaf's
  * box padded by VX_TETLEAF_PAD leaf widths: by an exact separating-axis
- * test (the default), or by the tet's bounding box (VX_TETLEAF_BBOX; lists
- * about 1.7 to 2.1 times longer on the CFD meshes of /work/shared/data, the
- * build about 5 times faster on one thread).  Tets that can never hit (a
+ * test (the default), or by the tet's bounding box (VX_TETLEAF_BBOX).  On
+ * the CFD meshes of /work/shared/data the exact lists are 1.6 to 2.1 times
+ * shorter (9 to 12 entries per tet instead of 15 to 22) and nearest-hit
+ * queries 1.6 times faster, for a build 2.3 to 3 times slower (formats/
+ * tetmesh.md has the numbers).  Tets that can never hit (a
  * non-finite vertex value, zero volume) are not listed.
  * The padding makes a hit at a leaf boundary safe against the rounding of
  * the traversal's t values.  The leaf ranges (min/max of the vertex values
