@@ -16,12 +16,12 @@
 static const char usage[] =
     "vread [-o out] [--format F] [--raw NX,NY,NZ --type T "
     "[--endian little|big] [--skip BYTES]] [--spacing SX,SY,SZ] "
-    "[--origin X,Y,Z] [--name NAME] [-z LEVEL] [FILE|-]\n"
+    "[--origin X,Y,Z] [--name NAME] [--add STREAM] [-z LEVEL] [FILE|-]\n"
     "       vread --synth NAME [--size N[,NY,NZ]] [--spacing SX,SY,SZ] "
-    "[--origin X,Y,Z] [--name NAME] [-o out] [-z LEVEL]";
+    "[--origin X,Y,Z] [--name NAME] [--add STREAM] [-o out] [-z LEVEL]";
 
 typedef struct opts {
-	const char *out, *in, *name;
+	const char *out, *in, *name, *add;
 	vx_import_opts imp;
 	int raw, have_type, have_endian, have_skip;
 	int have_spacing, have_origin;
@@ -33,7 +33,7 @@ typedef struct opts {
 } opts;
 
 enum { O_FORMAT = 256, O_RAW, O_TYPE, O_ENDIAN, O_SKIP, O_SPACING, O_ORIGIN,
-	O_NAME, O_SYNTH, O_SIZE };
+	O_NAME, O_SYNTH, O_SIZE, O_ADD };
 
 /* parse_dims: "N,NY,NZ" (or just "N" when one_ok, meaning N,N,N). */
 static void
@@ -90,6 +90,7 @@ parse_args(opts *o, int argc, char **argv)
 		{ "name", required_argument, NULL, O_NAME },
 		{ "synth", required_argument, NULL, O_SYNTH },
 		{ "size", required_argument, NULL, O_SIZE },
+		{ "add", required_argument, NULL, O_ADD },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 }
 	};
@@ -107,6 +108,9 @@ parse_args(opts *o, int argc, char **argv)
 			break;
 		case 'z':
 			o->zlevel = (int)tool_parse_long("-z", optarg, 0, 9);
+			break;
+		case O_ADD:
+			o->add = optarg;
 			break;
 		case O_FORMAT:
 			o->imp.format = vx_format_parse(optarg);
@@ -249,6 +253,26 @@ main(int argc, char **argv)
 		tool_fail(VX_EUSAGE, "standard output is a terminal: redirect it "
 		    "or give -o FILE");
 	vx_stream_init(&s);
+	if (o.add != NULL) {
+		/* append to an existing stream, e.g. a texture volume */
+		tool_read_stream(&s, o.add);
+		for (long i = -1; (i = vx_stream_find(&s, VX_CHUNK_VOLUME,
+		    (size_t)(i + 1))) >= 0;) {
+			vx_hdr h;
+			const unsigned char *b;
+			size_t bl;
+			const char *nm;
+
+			vx_hdr_init(&h);
+			if (vx_payload_parse(&s.chunk[i], &h, &b, &bl, &e) != 0)
+				tool_fail_err(&e);
+			nm = vx_hdr_get(&h, "name");
+			if (nm != NULL && strcmp(nm, g.name) == 0)
+				tool_fail(VX_EUSAGE, "--add: the stream already has a "
+				    "volume named '%s': give --name", g.name);
+			vx_hdr_free(&h);
+		}
+	}
 	if (vx_grid_to_chunk(&g, o.zlevel, &c, &e) != 0 ||
 	    vx_stream_append(&s, &c, &e) != 0)
 		tool_fail_err(&e);

@@ -45,6 +45,19 @@ else
 	skip "bricked = linear" "brick or macrocell not built"
 fi
 
+# 3b. texture: a second volume, joined with vread --add, colors the surface.
+# The linear field f = x + 2y + 3z + 1/2 at the centre hit (0, -0.5, 0) is
+# -0.5; window -1.5..0.5 maps it to 0.5 on the gray map; with ks 0 and no
+# ambient the centre radiance is kd * albedo * (n . l) = 0.5 (oracle: the
+# field's formula, the shading formula by hand)
+vread --synth linear --size 48 --name tex --add "$T/sph.vx" > "$T/tex.vx"
+raycast --iso 0.5 --size 65x65 --set "$cam" --set "ambient intensity 0" \
+    --set "surface iso 0.5 ks 0 texture tex window -1.5 0.5" --hdr "$T/tex.vx" > "$T/t.vx"
+check_close "texture: centre albedo from the second volume" "$(px img "$T/t.vx" color 32 32 0)" 0.5 0.002
+raycast --iso 0.5 --size 65x65 --set "$cam" --set "ambient intensity 0" \
+    --set "surface iso 0.5 ks 0 texture tex window -1.5 0.5" --effects "-texture" --hdr "$T/tex.vx" > "$T/t2.vx"
+check_close "texture effect off: the material color" "$(px img "$T/t2.vx" color 32 32 0)" 0.8 0.002
+
 # 4. --stats counts what was spent: one primary ray per pixel
 raycast --iso 0.5 --size 65x65 --set "$cam" --stats "$T/sph.vx" 2>"$T/st" >/dev/null
 check_eq "stats: primary rays" "$(sed -n 's/.*rays: \([0-9]*\) primary.*/\1/p' "$T/st")" 4225
