@@ -2,6 +2,7 @@
  * MCEL chunk (see vx_macro.h and formats/macrocell.md). */
 #include "vx_macro.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -350,48 +351,50 @@ vx_macro_build_explicit(vx_macro *m, const int64_t n[3],
 
 /* ---- the volume's identity ---- */
 
-/* slab_crc: CRC-32 of samples z in logical order, little-endian. */
+/* A run of samples contiguous in memory along x: the layout's x offsets
+ * x0 .. x0+len-1 are start .. start+len-1 (whole rows when linear, one
+ * brick edge when bricked).  The runs are the same for every row. */
+typedef struct xrun {
+	int64_t start, len;
+} xrun;
+
+/* slab_crc: CRC-32 of the samples of slab z in logical order, as
+ * little-endian bytes: runs are gathered into a buffer (byte-swapped on a
+ * big-endian host) and fed to zlib 16 KiB at a time. */
 static uint32_t
-slab_crc(const vx_grid *g, int64_t z)
+slab_crc(const vx_grid *g, const xrun *run, size_t nrun, int64_t z)
 {
-	unsigned char buf[4096];
-	size_t ts = vx_type_size(g->type), k = 0;
+	unsigned char buf[16384];
+	size_t ts = vx_type_size(g->type), k = 0, r;
 	uLong crc = crc32(0L, Z_NULL, 0);
-	int64_t x, y;
+	int swap = !vx_host_is_le() && ts > 1;
+	int64_t y;
 
 	for (y = 0; y < g->dims[1]; y++) {
-		size_t base = (size_t)(g->lay.off[1][y] + g->lay.off[2][z]);
+		const unsigned char *row = (const unsigned char *)g->data +
+		    (size_t)(g->lay.off[1][y] + g->lay.off[2][z]) * ts;
 
-		for (x = 0; x < g->dims[0]; x++) {
-			size_t i = base + (size_t)g->lay.off[0][x];
-			uint32_t u;
+		for (r = 0; r < nrun; r++) {
+			/* without a run table, one sample at a time */
+			size_t left = (run ? (size_t)run[r].len : 1) * ts;
+			const unsigned char *p = row + (size_t)(run ?
+			    run[r].start : g->lay.off[0][r]) * ts;
 
-			if (k + 4 > sizeof buf) {
-				crc = crc32(crc, buf, (uInt)k);
-				k = 0;
+			while (left > 0) {
+				size_t n = sizeof buf - k < left ? sizeof buf - k :
+				    left;
+
+				memcpy(buf + k, p, n);
+				if (swap)
+					vx_swap_bytes(buf + k, n / ts, ts);
+				k += n;
+				p += n;
+				left -= n;
+				if (k == sizeof buf) {
+					crc = crc32(crc, buf, (uInt)k);
+					k = 0;
+				}
 			}
-			switch (g->type) {
-			case VX_U8:
-				buf[k] = ((const uint8_t *)g->data)[i];
-				break;
-			case VX_U16:
-				u = ((const uint16_t *)g->data)[i];
-				buf[k] = (unsigned char)u;
-				buf[k + 1] = (unsigned char)(u >> 8);
-				break;
-			case VX_I16:
-				u = (uint16_t)((const int16_t *)g->data)[i];
-				buf[k] = (unsigned char)u;
-				buf[k + 1] = (unsigned char)(u >> 8);
-				break;
-			case VX_F32:
-				memcpy(&u, (const float *)g->data + i, 4);
-				vx_put_le32(buf + k, u);
-				break;
-			default:
-				break;
-			}
-			k += ts;
 		}
 	}
 	return (uint32_t)crc32(crc, buf, (uInt)k);
@@ -400,25 +403,44 @@ slab_crc(const vx_grid *g, int64_t z)
 uint32_t
 vx_macro_grid_crc(const vx_grid *g)
 {
-	size_t ts = vx_type_size(g->type);
+	size_t ts = vx_type_size(g->type), nrun = 0;
 	z_off_t slab = (z_off_t)(g->dims[0] * g->dims[1] * (int64_t)ts);
-	int64_t nz = g->dims[2], z;
+	int64_t nz = g->dims[2], z, x;
 	uint32_t *part;
+	xrun *run;
 	uLong crc = crc32(0L, Z_NULL, 0);
 
 	if (ts == 0 || g->data == NULL)
 		return 0;
+	/* sizeof buf (16384) is a multiple of every sample size, so no sample
+	 * is split between two buffers */
+	if ((run = malloc((size_t)g->dims[0] * sizeof *run)) != NULL) {
+		for (x = 0; x < g->dims[0]; x++) {
+			if (nrun > 0 && g->lay.off[0][x] ==
+			    run[nrun - 1].start + run[nrun - 1].len)
+				run[nrun - 1].len++;
+			else {
+				run[nrun].start = g->lay.off[0][x];
+				run[nrun].len = 1;
+				nrun++;
+			}
+		}
+	} else
+		nrun = (size_t)g->dims[0];
 	if ((part = malloc((size_t)nz * sizeof *part)) == NULL) {
+		/* no memory for the slab table: serially */
 		for (z = 0; z < nz; z++)
-			crc = crc32_combine(crc, slab_crc(g, z), slab);
+			crc = crc32_combine(crc, slab_crc(g, run, nrun, z), slab);
+		free(run);
 		return (uint32_t)crc;
 	}
 #pragma omp parallel for schedule(dynamic, 1)
 	for (int64_t k = 0; k < nz; k++)
-		part[k] = slab_crc(g, k);
+		part[k] = slab_crc(g, run, nrun, k);
 	for (z = 0; z < nz; z++)
 		crc = crc32_combine(crc, part[z], slab);
 	free(part);
+	free(run);
 	return (uint32_t)crc;
 }
 
@@ -612,14 +634,12 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 				lo = INFINITY;
 				hi = -INFINITY;
 				for (int k = 0; k < 8; k++) {
+					/* branch-free; NaN and +-Inf left out */
 					float x = v.c[k];
+					int fin = fabsf(x) <= FLT_MAX;
 
-					if (!isfinite(x))
-						continue;
-					if (x < lo)
-						lo = x;
-					if (x > hi)
-						hi = x;
+					lo = fin && x < lo ? x : lo;
+					hi = fin && x > hi ? x : hi;
 				}
 			} else if (mm0 != NULL) {
 				size_t k = 2 * (size_t)(c[0][0] + n[0] *
