@@ -118,7 +118,10 @@ install: all
 	  voxlux.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/voxlux.pc
 
 uninstall:
-	for t in $(TOOLS); do rm -f $(DESTDIR)$(PREFIX)/bin/$$(basename $$t); done
+	for t in $(TOOLS); do rm -f $(DESTDIR)$(PREFIX)/bin/$$(basename $$t) \
+	  $(DESTDIR)$(PREFIX)/share/man/man1/$$(basename $$t).1; done
+	for s in 5 7; do for f in man/man$$s/*.$$s; do [ -e "$$f" ] && \
+	  rm -f $(DESTDIR)$(PREFIX)/share/man/man$$s/$$(basename $$f); done; done; true
 	rm -rf $(DESTDIR)$(PREFIX)/include/voxlux
 	rm -f $(DESTDIR)$(PREFIX)/lib/libvoxlux.a $(DESTDIR)$(PREFIX)/lib/pkgconfig/voxlux.pc
 
