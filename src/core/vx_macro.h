@@ -135,7 +135,7 @@ uint32_t vx_macro_grid_crc(const vx_grid *g);
  *
  * Face crossings.  The ray crosses the plane x_a = p at t(a, p) = (p -
  * o[a]) / d[a], computed the same way everywhere (as (p - o[a]) * (1 /
- * d[a]) when 1/d[a] is a normal number, else by division), never
+ * d[a]) when 2^-1000 <= |d[a]| <= 2^1000, else by division), never
  * accumulated: so crossing times are monotone in p, the leaf intervals of
  * one walk tile [ta, tb] exactly (a leaf's t1 is bit-identical to the next
  * leaf's t0), and the hierarchical walk reports bit-identical times to the
@@ -189,8 +189,9 @@ typedef struct vx_trav_stats {
  * was built over (its cells are the leaves; corners are fetched), or NULL
  * for explicit leaves (their stored ranges are tested when the hierarchy
  * has them).  st: counters added to (may be NULL).  Returns 0 when the walk
- * ended, or the visitor's nonzero value.  Reentrant: any number of threads
- * may walk one hierarchy at once. */
+ * ended, or the visitor's nonzero value; -1 (nothing visited) when g's
+ * cells are not m's leaves (a bug in the caller).  Reentrant: any number
+ * of threads may walk one hierarchy at once. */
 int vx_macro_traverse(const vx_macro *m, const vx_grid *g, const double o[3],
     const double d[3], double tmin, double tmax, const float *vals,
     int nvals, vx_visit_fn fn, void *ctx, vx_trav_stats *st);

@@ -1041,6 +1041,36 @@ degenerate_volume(void **state)
 	vx_grid_free(&g);
 }
 
+/* A grid whose cells are not the hierarchy's leaves is refused (-1) and
+ * nothing is visited. */
+static void
+mismatched_grid(void **state)
+{
+	int64_t d1[3] = { 5, 5, 5 }, d2[3] = { 5, 6, 5 };
+	double o[3] = { 0.5, 0.5, -1 }, d[3] = { 0, 0, 1 };
+	vx_grid g1, g2;
+	vx_macro m;
+	vx_err e = { 0, "" };
+	rec r;
+
+	(void)state;
+	assert_int_equal(vx_grid_alloc(&g1, d1, VX_U8, NULL, &e), 0);
+	assert_int_equal(vx_grid_alloc(&g2, d2, VX_U8, NULL, &e), 0);
+	assert_int_equal(vx_macro_build(&m, &g1, 0, NULL, 1, &e), 0);
+	rec_init(&r, d2);
+	assert_int_equal(vx_macro_traverse(&m, &g2, o, d, 0, INFINITY, NULL, 0,
+	    collect, &r, NULL), -1);
+	assert_int_equal(vx_macro_traverse_flat(&m, &g2, o, d, 0, INFINITY,
+	    NULL, 0, collect, &r, NULL), -1);
+	assert_int_equal(r.n, 0);
+	assert_false(vx_macro_matches(&m, &g2, NULL));
+	assert_true(vx_macro_matches(&m, &g1, NULL));
+	free(r.v);
+	vx_macro_free(&m);
+	vx_grid_free(&g1);
+	vx_grid_free(&g2);
+}
+
 int
 main(void)
 {
@@ -1059,6 +1089,7 @@ main(void)
 		cmocka_unit_test(chunk_explicit),
 		cmocka_unit_test(chunk_errors),
 		cmocka_unit_test(degenerate_volume),
+		cmocka_unit_test(mismatched_grid),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
