@@ -42,7 +42,7 @@ void
 vx_tetleaf_dims(const double ext[3], size_t ntet, double density,
     int64_t dims[3])
 {
-	double target, vol, h;
+	double target, lh;
 	int a, active[3], nact, changed;
 
 	if (!(density > 0))
@@ -57,21 +57,23 @@ vx_tetleaf_dims(const double ext[3], size_t ntet, double density,
 		active[a] = ext[a] > 0 && isfinite(ext[a]);
 	}
 	/* Cubical leaves of edge h with prod(ext / h) = target over the active
-	 * axes; an axis shorter than h gets one leaf and leaves the set. */
+	 * axes; an axis shorter than h gets one leaf and leaves the set.  In
+	 * logarithms, so that tiny or huge extents neither underflow nor
+	 * overflow. */
 	do {
+		double lsum = 0;
 		changed = 0;
 		nact = 0;
-		vol = 1;
 		for (a = 0; a < 3; a++)
 			if (active[a]) {
 				nact++;
-				vol *= ext[a];
+				lsum += log(ext[a]);
 			}
 		if (nact == 0)
 			return;
-		h = pow(vol / target, 1.0 / nact);
+		lh = (lsum - log(target)) / nact;
 		for (a = 0; a < 3; a++)
-			if (active[a] && ext[a] < h) {
+			if (active[a] && log(ext[a]) < lh) {
 				active[a] = 0;
 				changed = 1;
 			}
@@ -79,13 +81,14 @@ vx_tetleaf_dims(const double ext[3], size_t ntet, double density,
 	for (a = 0; a < 3; a++) {
 		if (!active[a])
 			continue;
-		double n = floor(ext[a] / h + 0.5);
+		double n = floor(exp(log(ext[a]) - lh) + 0.5);
 		dims[a] = n < 1 ? 1 : n > (double)LEAF_AXIS_MAX ? LEAF_AXIS_MAX :
 		    (int64_t)n;
 	}
-	/* rounding up three axes may overshoot the cap: shrink the largest */
-	while ((uint64_t)dims[0] * (uint64_t)dims[1] * (uint64_t)dims[2] >
-	    VX_TETLEAF_MAX_LEAVES) {
+	/* rounding three axes may overshoot: shrink the largest axis until
+	 * the count is within 8 times the target */
+	while ((double)dims[0] * (double)dims[1] * (double)dims[2] >
+	    8 * target + 8) {
 		a = dims[1] > dims[0] ? 1 : 0;
 		if (dims[2] > dims[a])
 			a = 2;

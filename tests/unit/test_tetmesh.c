@@ -1103,6 +1103,14 @@ leaf_grid_brute(void **state)
 				assert_true(k < ex.off[l + 1]);
 			}
 		assert_true(vx_tetleaf_bytes(&ex) > 0);
+		/* the same on one thread (determinism) */
+		vx_tetleaf one;
+		assert_int_equal(vx_tetleaf_build_levels(&one, &m, dens, 0, 1,
+		    sizes, 1, &e), 0);
+		assert_memory_equal(one.off, ex.off, (ex.nleaf + 1) * 4);
+		assert_memory_equal(one.idx, ex.idx, ex.off[ex.nleaf] * 4);
+		assert_memory_equal(one.mc.mm[0], ex.mc.mm[0], ex.nleaf * 8);
+		vx_tetleaf_free(&one);
 		vx_tetleaf_free(&bb);
 		vx_tetleaf_free(&ex);
 	}
@@ -1215,6 +1223,13 @@ leaf_dims_shape(void **state)
 	assert_true(d[0] == 1 && d[1] == 1 && d[2] == 1);
 	vx_tetleaf_dims((double[3]){ 1, 1, 1 }, 0, 1, d);
 	assert_true(d[0] == 1 && d[1] == 1 && d[2] == 1);
+	/* extents whose product underflows or overflows a double */
+	vx_tetleaf_dims((double[3]){ 1e-300, 1e-300, 1e-300 }, 1000, 1, d);
+	assert_true(d[0] == 10 && d[1] == 10 && d[2] == 10);
+	vx_tetleaf_dims((double[3]){ 1e-200, 1e-200, 1 }, 100, 1, d);
+	assert_true(d[0] == 1 && d[1] == 1 && d[2] == 100);
+	vx_tetleaf_dims((double[3]){ 1e300, 1e300, 1e300 }, 8, 1, d);
+	assert_true(d[0] == 2 && d[1] == 2 && d[2] == 2);
 }
 
 /* ---- importers ---- */
