@@ -13,8 +13,13 @@ embree_render.c implements too and the README documents:
   view_width): origin eye + sx (WIDTH / 2) u + sy (WIDTH H / W / 2) v, direction f.
   Rays start at the eye (t >= 0); for the MIP peers the eye must lie outside the volume.
 
-Command line (used by mip_teem.sh):
-  camera.py teem VOLUME.nrrd CAMERA-FLAGS   print teem-mrender's camera options
+Command line:
+  camera.py teem VOLUME.nrrd CAMERA-FLAGS   print teem-mrender's camera options (mip_teem.sh)
+  camera.py scene [--iso V] CAMERA-FLAGS    print the voxlux scene (formats/scene.md) of the
+                                            same picture: this camera and image size, black
+                                            background, no ambient, the headlight, and with
+                                            --iso a white Lambert surface (kd 1, ks 0), which
+                                            is what embree_render draws
 """
 import math
 import sys
@@ -117,6 +122,25 @@ def vtk_camera(cam, args):
         cam.SetViewAngle(args.fov)
 
 
+def scene_text(args, iso=None):
+    """A voxlux scene (version 1) with this camera; see the module doc."""
+    vec = lambda a: " ".join("%.17g" % x for x in a)  # noqa: E731
+    if args.ortho is not None:
+        cam = "camera orthographic eye %s look %s up %s width %.17g" % (
+            vec(args.eye), vec(args.look), vec(args.up), args.ortho)
+    else:
+        cam = "camera perspective eye %s look %s up %s fov %.17g" % (
+            vec(args.eye), vec(args.look), vec(args.up), args.fov)
+    lines = ["voxlux-scene 1", "# written by examples/bench/peers/camera.py", cam,
+             "image width %d height %d" % tuple(args.size), "background color 0 0 0",
+             "ambient color 1 1 1 intensity 0",
+             "light headlight color 1 1 1 intensity 1 falloff none shadows off"]
+    if iso is not None:
+        lines.append("surface iso %.17g color 1 1 1 kd 1 ks 0" % iso)
+    lines.append("effects none")
+    return "\n".join(lines) + "\n"
+
+
 def main():
     import argparse
     import os
@@ -127,7 +151,13 @@ def main():
     t = sub.add_parser("teem")
     t.add_argument("volume")
     add_camera_args(t)
+    sc = sub.add_parser("scene")
+    sc.add_argument("--iso", type=float)
+    add_camera_args(sc)
     args = p.parse_args()
+    if args.cmd == "scene":
+        sys.stdout.write(scene_text(args, args.iso))
+        return
     try:
         with open(args.volume, "rb") as fh:
             fields, _ = volio.read_nrrd_header(fh)

@@ -130,7 +130,7 @@ PROBE_CAMERAS = [
 ]
 
 
-def test_probe(probe):
+def test_probe(probe, work):
     import camera
     for kind, val, w, h, eye, look, up in PROBE_CAMERAS:
         px = [0, w - 1, w // 2, 3, w - 2]
@@ -158,6 +158,16 @@ def test_probe(probe):
         err = np.abs(got - np.hstack([o, d])).max()
         check(err < 1e-9, "camera.py vs vx_camera_ray, %s %dx%d up %s: %.3g"
               % (kind, w, h, up, err))
+        scn = os.path.join(work, "probe.scn")
+        with open(scn, "w") as fh:
+            fh.write(camera.scene_text(ns, 12.5))
+        r = subprocess.run([probe, "scene", scn] + pix, stdout=subprocess.PIPE,
+                           stderr=subprocess.PIPE, text=True)
+        sc = np.array([[float(x) for x in ln.split()[2:]] for ln in r.stdout.split("\n")
+                       if ln.strip()]) if r.returncode == 0 else None
+        check(sc is not None and np.array_equal(sc, got) and "iso 12.5" in r.stderr,
+              "camera.py scene: vx_scene_read gives the same camera and the iso (%s)"
+              % (r.stderr.strip() if r.returncode else "rays identical"))
         if np.linalg.norm(np.cross(np.subtract(look, eye), up)) > 0:
             ro, rd = rays(eye, look, up, w, h, **({"ortho": val} if kind == "ortho"
                                                     else {"fov": val}))
@@ -270,7 +280,7 @@ def main():
     args = p.parse_args()
     os.makedirs(args.work, exist_ok=True)
     if args.probe:
-        test_probe(args.probe)
+        test_probe(args.probe, args.work)
     test_sphere(args.embree, args.work)
     test_mip_ref(args.work)
     test_mip_peers(args.work)
