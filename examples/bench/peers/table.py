@@ -3,8 +3,10 @@
 
 usage: table.py OUT > OUT/peers.md
 
-Log names: D-iso-I-fe-jN.log, D-iso-I-mc.log, D-iso-I-embree-jN.log,
-D-mip-V-teem-sS.log, D-mip-V-vtk-sS.log (each starts with a "cmd: " line).  A MIP image
+Log names: D-iso-I-fe-jN.log, D-iso-I-mc.log, D-iso-I-embree-jN.log, D-iso-I-voxlux-jN.log,
+D-mip-V-teem-sS.log, D-mip-V-vtk-sS.log, D-mip-V-voxlux.log (each starts with a "cmd: "
+line).  Embree's picture D-iso-I-embree-jN.pfm is compared with voxlux's
+D-iso-I-voxlux-jN.pfm when both exist.  A MIP image
 D-mip-V-P-sS.pfm is compared with D-mip-V-voxlux.pfm when it exists (voxlux's exact
 maximum), else with D-mip-V-ref.pfm (mip_ref.py, axis-aligned views only).
 """
@@ -14,6 +16,7 @@ import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import numpy as np  # noqa: E402
 import compare  # noqa: E402
 import volio  # noqa: E402
 
@@ -61,6 +64,7 @@ def main():
     print("| data | iso | extraction | triangles | extract ms (1 thr) | extract ms (N thr) |"
           " BVH build ms (1 thr) | BVH build ms (N thr) | frame ms (1 thr) | frame ms (N thr) |")
     print("|---|---|---|---|---|---|---|---|---|---|")
+    img_cmp = []
     isos = sorted({(m.group(1), m.group(2)) for k in logs
                    for m in [re.match(r"(\w+)-iso-([0-9.]+)-", k)] if m},
                   key=lambda t: (t[0], float(t[1])))
@@ -80,12 +84,37 @@ def main():
         if mc:
             print("| %s | %s | marching cubes | %s | %s | - | - | - | - | - |"
                   % (data, iso, mc.get("tris", "-"), wc(mc, "extract_ms", "extract_cpu_ms")))
-        for d in [f1, fn, mc or {}, e1, en]:
+        vx = {int(k[len(pre) + 8:]): v for k, v in logs.items() if k.startswith(pre + "voxlux-j")}
+        v1, vn = vx.get(1, {}), vx.get(nmax, {})
+        if vx:
+            print("| %s | %s | voxlux raycast (no mesh) | - | - | - | - | - | %s | %s |"
+                  % (data, iso, wc(v1, "render_ms", "render_cpu_ms"),
+                     wc(vn, "render_ms", "render_cpu_ms")))
+            emb = os.path.join(out, pre + "embree-j%d.pfm" % nmax)
+            ref = os.path.join(out, pre + "voxlux-j%d.pfm" % nmax)
+            if os.path.exists(emb) and os.path.exists(ref):
+                r_img, e_img = volio.read_image(ref), volio.read_image(emb)
+                a = compare.compare(r_img, e_img, "all")
+                b = compare.compare(r_img, e_img, "both")
+                cov = float(np.mean((r_img > 0) != (e_img > 0)))
+                img_cmp.append("| %s | %s | %.4g | %.4g | %.4g | %.4f | %.4f |"
+                               % (data, iso, a["max_abs"], b["max_abs"], a["rmse"], a["over"], cov))
+        for d in [f1, fn, mc or {}, e1, en, v1, vn]:
             if d.get("cmd") and d["cmd"] not in cmds:
                 cmds.append(d["cmd"])
     print("\nN thr = %s (all cores of this machine); Embree: rtcIntersect1 per pixel, "
-          "OpenMP dynamic schedule over rows.\n" % (max([1] + [
-              d.get("threads", 1) for k, d in logs.items() if "-iso-" in k])))
+          "OpenMP dynamic schedule over rows; voxlux: `raycast --stats` time (exact trilinear "
+          "isosurface through the macrocells, no mesh; the macrocell build is not counted)."
+          "\n" % (max([1] + [d.get("threads", 1) for k, d in logs.items() if "-iso-" in k])))
+    if img_cmp:
+        print("Embree's picture (flying-edges mesh, VTK's gradient normals) against voxlux's "
+              "(exact trilinear surface, its own normals), Lambert headlight, values in [0, 1]; "
+              "coverage: fraction of pixels hit by one and not the other.\n")
+        print("| data | iso | max err (all) | max err (hit) | RMSE | over 0.01 | coverage |")
+        print("|---|---|---|---|---|---|---|")
+        for row in img_cmp:
+            print(row)
+        print()
 
     print("## MIP: teem-mrender and VTK vtkFixedPointVolumeRayCastMapper\n")
     print("Errors against the exact maximum of the trilinear field (reference column); "
@@ -94,10 +123,17 @@ def main():
     print("| data | view | peer | step | threads | ms wall / CPU | reference | max err (all) | "
           "max err (hit) | RMSE (all) | over 1% (all) |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
-    mips = sorted(k for k in logs if re.match(r"\w+-mip-\w+-(teem|vtk)-s[0-9.]+$", k))
+    mips = sorted(k for k in logs if re.match(r"\w+-mip-\w+-((teem|vtk)-s[0-9.]+|voxlux)$", k))
     for k in mips:
-        m = re.match(r"(\w+)-mip-(\w+)-(teem|vtk)-s([0-9.]+)$", k)
+        m = re.match(r"(\w+)-mip-(\w+)-(teem|vtk|voxlux)(?:-s([0-9.]+))?$", k)
         data, view, peer, step = m.groups()
+        if peer == "voxlux":
+            d = logs[k]
+            if d.get("cmd") and d["cmd"] not in cmds:
+                cmds.append(d["cmd"])
+            print("| %s | %s | voxlux mip (exact) | - | %s | %s | itself | 0 | 0 | 0 | 0 |"
+                  % (data, view, d.get("threads", "-"), wc(d, "render_ms", "render_cpu_ms")))
+            continue
         d = logs[k]
         if d.get("cmd") and d["cmd"] not in cmds:
             cmds.append(d["cmd"])
@@ -118,12 +154,14 @@ def main():
                     "%.4f" % a["over"]]
         print("| %s | %s | %s | %s | %s | %s | %s | %s |"
               % (data, view, "teem-mrender (tent)" if peer == "teem" else "VTK fixed-point",
-                 step, d.get("threads", "-"), wc(d, "render_ms", "render_cpu_ms" if peer == "vtk"
-                                                 else "cpu_ms"),
+                 step, d.get("threads", "-"), wc(d, "render_ms", "cpu_ms" if peer == "teem"
+                                                 else "render_cpu_ms"),
                  ref[0] if ref else "none", " | ".join(errs)))
     print("\nteem: wall = its own \"rendering time\" (gage set-up and rays, not reading the"
           " volume), CPU = the whole teem-mrender process (reading the volume included);"
-          " VTK: Render() after a warm-up render.\n")
+          " VTK: Render() after a warm-up render; voxlux: `mip --stats` time, CPU of the"
+          " whole process (reading the stream included).  voxlux gives rays that miss the"
+          " volume its minimum, the peers 0: the same here (both volumes have minimum 0).\n")
     print("## Commands\n")
     print("```")
     for c in cmds:
