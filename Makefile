@@ -126,10 +126,24 @@ uninstall:
 	rm -f $(DESTDIR)$(PREFIX)/lib/libvoxlux.a $(DESTDIR)$(PREFIX)/lib/pkgconfig/voxlux.pc
 
 # ---- fuzzing (clang + libFuzzer) ----
-FUZZ_CFLAGS := -g -O1 -fsanitize=fuzzer,address,undefined -Isrc/core -D_GNU_SOURCE $(PNG_CFLAGS)
-build/fuzz/%: tests/fuzz/%.c $(CORE_SRC) $(wildcard src/core/*.h)
+# The core is compiled once with sanitizer coverage into its own archive;
+# each tests/fuzz/fuzz_NAME.c links against it.  No -fopenmp: the targets
+# run one thread, and without it clang ignores the pragmas silently.
+# UBSan findings abort, so libFuzzer keeps them as crashes.
+FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=undefined
+FUZZ_CFLAGS := -g -O1 -fno-omit-frame-pointer $(FUZZ_SAN) -Isrc/core -D_GNU_SOURCE $(PNG_CFLAGS)
+FUZZ_OBJ := $(CORE_SRC:src/core/%.c=build/fuzz/obj/%.o)
+FUZZ_LIB := build/fuzz/libvoxlux-fuzz.a
+build/fuzz/obj/%.o: src/core/%.c
 	@mkdir -p $(@D)
-	clang $(FUZZ_CFLAGS) -o $@ $< $(CORE_SRC) $(LDLIBS)
+	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link -MMD -MP -c -o $@ $<
+
+$(FUZZ_LIB): $(FUZZ_OBJ)
+	rm -f $@
+	ar rcs $@ $^
+
+build/fuzz/%: tests/fuzz/%.c tests/fuzz/fuzz.h $(FUZZ_LIB)
+	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $< $(FUZZ_LIB) $(LDLIBS)
 
 fuzz-build: $(FUZZ)
 
@@ -147,4 +161,4 @@ clean:
 	rm -rf build bin/*
 
 -include $(CORE_OBJ:.o=.d) $(COMMON_OBJ:.o=.d) $(TOOL_SRC:src/tools/%.c=$(BUILD)/src/tools/%.d) \
-	$(UNIT_SRC:%.c=$(BUILD)/%.d)
+	$(UNIT_SRC:%.c=$(BUILD)/%.d) $(FUZZ_OBJ:.o=.d)

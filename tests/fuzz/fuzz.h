@@ -1,0 +1,108 @@
+/* fuzz.h: helpers shared by the libFuzzer targets (tests/fuzz/fuzz_*.c):
+ * touch every element of a decoded object so ASan sees any out-of-bounds
+ * read, and check the invariants a successful decode promises (abort() on a
+ * broken one, which libFuzzer reports as a crash). */
+#ifndef VX_FUZZ_H
+#define VX_FUZZ_H
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vx_err.h"
+#include "vx_grid.h"
+#include "vx_image.h"
+#include "vx_stream.h"
+
+/* fuzz_fail: an invariant did not hold: say which and abort. */
+static void
+fuzz_fail(const char *what)
+{
+	fprintf(stderr, "fuzz invariant broken: %s\n", what);
+	abort();
+}
+
+/* fuzz_err_check: a failed call must leave a nonempty message and a
+ * sysexits code; a successful one must return 0. */
+static void
+fuzz_err_check(int rc, const vx_err *e)
+{
+	if (rc == 0)
+		return;
+	if (rc != e->code)
+		fuzz_fail("returned code differs from e->code");
+	if (rc < 64 || rc > 78)
+		fuzz_fail("error code is not a sysexits value");
+	if (e->msg[0] == '\0' || strlen(e->msg) >= VX_ERR_MSG)
+		fuzz_fail("empty or unterminated error message");
+	if (strchr(e->msg, '\n') != NULL)
+		fuzz_fail("newline in error message");
+}
+
+/* fuzz_grid_touch: read every real sample through the offset tables (each
+ * index must lie inside the allocation), fetch every cell's corners, and
+ * check vx_grid_range against the samples. */
+static double
+fuzz_grid_touch(vx_grid *g)
+{
+	double sum = 0, lo = INFINITY, hi = -INFINITY;
+	int64_t x, y, z;
+	float c[8];
+
+	for (int a = 0; a < 3; a++)
+		if (g->dims[a] < 1 || !(g->spacing[a] > 0) ||
+		    !isfinite(g->spacing[a]) || !isfinite(g->origin[a]))
+			fuzz_fail("grid: bad dims, spacing or origin");
+	if (g->nsample != vx_layout_nsample(&g->lay))
+		fuzz_fail("grid: nsample differs from the layout's");
+	for (z = 0; z < g->dims[2]; z++)
+		for (y = 0; y < g->dims[1]; y++)
+			for (x = 0; x < g->dims[0]; x++) {
+				double v;
+
+				if (vx_grid_index(g, x, y, z) >= g->nsample)
+					fuzz_fail("grid: index beyond nsample");
+				v = vx_grid_get(g, x, y, z);
+				if (isfinite(v)) {
+					sum += v;
+					lo = v < lo ? v : lo;
+					hi = v > hi ? v : hi;
+				}
+			}
+	for (z = 0; z + 1 < g->dims[2]; z++)
+		for (y = 0; y + 1 < g->dims[1]; y++)
+			for (x = 0; x + 1 < g->dims[0]; x++) {
+				vx_grid_cell(g, x, y, z, c);
+				sum += c[7];
+			}
+	/* a header's range is taken on trust (formats/stream.md), so only the
+	 * recomputed one is checked */
+	vx_grid_range(g);
+	if (isfinite(lo) != g->has_range ||
+	    (g->has_range && (g->vmin != lo || g->vmax != hi)))
+		fuzz_fail("grid: vx_grid_range disagrees with the samples");
+	return sum;
+}
+
+/* fuzz_image_touch: read every value of a decoded image. */
+static double
+fuzz_image_touch(const vx_image *img)
+{
+	double sum = 0;
+	size_t n;
+
+	if (img->w < 1 || img->h < 1 || img->nc < 1 || img->nc > 4 ||
+	    img->px == NULL)
+		fuzz_fail("image: bad size or no pixels");
+	n = vx_image_nvalue(img);
+	if (n / (size_t)img->nc / (size_t)img->w != (size_t)img->h)
+		fuzz_fail("image: nvalue overflows");
+	for (size_t i = 0; i < n; i++)
+		if (isfinite(img->px[i]))
+			sum += img->px[i];
+	return sum;
+}
+
+#endif

@@ -1,0 +1,165 @@
+/* fuzz_stream.c: libFuzzer target for the stream reader and every chunk
+ * decoder: vx_stream_read_mem, then VOLM (vx_grid_from_chunk), IMAG
+ * (vx_image_from_chunk), MCEL (vx_macro_from_chunk, and against its volume)
+ * and TETM (vx_tetmesh_from_chunk); a stream that reads is written back and
+ * must read back to the same chunks. */
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fuzz.h"
+#include "vx_macro.h"
+#include "vx_tetmesh.h"
+
+static double
+touch_macro(const vx_macro *m)
+{
+	double sum = 0;
+
+	if (m->nlev < 0 || m->nlev > VX_MACRO_MAXLEV)
+		fuzz_fail("macro: nlev out of range");
+	for (int l = m->explicit_leaves ? 0 : 1; l <= m->nlev; l++) {
+		size_t n = 1;
+
+		for (int a = 0; a < 3; a++) {
+			if (m->dims[l][a] < 0)
+				fuzz_fail("macro: negative dims");
+			n *= (size_t)m->dims[l][a];
+		}
+		for (size_t i = 0; i < 2 * n; i++)
+			sum += m->mm[l][i] == m->mm[l][i];
+	}
+	return sum + (m->root[0] <= m->root[1]);
+}
+
+static double
+touch_tetmesh(const vx_tetmesh *m)
+{
+	double sum = 0;
+
+	for (size_t i = 0; i < 3 * m->npoint; i++)
+		sum += m->pts[i];
+	for (size_t i = 0; i < 4 * m->ntet; i++) {
+		if (m->tet[i] >= m->npoint)
+			fuzz_fail("tetmesh: index beyond npoint after validate");
+		sum += m->val[m->tet[i]] == m->val[m->tet[i]];
+	}
+	for (size_t t = 0; t < m->ntet && t < 64; t++)
+		sum += vx_tetmesh_degenerate(m, t);
+	return sum;
+}
+
+/* roundtrip: write s to memory, read it back, compare chunk by chunk. */
+static void
+roundtrip(const vx_stream *s)
+{
+	char *buf = NULL;
+	size_t n = 0;
+	vx_stream r;
+	vx_err e;
+	FILE *f;
+	int rc;
+
+	vx_err_clear(&e);
+	if ((f = open_memstream(&buf, &n)) == NULL)
+		return;
+	rc = vx_stream_write(s, f, &e);
+	fclose(f);
+	if (rc != 0)
+		fuzz_fail("a stream that was read cannot be written");
+	vx_stream_init(&r);
+	if (vx_stream_read_mem(&r, buf, n, &e) != 0)
+		fuzz_fail("a written stream does not read back");
+	if (r.n != s->n)
+		fuzz_fail("roundtrip changed the chunk count");
+	for (size_t i = 0; i < r.n; i++)
+		if (strcmp(r.chunk[i].type, s->chunk[i].type) != 0 ||
+		    r.chunk[i].len != s->chunk[i].len ||
+		    (r.chunk[i].len &&
+		    memcmp(r.chunk[i].data, s->chunk[i].data, r.chunk[i].len)))
+			fuzz_fail("roundtrip changed a chunk");
+	vx_stream_free(&r);
+	free(buf);
+}
+
+int
+LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+	volatile double sink = 0;
+	vx_stream s;
+	vx_err e;
+	size_t hl;
+	int rc;
+
+	vx_err_clear(&e);
+	vx_stream_init(&s);
+	rc = vx_stream_read_mem(&s, data, size, &e);
+	fuzz_err_check(rc, &e);
+	if (rc != 0) {
+		vx_stream_free(&s);
+		return 0;
+	}
+	roundtrip(&s);
+	if (vx_stream_history(&s, &hl) != NULL)
+		sink += (double)hl;
+	for (size_t i = 0; i < s.n; i++) {
+		const vx_chunk *c = &s.chunk[i];
+
+		if (!vx_chunk_type_valid(c->type))
+			fuzz_fail("reader kept an invalid chunk type");
+		vx_err_clear(&e);
+		if (strcmp(c->type, VX_CHUNK_VOLUME) == 0) {
+			vx_grid g;
+			vx_macro m;
+			int status;
+			long idx;
+
+			rc = vx_grid_from_chunk(&g, c, &e);
+			fuzz_err_check(rc, &e);
+			if (rc == 0) {
+				sink += fuzz_grid_touch(&g);
+				vx_err_clear(&e);
+				rc = vx_macro_from_stream(&m, &s, &g, &status,
+				    &idx, &e);
+				fuzz_err_check(rc, &e);
+				/* m holds memory only when loaded */
+				if (rc == 0 && status == VX_MACRO_LOADED) {
+					sink += touch_macro(&m);
+					vx_macro_free(&m);
+				}
+				vx_grid_free(&g);
+			}
+		} else if (strcmp(c->type, VX_CHUNK_IMAGE) == 0) {
+			vx_image img;
+
+			rc = vx_image_from_chunk(&img, c, &e);
+			fuzz_err_check(rc, &e);
+			if (rc == 0) {
+				sink += fuzz_image_touch(&img);
+				vx_image_free(&img);
+			}
+		} else if (strcmp(c->type, VX_CHUNK_MACRO) == 0) {
+			vx_macro m;
+
+			rc = vx_macro_from_chunk(&m, c, &e);
+			fuzz_err_check(rc, &e);
+			if (rc == 0) {
+				sink += touch_macro(&m);
+				vx_macro_free(&m);
+			}
+		} else if (strcmp(c->type, VX_CHUNK_TETMESH) == 0) {
+			vx_tetmesh m;
+
+			rc = vx_tetmesh_from_chunk(&m, c, &e);
+			fuzz_err_check(rc, &e);
+			if (rc == 0) {
+				sink += touch_tetmesh(&m);
+				vx_tetmesh_free(&m);
+			}
+		}
+	}
+	vx_stream_free(&s);
+	(void)sink;
+	return 0;
+}
