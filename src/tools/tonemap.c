@@ -232,6 +232,8 @@ load(input *in, const char *path, const char *name, int allow_png)
 	p.nhead = fread(p.head, 1, sizeof p.head, p.f);
 	if (ferror(p.f))
 		tool_fail(VX_EIO, "%s: read error: %s", shown, strerror(errno));
+	if (p.nhead == 0)
+		tool_fail(VX_ENOINPUT, "%s: empty input", shown);
 	in->fmt = vx_image_sniff(p.head, p.nhead);
 	if (in->fmt == VX_IMGFMT_STREAM) {
 		vx_stream s;
@@ -275,8 +277,8 @@ load(input *in, const char *path, const char *name, int allow_png)
 		tool_fail(VX_EDATA, "%s: a PNG holds display values; tonemap "
 		    "reads linear images (voxlux stream or PFM)", shown);
 	else
-		tool_fail(VX_EDATA, "%s: not a voxlux stream, PFM%s file", shown,
-		    allow_png ? " or PNG" : "");
+		tool_fail(VX_EDATA, "%s: not a voxlux stream%s file", shown,
+		    allow_png ? ", PFM or PNG" : " or PFM");
 	if (p.f != stdin)
 		fclose(p.f);
 	if (rc != 0) {
