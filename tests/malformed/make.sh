@@ -1,0 +1,463 @@
+#!/bin/sh
+# tests/malformed/make.sh: regenerate the malformed-input catalog: one small
+# file per case in tests/malformed/, the machine-readable list `cases` that
+# tests/cli/test_malformed.sh runs, and the table in README.md.  The files
+# are committed; run this (from the top directory) after changing a case.
+set -eu
+cd "$(dirname "$0")"
+exec python3 - <<'EOF'
+import gzip
+import os
+import struct
+import zlib
+
+SIG = b"\x89VXL\r\n\x1a\n"
+
+
+def chunk(typ, payload, length=None, crc=None):
+    t = typ.encode() if isinstance(typ, str) else typ
+    n = len(payload) if length is None else length
+    c = zlib.crc32(t + payload) if crc is None else crc
+    return t + struct.pack("<Q", n) + payload + struct.pack("<I", c)
+
+
+END = chunk("VEND", b"")
+
+
+def stream(*chunks, end=True):
+    return SIG + b"".join(chunks) + (END if end else b"")
+
+
+def payload(lines, body=b""):
+    return ("".join(l + "\n" for l in lines) + "\n").encode() + body
+
+
+VOLM_KEYS = [("name", "density"), ("dims", "2 2 2"), ("type", "u8"),
+             ("spacing", "1 1 1"), ("origin", "0 0 0"), ("layout", "linear"),
+             ("encoding", "raw")]
+
+
+def volm(body=bytes(range(8)), **kw):
+    """A VOLM chunk: the keys above with kw replacing (value None drops)."""
+    keys = []
+    for k, v in VOLM_KEYS:
+        k2 = k.replace("-", "_")
+        v = kw.pop(k2, v)
+        if v is not None:
+            keys.append("%s: %s" % (k, v))
+    keys += ["%s: %s" % (k.replace("_", "-"), v) for k, v in kw.items()]
+    return chunk("VOLM", payload(keys, body))
+
+
+def imag(body=None, **kw):
+    keys = dict(name="image", width="2", height="1", channels="1",
+                colorspace="linear", encoding="raw")
+    keys.update(kw)
+    if body is None:
+        body = struct.pack("<2f", 0.25, 0.5)
+    return chunk("IMAG", payload(["%s: %s" % kv for kv in keys.items()
+                                  if kv[1] is not None], body))
+
+
+def gz(b):
+    return gzip.compress(b, mtime=0)
+
+
+NRRD = ("NRRD0004", "type: uchar", "dimension: 3", "sizes: 2 2 2",
+        "encoding: raw")
+
+
+def nrrd(*lines, body=bytes(range(8)), drop=()):
+    keep = [l for l in NRRD if l.split(":")[0] not in drop]
+    over = {l.split(":")[0]: l for l in lines}
+    out = [over.pop(l.split(":")[0], l) for l in keep] + list(over.values())
+    return ("\n".join(out) + "\n\n").encode() + body
+
+
+def nifti(dims=(2, 2, 2), datatype=2, bitpix=8, body=bytes(range(8)),
+          pixdim=(1, 1, 1), magic=b"n+1\0", offset=352.0, sizeof_hdr=348,
+          dim0=None, qform=0):
+    h = bytearray(348)
+    struct.pack_into("<i", h, 0, sizeof_hdr)
+    dim = [len(dims) if dim0 is None else dim0] + list(dims) + \
+        [1] * (7 - len(dims))
+    struct.pack_into("<8h", h, 40, *dim)
+    struct.pack_into("<hh", h, 70, datatype, bitpix)
+    struct.pack_into("<8f", h, 76, 1, *pixdim, 0, 0, 0, 0)
+    struct.pack_into("<f", h, 108, offset)
+    struct.pack_into("<h", h, 252, qform)   # quatern_b..d stay 0: identity
+    h[344:348] = magic
+    return bytes(h) + bytes(4) + body
+
+
+VTK = ("# vtk DataFile Version 3.0", "catalog", "{enc}",
+       "DATASET STRUCTURED_POINTS", "DIMENSIONS 2 2 2", "SPACING 1 1 1",
+       "ORIGIN 0 0 0", "POINT_DATA 8", "SCALARS density {t} 1",
+       "LOOKUP_TABLE default")
+
+
+def vtk(body, enc="ASCII", t="float", **repl):
+    lines = [l.format(enc=enc, t=t) for l in VTK]
+    for k, v in repl.items():
+        lines = [v if l.startswith(k) else l for l in lines]
+    return ("\n".join(lines) + "\n").encode() + body
+
+
+ASC8 = b"0 1 2 3 4 5 6 7\n"
+
+
+def pfm(head, vals=8):
+    return head + struct.pack("<%df" % vals, *range(vals))
+
+
+TETM_PTS = struct.pack("<12d", 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1)
+TETM_VAL = struct.pack("<4f", 0.5, 1.5, 2.5, 3.5)
+
+
+def tetm(tets=(0, 1, 2, 3), points=4, ntet=1):
+    body = TETM_PTS + struct.pack("<%dI" % len(tets), *tets) + TETM_VAL
+    return chunk("TETM", payload(["name: mesh", "points: %d" % points,
+                                  "tets: %d" % ntet, "scalar: scalar",
+                                  "encoding: raw"], body))
+
+
+V = stream(volm())
+# name, program (FILE: the case file, <FILE: on stdin; OUT: an output file
+# that must not exist afterwards), exit code, phrase, what is wrong, bytes
+C = []
+
+
+def case(name, prog, code, phrase, what, data):
+    C.append((name, prog, code, phrase, what, data))
+
+
+# ---- streams: the container (vinfo) ----
+S = "vinfo FILE"
+case("empty.vxs", "vinfo <FILE", 66, "empty input", "empty standard input", b"")
+case("empty-file.vxs", S, 66, "empty input", "empty file", b"")
+case("garbage.vxs", S, 65, "bad signature", "text, not a stream",
+     b"hello: world\nthis is not a stream\n")
+case("short-signature.vxs", S, 65, "bad signature", "4 bytes of the signature",
+     SIG[:4])
+case("signature-only.vxs", S, 65, "no end chunk", "signature, no chunks", SIG)
+case("missing-end.vxs", S, 65, "no end chunk", "a chunk, no end chunk",
+     stream(volm(), end=False))
+case("partial-header.vxs", S, 65, "partial chunk header",
+     "stream cut inside a chunk header", V[:8 + 7])
+case("truncated-payload.vxs", S, 65, "truncated stream",
+     "stream cut inside a payload", V[:60])
+case("truncated-crc.vxs", S, 65, "missing CRC", "stream cut inside a CRC",
+     SIG + volm()[:-2])
+case("bitflip.vxs", S, 65, "CRC mismatch", "one payload bit flipped",
+     V[:40] + bytes([V[40] ^ 0x10]) + V[41:])
+case("bad-crc-end.vxs", "vinfo <FILE", 65, "CRC mismatch",
+     "end chunk with a wrong CRC (stdin)", SIG + volm() +
+     chunk("VEND", b"", crc=1))
+case("length-max.vxs", S, 65, "exceeds the limit",
+     "chunk length 2^64 - 1", SIG + b"VOLM" + struct.pack("<Q", 2**64 - 1))
+case("length-2e63.vxs", S, 65, "exceeds the limit", "chunk length 2^63",
+     SIG + b"note" + struct.pack("<Q", 2**63) + b"abc")
+case("length-over-limit.vxs", S, 65, "exceeds the limit",
+     "chunk length 2^40 + 1 (one past the limit)",
+     SIG + b"note" + struct.pack("<Q", 2**40 + 1) + b"abc")
+case("length-beyond.vxs", S, 65, "truncated stream",
+     "chunk length one past the data", SIG + chunk("note", b"abc", length=4))
+case("length-beyond-huge.vxs", S, 65, "truncated stream",
+     "chunk length 2^40 with 3 bytes present",
+     SIG + chunk("note", b"abc", length=2**40))
+case("unknown-critical.vxs", S, 65, "unknown critical chunk",
+     "critical chunk type ZZZZ", stream(chunk("ZZZZ", b"x")))
+case("bad-type.vxs", S, 65, "invalid type bytes", "chunk type '12 \\0'",
+     stream(chunk(b"12 \0", b"")))
+case("end-not-empty.vxs", S, 65, "end chunk must be empty",
+     "end chunk with a payload", SIG + chunk("VEND", b"x"))
+case("trailing.vxs", S, 65, "trailing bytes", "bytes after the end chunk",
+     V + b"\n")
+case("two-streams.vxs", S, 65, "trailing bytes", "two streams concatenated",
+     V + V)
+
+# ---- streams: VOLM contents (vwrite decodes the volume) ----
+W = "vwrite -o OUT FILE"
+case("volm-dims-zero.vxs", W, 65, "dims", "dims 0 2 2",
+     stream(volm(dims="0 2 2")))
+case("volm-dims-negative.vxs", W, 65, "dims", "dims 2 -2 2",
+     stream(volm(dims="2 -2 2")))
+case("volm-dims-huge.vxs", W, 65, "dims", "dims 2^21 per axis",
+     stream(volm(dims="2097152 1 1")))
+case("volm-dims-overflow.vxs", W, 65, "dims",
+     "dims whose product overflows 64 bits",
+     stream(volm(dims="1048576 1048576 1048576")))
+case("volm-dims-2e64.vxs", W, 65, "dims", "dims 2^64 (beyond int64)",
+     stream(volm(dims="18446744073709551616 1 1")))
+case("volm-spacing-nan.vxs", W, 65, "spacing", "spacing nan",
+     stream(volm(spacing="nan 1 1")))
+case("volm-spacing-inf.vxs", W, 65, "spacing",
+     "spacing 1e999 (overflows to inf)", stream(volm(spacing="1e999 1 1")))
+case("volm-spacing-zero.vxs", W, 65, "spacing", "spacing 0",
+     stream(volm(spacing="1 0 1")))
+case("volm-spacing-negative.vxs", W, 65, "spacing", "spacing -1",
+     stream(volm(spacing="1 1 -1")))
+case("volm-origin-inf.vxs", W, 65, "origin", "origin 1e400",
+     stream(volm(origin="0 1e400 0")))
+case("volm-type.vxs", W, 65, "type", "type u32 (not a voxlux type)",
+     stream(volm(type="u32")))
+case("volm-encoding.vxs", W, 65, "encoding", "encoding gzip",
+     stream(volm(encoding="gzip")))
+case("volm-body-short.vxs", W, 65, "body", "raw body 7 of 8 bytes",
+     stream(volm(body=bytes(7))))
+case("volm-body-long.vxs", W, 65, "body", "raw body 9 of 8 bytes",
+     stream(volm(body=bytes(9))))
+case("volm-zlib-short.vxs", W, 65, "zlib",
+     "zlib body that inflates to 7 of 8 bytes",
+     stream(volm(encoding="zlib", body=zlib.compress(bytes(7)))))
+case("volm-zlib-long.vxs", W, 65, "zlib",
+     "zlib body that inflates to 9 of 8 bytes",
+     stream(volm(encoding="zlib", body=zlib.compress(bytes(9)))))
+case("volm-zlib-cut.vxs", W, 65, "zlib", "zlib body cut short",
+     stream(volm(encoding="zlib", body=zlib.compress(bytes(range(8)))[:-5])))
+case("volm-zlib-bomb.vxs", W, 65, "",
+     "dims 1024^3 with a 20-byte zlib body (ratio far beyond deflate's)",
+     stream(volm(dims="1024 1024 1024", encoding="zlib",
+                 body=zlib.compress(bytes(4096)))))
+case("volm-header-garbage.vxs", W, 65, "header", "a header line without ': '",
+     stream(chunk("VOLM", b"dims 2 2 2\n\n" + bytes(8))))
+case("volm-header-unended.vxs", W, 65, "header",
+     "header without its empty line", stream(chunk("VOLM", b"dims: 2 2 2\n")))
+case("volm-header-dup.vxs", W, 65, "duplicate", "key dims twice",
+     stream(chunk("VOLM", payload(["dims: 2 2 2", "dims: 2 2 2", "type: u8",
+                                   "encoding: raw"], bytes(8)))))
+case("volm-header-nul.vxs", W, 65, "header", "NUL byte in the header",
+     stream(chunk("VOLM", b"name: a\0b\n" + payload(["dims: 2 2 2"]))))
+case("volm-header-utf8.vxs", W, 65, "UTF-8", "invalid UTF-8 in a value",
+     stream(chunk("VOLM", b"name: caf\xe9\n" + payload(
+         ["%s: %s" % kv for kv in VOLM_KEYS[1:]], bytes(range(8))))))
+case("volm-dims-missing.vxs", W, 65, "dims", "no dims key",
+     stream(volm(dims=None)))
+case("volm-dims-hex.vxs", W, 65, "dims", "dims in hex (0x2)",
+     stream(volm(dims="0x2 2 2")))
+case("volm-layout.vxs", W, 65, "layout", "layout 'bricked 3x3x3'",
+     stream(volm(layout="bricked 3x3x3")))
+case("volm-range.vxs", W, 65, "range", "range 5 1 (min > max)",
+     stream(volm(range="5 1")))
+case("volm-none.vxs", W, 65, "no volume", "a stream with no VOLM chunk",
+     stream(chunk("note", b"nothing here")))
+
+# ---- streams: IMAG, TETM, MCEL contents ----
+I = "tonemap -o OUT FILE"
+case("imag-width-zero.vxs", I, 65, "width", "width 0",
+     stream(imag(width="0", body=b"")))
+case("imag-channels.vxs", I, 65, "channels", "channels 5",
+     stream(imag(channels="5")))
+case("imag-size-overflow.vxs", I, 65, "", "65536 x 65536 x 4 (over the limit)",
+     stream(imag(width="65536", height="65536", channels="4")))
+case("imag-body-short.vxs", I, 65, "", "body 4 of 8 bytes",
+     stream(imag(body=bytes(4))))
+case("imag-colorspace.vxs", I, 65, "colorspace", "colorspace srgb",
+     stream(imag(colorspace="srgb")))
+T = "vinfo FILE"   # vinfo lists the stream, then reports the bad chunk
+case("tetm-index.vxs", T + " (listing)", 65, "tet",
+     "tet vertex index 4 of 4 points", stream(tetm(tets=(0, 1, 2, 4))))
+case("tetm-count.vxs", T + " (listing)", 65, "", "tets: 2^40 with one tet's bytes",
+     stream(tetm(ntet=2**40)))
+case("mcel-levels.vxs", T + " (listing)", 65, "levels", "levels 9",
+     stream(chunk("MCEL", payload(["leaves: explicit", "leaf-dims: 1 1 1",
+                                   "levels: 9", "sizes: ", "range: 0 1",
+                                   "encoding: raw"], bytes(8)))))
+
+# ---- NRRD (vread) ----
+R = "vread -o OUT FILE"
+case("nrrd-truncated.nrrd", R, 65, "truncated", "raw data 5 of 8 bytes",
+     nrrd(body=bytes(5)))
+case("nrrd-long.nrrd", R, 65, "longer than", "raw data 8 + 4097 bytes "
+     "(4096 are tolerated)", nrrd(body=bytes(8 + 4097)))
+case("nrrd-type.nrrd", R, 65, "type", "type: complex",
+     nrrd("type: complex"))
+case("nrrd-encoding.nrrd", R, 65, "encoding", "encoding: bzip2",
+     nrrd("encoding: bzip2"))
+case("nrrd-gzip-short.nrrd", R, 65, "gzip", "gzip data inflating to 5 of 8",
+     nrrd("encoding: gzip", body=gz(bytes(5))))
+case("nrrd-gzip-long.nrrd", R, 65, "gzip", "gzip data inflating to 12 of 8",
+     nrrd("encoding: gzip", body=gz(bytes(12))))
+case("nrrd-gzip-cut.nrrd", R, 65, "gzip", "gzip stream cut short",
+     nrrd("encoding: gzip", body=gz(bytes(range(8)))[:-6]))
+case("nrrd-gzip-crc.nrrd", R, 65, "gzip", "gzip trailer CRC wrong",
+     nrrd("encoding: gzip", body=gz(bytes(range(8)))[:-8] + b"\0\0\0\0" +
+          gz(bytes(range(8)))[-4:]))
+case("nrrd-sizes-lie.nrrd", R, 65, "", "sizes 200 200 200 with 8 bytes",
+     nrrd("sizes: 200 200 200"))
+case("nrrd-sizes-zero.nrrd", R, 65, "sizes", "sizes 2 0 2",
+     nrrd("sizes: 2 0 2"))
+case("nrrd-sizes-negative.nrrd", R, 65, "sizes", "sizes 2 -2 2",
+     nrrd("sizes: 2 -2 2"))
+case("nrrd-sizes-overflow.nrrd", R, 65, "", "sizes whose product overflows",
+     nrrd("sizes: 4294967296 4294967296 4294967296"))
+case("nrrd-spacing-ninf.nrrd", R, 65, "spacings", "spacings 1 1 -inf",
+     nrrd("spacings: 1 1 -inf"))
+case("nrrd-spacing-inf.nrrd", R, 65, "spacings", "spacings 1 inf 1",
+     nrrd("spacings: 1 inf 1"))
+case("nrrd-spacing-zero.nrrd", R, 65, "spacings", "spacings 1 1 0",
+     nrrd("spacings: 1 1 0"))
+case("nrrd-magic.nrrd", R, 65, "", "magic NRRD0009", nrrd()[:4] + b"0009" +
+     nrrd()[8:])
+case("nrrd-garbage-line.nrrd", R, 65, "", "a header line that is no field",
+     nrrd("what is this"))
+case("nrrd-dimension.nrrd", R, 65, "dimension", "dimension 4",
+     nrrd("dimension: 4", "sizes: 2 2 2 1"))
+case("nrrd-no-sizes.nrrd", R, 65, "sizes", "no sizes field",
+     nrrd(drop=("sizes",)))
+case("nrrd-ascii-short.nrrd", R, 65, "", "ascii data: 7 of 8 values",
+     nrrd("encoding: ascii", body=b"0 1 2 3 4 5 6\n"))
+case("nrrd-ascii-word.nrrd", R, 65, "", "ascii data with a word in it",
+     nrrd("encoding: ascii", body=b"0 1 2 x 4 5 6 7\n"))
+case("nrrd-hex-odd.nrrd", R, 65, "", "hex data with an odd digit count",
+     nrrd("encoding: hex", body=b"000102030405060\n"))
+case("nrrd-detached-missing.nhdr", R, 66, "No such file",
+     "detached data file that does not exist",
+     nrrd("data file: no-such-file.raw", body=b""))
+
+# ---- NIfTI-1 (vread) ----
+case("nifti-truncated.nii", R, 65, "", "data 5 of 8 bytes",
+     nifti(body=bytes(5)))
+case("nifti-datatype.nii", R, 65, "datatype", "datatype 1234",
+     nifti(datatype=1234))
+case("nifti-bitpix.nii", R, 65, "bitpix", "bitpix 16 for u8 data",
+     nifti(bitpix=16))
+case("nifti-dims-zero.nii", R, 65, "dim", "dim 2 0 2", nifti(dims=(2, 0, 2)))
+case("nifti-dims-negative.nii", R, 65, "dim", "dim 2 -2 2",
+     nifti(dims=(2, -2, 2)))
+case("nifti-dims-overflow.nii", R, 65, "dim", "dim 32767^3 (over the limit)",
+     nifti(dims=(32767, 32767, 32767)))
+case("nifti-dim0.nii", R, 65, "dim", "dim[0] 9", nifti(dim0=9))
+case("nifti-pixdim-nan.nii", R, 65, "", "pixdim nan with a qform",
+     nifti(pixdim=(float("nan"), 1, 1), qform=1))
+case("nifti-pixdim-inf.nii", R, 65, "", "pixdim inf with a qform",
+     nifti(pixdim=(1, float("inf"), 1), qform=1))
+case("nifti-offset.nii", R, 65, "", "vox_offset beyond the file",
+     nifti(offset=1e9))
+case("nifti-offset-nan.nii", R, 65, "vox_offset", "vox_offset nan",
+     nifti(offset=float("nan")))
+case("nifti-magic.nii", R, 65, "", "magic 'ni1' in a single file",
+     nifti(magic=b"ni1\0"))
+case("nifti-sizeof.nii", R, 65, "", "sizeof_hdr 349 (not NIfTI-1)",
+     nifti(sizeof_hdr=349))
+case("nifti-short.nii", R, 65, "", "100 bytes of a header",
+     nifti()[:100])
+case("nifti-gz-cut.nii.gz", R, 65, "gzip", "gzip stream cut short",
+     gz(nifti())[:-10])
+
+# ---- VTK structured points (vread) ----
+case("vtk-truncated.vtk", R, 65, "truncated", "binary data 10 of 32 bytes",
+     vtk(bytes(10), enc="BINARY"))
+case("vtk-ascii-short.vtk", R, 65, "", "ascii data: 7 of 8 values",
+     vtk(b"0 1 2 3 4 5 6\n"))
+case("vtk-ascii-word.vtk", R, 65, "", "ascii data with a word in it",
+     vtk(b"0 1 2 x 4 5 6 7\n"))
+case("vtk-type.vtk", R, 65, "", "SCALARS type complex",
+     vtk(ASC8, t="complex"))
+case("vtk-encoding.vtk", R, 65, "", "encoding line XML",
+     vtk(ASC8, enc="XML"))
+case("vtk-dataset.vtk", R, 65, "", "DATASET POLYDATA",
+     vtk(ASC8, DATASET="DATASET POLYDATA"))
+case("vtk-dims-zero.vtk", R, 65, "DIMENSIONS", "DIMENSIONS 2 0 2",
+     vtk(ASC8, DIMENSIONS="DIMENSIONS 2 0 2"))
+case("vtk-dims-overflow.vtk", R, 65, "", "DIMENSIONS whose product overflows",
+     vtk(ASC8, DIMENSIONS="DIMENSIONS 4294967296 4294967296 4294967296"))
+case("vtk-spacing-nan.vtk", R, 65, "SPACING", "SPACING nan 1 1",
+     vtk(ASC8, SPACING="SPACING nan 1 1"))
+case("vtk-spacing-zero.vtk", R, 65, "SPACING", "SPACING 0 1 1",
+     vtk(ASC8, SPACING="SPACING 0 1 1"))
+case("vtk-point-data.vtk", R, 65, "POINT_DATA", "POINT_DATA 9 for 8 points",
+     vtk(ASC8, POINT_DATA="POINT_DATA 9"))
+case("vtk-header.vtk", R, 65, "", "first line not a VTK header",
+     b"hello vtk\n" + vtk(ASC8)[27:])
+
+# ---- raw (vread --raw) ----
+case("raw-short.raw", "vread --raw 2,2,2 --type u16 -o OUT FILE", 65,
+     "truncated", "8 bytes for 2x2x2 u16", bytes(8))
+case("raw-long.raw", "vread --raw 2,2,2 --type u8 -o OUT FILE", 65, "",
+     "9 bytes for 2x2x2 u8", bytes(9))
+
+# ---- PFM (tonemap) ----
+P = "tonemap -o OUT FILE"
+case("pfm-truncated.pfm", P, 65, "needs", "2x2 gray with 3 values",
+     pfm(b"Pf\n2 2\n-1\n", 3))
+case("pfm-long.pfm", P, 65, "", "2x2 gray with 5 values",
+     pfm(b"Pf\n2 2\n-1\n", 5))
+case("pfm-size-word.pfm", P, 65, "size", "width 'two'",
+     pfm(b"Pf\ntwo 2\n-1\n", 4))
+case("pfm-size-zero.pfm", P, 65, "size", "width 0", pfm(b"Pf\n0 2\n-1\n", 0))
+case("pfm-size-negative.pfm", P, 65, "size", "height -2",
+     pfm(b"Pf\n2 -2\n-1\n", 4))
+case("pfm-size-huge.pfm", P, 65, "", "65537 x 65537 RGB",
+     pfm(b"PF\n65537 65537\n-1\n", 3))
+case("pfm-size-2e64.pfm", P, 65, "size", "width 2^64",
+     pfm(b"PF\n18446744073709551616 1\n-1\n", 3))
+case("pfm-scale-nan.pfm", P, 65, "scale", "scale nan", pfm(b"Pf\n2 2\nnan\n", 4))
+case("pfm-scale-zero.pfm", P, 65, "scale", "scale 0", pfm(b"Pf\n2 2\n0\n", 4))
+case("pfm-scale-word.pfm", P, 65, "scale", "scale 'big'",
+     pfm(b"Pf\n2 2\nbig\n", 4))
+case("pfm-magic.pfm", P, 65, "not a voxlux stream", "magic 'Pg'",
+     pfm(b"Pg\n2 2\n-1\n", 4))
+case("pfm-header-only.pfm", P, 65, "", "header and no data", b"PF\n1 1\n-1\n")
+case("pfm-no-separator.pfm", P, 65, "", "no whitespace after the scale",
+     b"Pf\n1 1\n-1" + struct.pack("<f", 1))
+
+# ---- the renderers and filters on bad streams (the same files; skipped
+# where the program is not built yet) ----
+for prog in ("brick", "macrocell", "raycast", "mip"):
+    case("bitflip.vxs", prog + " -o OUT FILE", 65, "CRC mismatch",
+         "one payload bit flipped", None)
+    case("volm-dims-zero.vxs", prog + " -o OUT FILE", 65, "dims",
+         "dims 0 2 2", None)
+    case("volm-none.vxs", prog + " -o OUT FILE", 65, "no volume",
+         "a stream with no VOLM chunk", None)
+    case("empty.vxs", prog + " -o OUT <FILE", 66, "empty input",
+         "empty standard input", None)
+
+# ---- no input, usage ----
+case("missing.vxs", "vinfo NOFILE", 66, "No such file",
+     "input file does not exist", None)
+case("missing.nrrd", "vread -o OUT NOFILE", 66, "No such file",
+     "input file does not exist", None)
+case("missing.pfm", "tonemap -o OUT NOFILE", 66, "No such file",
+     "input file does not exist", None)
+case("empty.nrrd", "vread -o OUT <FILE", 66, "empty input",
+     "empty standard input", b"")
+case("empty.pfm", "tonemap -o OUT <FILE", 66, "empty input",
+     "empty standard input", b"")
+case("usage-vinfo", "vinfo FILE FILE", 64, "at most one input",
+     "two inputs", V)
+
+here = "."
+names = set()
+with open("cases", "w") as cf:
+    cf.write("# generated by make.sh: file<TAB>command<TAB>code<TAB>phrase\n")
+    for name, prog, code, phrase, what, data in C:
+        assert (name, prog) not in names, name
+        assert data is not None or "NOFILE" in prog or os.path.exists(name)
+        names.add((name, prog))
+        if data is not None:
+            with open(name, "wb") as f:
+                f.write(data)
+        cf.write("%s\t%s\t%d\t%s\n" % (name, prog, code, phrase))
+with open("README.md", "w") as rf:
+    rf.write("""# Malformed-input catalog
+
+One small file per case, generated by `make.sh` (python3; run it from
+anywhere, it writes here) and committed.  `tests/cli/test_malformed.sh` runs
+each case's command and checks: the exit code (65 bad data, 66 no input,
+64 usage), exactly one line on standard error, `program: ...`, containing
+the phrase (for usage errors the usage line may follow) (an empty phrase: any message), nothing on standard output
+(except for vinfo's listing where marked), no sanitizer report, and no
+output file left behind for `-o OUT`.  `FILE` is the case's file, `<FILE`
+the file on standard input, `NOFILE` a path that does not exist.  The
+machine-readable list is `cases` (tab-separated).
+
+| file | command | code | phrase | what is wrong |
+| --- | --- | --- | --- | --- |
+""")
+    for name, prog, code, phrase, what, data in C:
+        rf.write("| `%s` | `%s` | %d | %s | %s |\n" % (
+            name, prog, code, ("`%s`" % phrase) if phrase else "(any)", what))
+print("%d cases" % len(C))
+EOF
