@@ -127,11 +127,11 @@ uninstall:
 
 # ---- fuzzing (clang + libFuzzer) ----
 # The core is compiled once with sanitizer coverage into its own archive;
-# each tests/fuzz/fuzz_NAME.c links against it.  No -fopenmp: the targets
-# run one thread, and without it clang ignores the pragmas silently.
-# UBSan findings abort, so libFuzzer keeps them as crashes.
+# each tests/fuzz/fuzz_NAME.c links against it.  OpenMP as in the normal
+# build (clang needs libomp-dev); run.sh sets OMP_NUM_THREADS=1.  UBSan
+# findings abort, so libFuzzer keeps them as crashes.
 FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=undefined
-FUZZ_CFLAGS := -g -O1 -fno-omit-frame-pointer $(FUZZ_SAN) -Isrc/core -D_GNU_SOURCE $(PNG_CFLAGS)
+FUZZ_CFLAGS := -g -O1 -fno-omit-frame-pointer $(FUZZ_SAN) $(OPENMP) -Isrc/core -D_GNU_SOURCE $(PNG_CFLAGS)
 FUZZ_OBJ := $(CORE_SRC:src/core/%.c=build/fuzz/obj/%.o)
 FUZZ_LIB := build/fuzz/libvoxlux-fuzz.a
 build/fuzz/obj/%.o: src/core/%.c

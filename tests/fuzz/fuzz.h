@@ -15,6 +15,7 @@
 #include "vx_grid.h"
 #include "vx_image.h"
 #include "vx_stream.h"
+#include "vx_tetmesh.h"
 
 /* fuzz_fail: an invariant did not hold: say which and abort. */
 static void
@@ -102,6 +103,68 @@ fuzz_image_touch(const vx_image *img)
 	for (size_t i = 0; i < n; i++)
 		if (isfinite(img->px[i]))
 			sum += img->px[i];
+	return sum;
+}
+
+/* fuzz_tetmesh_touch: read every point, index and value of a validated
+ * mesh; with deep set, also round-trip it through a TETM chunk (it must
+ * come back identical), build its leaf grid and cast one ray through it. */
+static double
+fuzz_tetmesh_touch(const vx_tetmesh *m, int deep)
+{
+	double sum = 0;
+	vx_err e;
+
+	for (size_t i = 0; i < 3 * m->npoint; i++) {
+		if (!isfinite(m->pts[i]) || fabs(m->pts[i]) > VX_TETMESH_COORD_MAX)
+			fuzz_fail("tetmesh: coordinate beyond the limit");
+		sum += m->pts[i];
+	}
+	for (size_t i = 0; i < 4 * m->ntet; i++) {
+		if (m->tet[i] >= m->npoint)
+			fuzz_fail("tetmesh: index beyond npoint after validate");
+		sum += m->val[m->tet[i]] == m->val[m->tet[i]];
+	}
+	for (size_t t = 0; t < m->ntet && t < 64; t++)
+		sum += vx_tetmesh_degenerate(m, t);
+	if (!deep)
+		return sum;
+	vx_err_clear(&e);
+	{
+		vx_chunk c;
+		vx_tetmesh b;
+
+		if (vx_tetmesh_to_chunk(m, 0, &c, &e) != 0)
+			fuzz_fail("tetmesh: a valid mesh cannot be written");
+		if (vx_tetmesh_from_chunk(&b, &c, &e) != 0)
+			fuzz_fail("tetmesh: a written mesh does not read back");
+		if (b.npoint != m->npoint || b.ntet != m->ntet ||
+		    memcmp(b.pts, m->pts, 3 * m->npoint * sizeof *m->pts) ||
+		    memcmp(b.tet, m->tet, 4 * m->ntet * sizeof *m->tet) ||
+		    memcmp(b.val, m->val, m->npoint * sizeof *m->val))
+			fuzz_fail("tetmesh: chunk round trip changed the mesh");
+		vx_tetmesh_free(&b);
+		vx_chunk_free(&c);
+	}
+	if (m->ntet > 0 && m->ntet <= 4096) {
+		vx_tetleaf lg;
+		vx_tethit hit;
+		double o[3], d[3] = { 0.3, 0.2, 1 }, iso[2];
+		int rc;
+
+		rc = vx_tetleaf_build(&lg, m, 1, &e);
+		fuzz_err_check(rc, &e);
+		if (rc == 0) {
+			for (int a = 0; a < 3; a++)
+				o[a] = (m->bmin[a] + m->bmax[a]) / 2 - d[a] *
+				    (m->bmax[2] - m->bmin[2] + 1);
+			iso[0] = m->has_range ? (m->vmin + m->vmax) / 2 : 0;
+			iso[1] = m->has_range ? m->vmin : 1;
+			sum += vx_tetleaf_nearest(&lg, m, o, d, iso, 2, 0,
+			    INFINITY, &hit, NULL);
+			vx_tetleaf_free(&lg);
+		}
+	}
 	return sum;
 }
 

@@ -1,8 +1,8 @@
 /* fuzz_stream.c: libFuzzer target for the stream reader and every chunk
  * decoder: vx_stream_read_mem, then VOLM (vx_grid_from_chunk), IMAG
  * (vx_image_from_chunk), MCEL (vx_macro_from_chunk, and against its volume)
- * and TETM (vx_tetmesh_from_chunk); a stream that reads is written back and
- * must read back to the same chunks. */
+ * TETM (vx_tetmesh_from_chunk) and SCNE (vx_scene_from_chunk); a stream
+ * that reads is written back and must read back to the same chunks. */
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -10,6 +10,7 @@
 
 #include "fuzz.h"
 #include "vx_macro.h"
+#include "vx_scene.h"
 #include "vx_tetmesh.h"
 
 static double
@@ -31,23 +32,6 @@ touch_macro(const vx_macro *m)
 			sum += m->mm[l][i] == m->mm[l][i];
 	}
 	return sum + (m->root[0] <= m->root[1]);
-}
-
-static double
-touch_tetmesh(const vx_tetmesh *m)
-{
-	double sum = 0;
-
-	for (size_t i = 0; i < 3 * m->npoint; i++)
-		sum += m->pts[i];
-	for (size_t i = 0; i < 4 * m->ntet; i++) {
-		if (m->tet[i] >= m->npoint)
-			fuzz_fail("tetmesh: index beyond npoint after validate");
-		sum += m->val[m->tet[i]] == m->val[m->tet[i]];
-	}
-	for (size_t t = 0; t < m->ntet && t < 64; t++)
-		sum += vx_tetmesh_degenerate(m, t);
-	return sum;
 }
 
 /* roundtrip: write s to memory, read it back, compare chunk by chunk. */
@@ -148,13 +132,20 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 				sink += touch_macro(&m);
 				vx_macro_free(&m);
 			}
+		} else if (strcmp(c->type, VX_CHUNK_SCENE) == 0) {
+			vx_scene sc;
+
+			rc = vx_scene_from_chunk(&sc, c, &e);
+			fuzz_err_check(rc, &e);
+			if (rc == 0)
+				sink += sc.nsurface + sc.nlight;
 		} else if (strcmp(c->type, VX_CHUNK_TETMESH) == 0) {
 			vx_tetmesh m;
 
 			rc = vx_tetmesh_from_chunk(&m, c, &e);
 			fuzz_err_check(rc, &e);
 			if (rc == 0) {
-				sink += touch_tetmesh(&m);
+				sink += fuzz_tetmesh_touch(&m, 0);
 				vx_tetmesh_free(&m);
 			}
 		}

@@ -158,3 +158,60 @@ put("png", "graya8-text.png", png(2, 1, 8, 4, [b"\x10\x20\x30\x40"],
 put("png", "interlaced-rgb.png", png(1, 1, 8, 2, [b"\1\2\3"], interlace=1))
 put("png", "truncated.png", png(4, 4, 8, 2, [bytes(12)] * 4)[:50])
 put("png", "huge.png", png(100000, 100000, 8, 0, [b""]))
+
+# ---- tet meshes: first byte = options (fuzz_tetvtk.c, fuzz_gmsh.c) ----
+VTK_TET = ("# vtk DataFile Version 3.0\ntwo tets\nASCII\n"
+           "DATASET UNSTRUCTURED_GRID\nPOINTS 5 float\n"
+           "0 0 0  1 0 0  0 1 0\n0 0 1  1 1 1\nCELLS 3 14\n"
+           "4 0 1 2 3\n4 1 2 3 4\n3 0 1 2\nCELL_TYPES 3\n10\n10\n5\n"
+           "POINT_DATA 5\nSCALARS density float 1\nLOOKUP_TABLE default\n"
+           "0.5 1.5 -2 3e2 4.25\n")
+put("tetvtk", "ascii", b"\0" + VTK_TET.encode())
+put("tetvtk", "ascii-named", b"\2" + VTK_TET.encode())
+put("tetvtk", "hex-cell", b"\1" + VTK_TET.replace(
+    "CELLS 3 14", "CELLS 4 23").replace(
+    "3 0 1 2\n", "3 0 1 2\n8 0 1 2 3 4 0 1 2\n").replace(
+    "CELL_TYPES 3\n10\n10\n5", "CELL_TYPES 4\n10\n10\n5\n12").encode())
+put("tetvtk", "v51", b"\0" + (
+    "# vtk DataFile Version 5.1\nx\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+    "POINTS 5 float\n0 0 0 1 0 0 0 1 0 0 0 1 1 1 1\n"
+    "METADATA\nINFORMATION 0\n\n"
+    "CELLS 4 11\nOFFSETS vtktypeint64\n0 4 8 11\n"
+    "CONNECTIVITY vtktypeint64\n0 1 2 3 1 2 3 4 0 1 2\n"
+    "CELL_TYPES 3\n10 10 5\n"
+    "POINT_DATA 5\nFIELD f 1\ndensity 1 5 float\n0.5 1.5 -2 300 4.25\n"
+).encode())
+put("tetvtk", "binary", b"\0" + b"# vtk DataFile Version 4.2\nb\nBINARY\n"
+    b"DATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n" +
+    struct.pack(">12d", 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1) +
+    b"\nCELLS 1 5\n" + struct.pack(">5i", 4, 0, 1, 2, 3) +
+    b"\nCELL_TYPES 1\n" + struct.pack(">i", 10) +
+    b"\nPOINT_DATA 4\nSCALARS s float 1\nLOOKUP_TABLE default\n" +
+    struct.pack(">4f", 0, 1, 2, 3) + b"\n")
+put("tetvtk", "bad-index", b"\0" + VTK_TET.replace("4 1 2 3 4",
+    "4 1 2 3 9").encode())
+
+GMSH2 = ("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
+         "$PhysicalNames\n1\n3 1 \"fluid region\"\n$EndPhysicalNames\n"
+         "$Nodes\n5\n10 0 0 0\n20 1 0 0\n30 0 1 0\n40 0 0 1\n50 1 1 1\n"
+         "$EndNodes\n$Elements\n4\n1 15 2 0 1 10\n2 2 2 0 1 10 20 30\n"
+         "3 4 2 1 1 10 20 30 40\n4 4 3 1 1 0 20 30 40 50\n$EndElements\n"
+         "$NodeData\n1\n\"velocity\"\n1\n0.0\n3\n0\n3\n1\n10 1 2 3\n"
+         "$EndNodeData\n"
+         "$NodeData\n1\n\"density\"\n1\n0.0\n3\n0\n1\n5\n"
+         "10 0.5\n20 1.5\n30 -2\n40 300\n50 4.25\n$EndNodeData\n")
+GMSH4 = ("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+         "$Entities\n1 0 0 1\n1 0 0 0 0\n1 0 0 0 1 1 1 0 0\n$EndEntities\n"
+         "$Nodes\n2 5 1 5\n0 1 0 1\n1\n0 0 0\n"
+         "3 1 1 4\n2\n3\n4\n5\n1 0 0 0.1 0.2 0.3\n0 1 0 0 0 0\n0 0 1 0 0 0\n"
+         "1 1 1 0 0 0\n$EndNodes\n"
+         "$Elements\n2 3 1 3\n2 1 2 1\n1 1 2 3\n"
+         "3 1 4 2\n2 1 2 3 4\n3 2 3 4 5\n$EndElements\n"
+         "$NodeData\n1\n\"pressure\"\n1\n0.0\n3\n0\n1\n5\n"
+         "1 0.5\n2 1.5\n3 -2\n4 300\n5 4.25\n$EndNodeData\n")
+put("gmsh", "v2", b"\0" + GMSH2.encode())
+put("gmsh", "v2-named", b"\2" + GMSH2.encode())
+put("gmsh", "v4", b"\0" + GMSH4.encode())
+put("gmsh", "v4-truncated", b"\0" + GMSH4[:300].encode())
+put("gmsh", "v2-bad-node", b"\0" + GMSH2.replace("20 30 40 50",
+    "20 30 40 99").encode())

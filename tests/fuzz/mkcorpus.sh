@@ -27,5 +27,7 @@ bin/vread --synth linear --size 2 | bin/vwrite --gzip -o "$out/nrrd/vwrite-gzip.
 bin/tonemap --pfm -o "$out/pfm/tonemap.pfm" "$tmp/img.vxs"
 bin/tonemap -o "$out/png/tonemap8.png" "$tmp/img.vxs"
 bin/tonemap --bits 16 -o "$out/png/tonemap16.png" "$tmp/img.vxs"
+mkdir -p "$out/scene"
+cp examples/scenes/*.scn "$out/scene/"
 python3 tests/fuzz/mkcorpus.py "$out"
 du -sk "$out"

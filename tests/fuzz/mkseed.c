@@ -4,7 +4,8 @@
  *                    DIR/bricked-zlib.vxs i16 6x5x4 bricked 2x2x2, zlib
  *                    DIR/tetm.vxs         TETM of the 6-tet unit cube
  *                    DIR/imag.vxs         IMAG 3x2 RGBA + hist + note
- *                    DIR/explicit.vxs     MCEL with explicit leaves */
+ *                    DIR/explicit.vxs     MCEL with explicit leaves
+ *                    DIR/scene.vxs        SCNE (two surfaces, a light) */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,6 +13,7 @@
 #include "vx_grid.h"
 #include "vx_image.h"
 #include "vx_macro.h"
+#include "vx_scene.h"
 #include "vx_stream.h"
 #include "vx_tetmesh.h"
 
@@ -62,6 +64,7 @@ main(int argc, char **argv)
 	vx_macro m;
 	vx_tetmesh t;
 	vx_image img;
+	vx_scene sc;
 
 	if (argc != 2) {
 		fprintf(stderr, "usage: mkseed DIR\n");
@@ -119,5 +122,13 @@ main(int argc, char **argv)
 	die(vx_stream_append(&s, &c, &err));
 	vx_macro_free(&m);
 	save(argv[1], "explicit.vxs", &s);
+
+	vx_scene_init(&sc);
+	die(vx_scene_apply(&sc, "surface iso 0.5 color 1 0 0 opacity 0.5", &err));
+	die(vx_scene_apply(&sc, "surface iso 2", &err));
+	die(vx_scene_apply(&sc, "light point position 1 2 3", &err));
+	die(vx_scene_to_chunk(&sc, 0, &c, &err));
+	die(vx_stream_append(&s, &c, &err));
+	save(argv[1], "scene.vxs", &s);
 	return 0;
 }

@@ -11,6 +11,7 @@
 set -u
 : "${FUZZ_TIME:=30}" "${FUZZ_WORK:=build/fuzz/work}" "${FUZZ_ARGS:=}"
 [ $# -gt 0 ] || { echo "usage: sh tests/fuzz/run.sh build/fuzz/fuzz_NAME..." >&2; exit 64; }
+OMP_NUM_THREADS=1; export OMP_NUM_THREADS   # one thread: reproducible runs
 nfail=0; failed=""; ntarget=$#
 for bin in "$@"; do
 	name=$(basename "$bin"); name=${name#fuzz_}
