@@ -23,6 +23,7 @@ while IFS="$tab" read -r file cmd code phrase; do
 		FILE) a=$dir/$file ;;
 		'<FILE') stdin=$dir/$file; continue ;;
 		NOFILE) a=$T/no-such-file ;;
+		GOOD) a=$dir/good.vxs ;;
 		OUT) out=$T/out.$prog; a=$out ;;
 		'(listing)') listing=1; continue ;;
 		esac
