@@ -1230,6 +1230,12 @@ leaf_dims_shape(void **state)
 	assert_true(d[0] == 1 && d[1] == 1 && d[2] == 100);
 	vx_tetleaf_dims((double[3]){ 1e300, 1e300, 1e300 }, 8, 1, d);
 	assert_true(d[0] == 2 && d[1] == 2 && d[2] == 2);
+	/* fuzz_tetvtk's input: one tet with extents 1.2e-38, 2.7e-312, 1
+	 * (subnormal) asked for 2^31 leaves (8 GiB) before the fix above.
+	 * Oracle: one tet, one leaf */
+	vx_tetleaf_dims((double[3]){ 1.1754943508222874e-38,
+	    2.73671144666e-312, 1 }, 1, 1, d);
+	assert_true(d[0] == 1 && d[1] == 1 && d[2] == 1);
 }
 
 /* ---- importers ---- */
