@@ -98,6 +98,9 @@ sample(const vx_grid *g, const double w[3])
 typedef struct shadow_ctx {
 	const rc_shared *S;
 	double T;                 /* transmission so far */
+	int self_surface;         /* the surface the shadow ray starts on */
+	int self_entering;        /* how the eye ray crossed it */
+	int first;                /* no crossing seen yet */
 } shadow_ctx;
 
 static int
@@ -106,7 +109,17 @@ shadow_hit(void *ctx, const vx_iso_hit *h)
 	shadow_ctx *x = ctx;
 	const vx_surface *sf = &x->S->s->surface[x->S->surf[h->surface]];
 	double a = x->S->composite ? sf->m.opacity : 1.0;
+	int first = x->first;
 
+	x->first = 0;
+	/* The shadow ray leaves the surface on the eye's side, where an
+	 * occluder of the same surface is crossed the way the eye ray crossed
+	 * it.  A first crossing of that surface the other way means the start
+	 * point was a little inside (the root is only as exact as the solver):
+	 * the ray is just leaving its own surface, not shadowed by it. */
+	if (first && h->surface == x->self_surface &&
+	    h->entering != x->self_entering)
+		return 0;
 	x->T *= 1.0 - a;
 	return x->T <= 1e-4;      /* opaque enough: stop */
 }
@@ -193,7 +206,7 @@ shade(const rc_shared *S, rc_local *L, const vx_iso_hit *h,
 			continue;
 		if (p->shadow_on[l]) {
 			double oi[3], di[3], ni[3];
-			shadow_ctx x = { S, 1.0 };
+			shadow_ctx x = { S, 1.0, h->surface, h->entering, 1 };
 			uint64_t c0 = S->o->timing ? vx_cycles() : 0;
 
 			/* start a small step off the surface, on the lit side */
