@@ -157,6 +157,9 @@ demo: all
 bench: all
 	$(MAKE) -C examples/bench
 
+studies: all
+	$(MAKE) -C examples/studies
+
 clean:
 	rm -rf build bin/*
 
