@@ -498,35 +498,44 @@ t_exit_of(const ray *r, const vx_macro *m, const int64_t n[3], int l, int a,
 /* find_cell: among level-l cells k0..k1-1 along axis a (s != 0), the one
  * the ray is in at time t: the last one in walking order whose entry face
  * is crossed at or before t (post != 0) or strictly before t (post == 0);
- * the first one if none is.  Binary search: crossing times are monotone. */
+ * the first one if none is.  Crossing times are monotone in the plane, so
+ * that test is monotone in the cell index: start from the cell holding the
+ * point o + t d (right or one off, whatever the rounding) and walk to the
+ * answer; the result is the same as a binary search's, in one or two
+ * crossing times instead of log2(k1 - k0). */
 static int64_t
 find_cell(const ray *r, const vx_macro *m, const int64_t n[3], int l, int a,
     int64_t k0, int64_t k1, double t, int post)
 {
-	int64_t lo = k0, hi = k1 - 1;
+	double q = (r->o[a] + t * r->d[a]) / (double)lev_width(m, l, a);
+	int64_t k;
 
+	/* the guess, clamped into [k0, k1 - 1] (NaN goes to k0) */
+	if (!(q > (double)k0))
+		k = k0;
+	else if (q >= (double)(k1 - 1))
+		k = k1 - 1;
+	else
+		k = (int64_t)q;
 	if (r->s[a] > 0) {
-		while (lo < hi) {
-			int64_t mid = lo + (hi - lo + 1) / 2;
-			double tc = tcross(r, a, plane_lo(m, l, a, mid));
-
-			if (post ? tc <= t : tc < t)
-				lo = mid;
-			else
-				hi = mid - 1;
-		}
+		/* entered(k): k's entry face (its lower plane) is crossed by t */
+#define ENTERED_UP(k) (post ? tcross(r, a, plane_lo(m, l, a, (k))) <= t : \
+	tcross(r, a, plane_lo(m, l, a, (k))) < t)
+		while (k < k1 - 1 && ENTERED_UP(k + 1))
+			k++;
+		while (k > k0 && !ENTERED_UP(k))
+			k--;
+#undef ENTERED_UP
 	} else {
-		while (lo < hi) {
-			int64_t mid = lo + (hi - lo) / 2;
-			double tc = tcross(r, a, plane_hi(m, n, l, a, mid));
-
-			if (post ? tc <= t : tc < t)
-				hi = mid;
-			else
-				lo = mid + 1;
-		}
+#define ENTERED_DOWN(k) (post ? tcross(r, a, plane_hi(m, n, l, a, (k))) <= t : \
+	tcross(r, a, plane_hi(m, n, l, a, (k))) < t)
+		while (k > k0 && ENTERED_DOWN(k - 1))
+			k--;
+		while (k < k1 - 1 && !ENTERED_DOWN(k))
+			k++;
+#undef ENTERED_DOWN
 	}
-	return lo;
+	return k;
 }
 
 static inline int
