@@ -450,7 +450,12 @@ typedef struct ray {
 	double o[3], d[3], inv[3];
 	int s[3];              /* direction sign per axis: 1, -1 or 0 */
 	int div[3];            /* 1: crossing times by division */
+	int up[3];             /* 1 where s >= 0: the far plane is the upper */
+	int flip;              /* bit a set where s[a] < 0 (see leaves) */
 	int64_t fixed[3];      /* leaf index along axes with s == 0 */
+	int64_t n[3];          /* leaf grid dims */
+	int64_t w[VX_MACRO_MAXLEV + 1][3];   /* level-l cell edge in leaves */
+	double iw[VX_MACRO_MAXLEV + 1][3];   /* 1 / w: only for guesses */
 } ray;
 
 /* tcross: the time the ray crosses plane x_a = p.  One formula for every
@@ -463,36 +468,30 @@ tcross(const ray *r, int a, int64_t p)
 	return r->div[a] ? x / r->d[a] : x * r->inv[a];
 }
 
+/* the planes bounding level-l cell c along a, in leaves (the last cell of
+ * a level may be partial: its upper plane is the grid's) */
 static inline int64_t
-lev_width(const vx_macro *m, int l, int a)
+plane_lo(const ray *r, int l, int a, int64_t c)
 {
-	return l ? m->width[l][a] : 1;
-}
-
-/* the planes bounding level-l cell c along a, in leaves */
-static inline int64_t
-plane_lo(const vx_macro *m, int l, int a, int64_t c)
-{
-	return c * lev_width(m, l, a);
+	return c * r->w[l][a];
 }
 
 static inline int64_t
-plane_hi(const vx_macro *m, const int64_t n[3], int l, int a, int64_t c)
+plane_hi(const ray *r, int l, int a, int64_t c)
 {
-	int64_t p = (c + 1) * lev_width(m, l, a);
+	int64_t p = (c + 1) * r->w[l][a];
 
-	return p < n[a] ? p : n[a];
+	return p < r->n[a] ? p : r->n[a];
 }
 
 /* t_exit_of: crossing time of the face level-l cell c leaves through. */
 static inline double
-t_exit_of(const ray *r, const vx_macro *m, const int64_t n[3], int l, int a,
-    int64_t c)
+t_exit_of(const ray *r, int l, int a, int64_t c)
 {
 	if (r->s[a] == 0)
 		return INFINITY;
-	return tcross(r, a, r->s[a] > 0 ? plane_hi(m, n, l, a, c) :
-	    plane_lo(m, l, a, c));
+	return tcross(r, a, r->up[a] ? plane_hi(r, l, a, c) :
+	    plane_lo(r, l, a, c));
 }
 
 /* find_cell: among level-l cells k0..k1-1 along axis a (s != 0), the one
@@ -503,11 +502,11 @@ t_exit_of(const ray *r, const vx_macro *m, const int64_t n[3], int l, int a,
  * point o + t d (right or one off, whatever the rounding) and walk to the
  * answer; the result is the same as a binary search's, in one or two
  * crossing times instead of log2(k1 - k0). */
-static int64_t
-find_cell(const ray *r, const vx_macro *m, const int64_t n[3], int l, int a,
-    int64_t k0, int64_t k1, double t, int post)
+static inline int64_t
+find_cell(const ray *r, int l, int a, int64_t k0, int64_t k1, double t,
+    int post)
 {
-	double q = (r->o[a] + t * r->d[a]) / (double)lev_width(m, l, a);
+	double q = (r->o[a] + t * r->d[a]) * r->iw[l][a], tc;
 	int64_t k;
 
 	/* the guess, clamped into [k0, k1 - 1] (NaN goes to k0) */
@@ -517,24 +516,20 @@ find_cell(const ray *r, const vx_macro *m, const int64_t n[3], int l, int a,
 		k = k1 - 1;
 	else
 		k = (int64_t)q;
+#define ENTERED(p) (tc = tcross(r, a, (p)), post ? tc <= t : tc < t)
 	if (r->s[a] > 0) {
-		/* entered(k): k's entry face (its lower plane) is crossed by t */
-#define ENTERED_UP(k) (post ? tcross(r, a, plane_lo(m, l, a, (k))) <= t : \
-	tcross(r, a, plane_lo(m, l, a, (k))) < t)
-		while (k < k1 - 1 && ENTERED_UP(k + 1))
+		/* entered(k): k's entry face, its lower plane, crossed by t */
+		while (k < k1 - 1 && ENTERED(plane_lo(r, l, a, k + 1)))
 			k++;
-		while (k > k0 && !ENTERED_UP(k))
+		while (k > k0 && !ENTERED(plane_lo(r, l, a, k)))
 			k--;
-#undef ENTERED_UP
 	} else {
-#define ENTERED_DOWN(k) (post ? tcross(r, a, plane_hi(m, n, l, a, (k))) <= t : \
-	tcross(r, a, plane_hi(m, n, l, a, (k))) < t)
-		while (k > k0 && ENTERED_DOWN(k - 1))
+		while (k > k0 && ENTERED(plane_hi(r, l, a, k - 1)))
 			k--;
-		while (k < k1 - 1 && !ENTERED_DOWN(k))
+		while (k < k1 - 1 && !ENTERED(plane_hi(r, l, a, k)))
 			k++;
-#undef ENTERED_DOWN
 	}
+#undef ENTERED
 	return k;
 }
 
@@ -545,15 +540,186 @@ brackets(float lo, float hi, const float *vals, int nvals)
 
 	if (nvals <= 0)
 		return 1;
+	if (nvals == 1)
+		return lo <= vals[0] && vals[0] <= hi;
 	for (k = 0; k < nvals; k++)
 		if (lo <= vals[k] && vals[k] <= hi)
 			return 1;
 	return 0;
 }
 
+/* ---- the leaf loop over volume leaves ----
+ * Per axis the current leaf's two sample planes are kept as layout offsets
+ * in walking order: near (the one the ray entered by) and far (the one it
+ * leaves by); a step along axis a makes far the new near and looks up one
+ * table entry.  The cull test needs the 8 samples in any order, so they are
+ * loaded in walking order: sample j has bit a set when it lies on axis a's
+ * far plane.  Only a visited leaf's corners are put in vx_grid_cell's order:
+ * corner i is sample i ^ flip, flip's bit a set where the ray walks down
+ * axis a (there the far plane is the lower one). */
+
+/* min and max keeping the first of equal values, as a left-to-right scan
+ * with a strict comparison does */
+static inline float
+min_first(float a, float b)
+{
+	return b < a ? b : a;
+}
+
+static inline float
+max_first(float a, float b)
+{
+	return b > a ? b : a;
+}
+
+static inline int32_t
+imin(int32_t a, int32_t b)
+{
+	return b < a ? b : a;
+}
+
+static inline int32_t
+imax(int32_t a, int32_t b)
+{
+	return b > a ? b : a;
+}
+
+#define LEAF_LOAD(T, q)                                                  \
+	do {                                                             \
+		const T *d = (const T *)g->data;                         \
+		q[0] = d[x0 + yz00]; q[1] = d[x1 + yz00];                \
+		q[2] = d[x0 + yz10]; q[3] = d[x1 + yz10];                \
+		q[4] = d[x0 + yz01]; q[5] = d[x1 + yz01];                \
+		q[6] = d[x0 + yz11]; q[7] = d[x1 + yz11];                \
+	} while (0)
+
+/* leaf_load: the 8 samples of the leaf whose near and far planes are at
+ * layout offsets on, of, in walking order (integer types into qi, f32 into
+ * qf) and their range over the finite ones (empty: lo = +Inf, hi = -Inf);
+ * integer samples are all finite and their range is exact in float. */
+static inline void
+leaf_load(const vx_grid *g, const int64_t on[3], const int64_t of[3],
+    int32_t qi[8], float qf[8], float *lo, float *hi)
+{
+	int64_t x0 = on[0], x1 = of[0];
+	int64_t yz00 = on[1] + on[2], yz10 = of[1] + on[2];
+	int64_t yz01 = on[1] + of[2], yz11 = of[1] + of[2];
+	float l[8], h[8];
+	int k;
+
+	switch (g->type) {
+	case VX_U8: LEAF_LOAD(uint8_t, qi); break;
+	case VX_U16: LEAF_LOAD(uint16_t, qi); break;
+	case VX_I16: LEAF_LOAD(int16_t, qi); break;
+	case VX_F32:
+		LEAF_LOAD(float, qf);
+		/* NaN and +-Inf left out: they become the identities */
+		for (k = 0; k < 8; k++) {
+			int fin = fabsf(qf[k]) <= FLT_MAX;
+
+			l[k] = fin ? qf[k] : INFINITY;
+			h[k] = fin ? qf[k] : -INFINITY;
+		}
+		*lo = min_first(min_first(min_first(l[0], l[1]),
+		    min_first(l[2], l[3])), min_first(min_first(l[4], l[5]),
+		    min_first(l[6], l[7])));
+		*hi = max_first(max_first(max_first(h[0], h[1]),
+		    max_first(h[2], h[3])), max_first(max_first(h[4], h[5]),
+		    max_first(h[6], h[7])));
+		return;
+	default:
+		memset(qi, 0, 8 * sizeof *qi);
+		break;
+	}
+	for (k = 0; k < 8; k++)
+		l[k] = (float)qi[k];
+	*lo = min_first(min_first(min_first(l[0], l[1]),
+	    min_first(l[2], l[3])), min_first(min_first(l[4], l[5]),
+	    min_first(l[6], l[7])));
+	*hi = max_first(max_first(max_first(l[0], l[1]),
+	    max_first(l[2], l[3])), max_first(max_first(l[4], l[5]),
+	    max_first(l[6], l[7])));
+}
+
+/* leaves: the level-0 part of the walk over volume leaves: from leaf c
+ * (entered at *t through axis *e), visit and step leaf to leaf while the
+ * next leaf stays in the sibling range (lim: the first index past it in
+ * walking order) and the segment goes on.  Does exactly what the walk does
+ * at level 0 for explicit leaves, leaf after leaf (the same tests, crossing
+ * times and visits).  Returns the visitor's nonzero value, or 0 with *ax,
+ * *texit the face and time through which the last leaf (c, entered at *t
+ * through *e) is left: beyond tb, or into a leaf outside the range. */
+static int
+leaves(const ray *r, const vx_grid *g, int64_t c[3], const int64_t lim[3],
+    double tn[3], double *tp, int *ep, double tb, const float *vals,
+    int nvals, vx_visit_fn fn, void *ctx, vx_trav_stats *s, int *axp,
+    double *texitp)
+{
+	const int64_t *off[3] = { g->lay.off[0], g->lay.off[1], g->lay.off[2] };
+	const int *up = r->up;
+	int64_t on[3], of[3];
+	int flip = r->flip, isf = g->type == VX_F32;
+	double t = *tp, texit;
+	int a, i, ax, e = *ep, rc;
+	vx_leaf_visit v;
+
+	for (a = 0; a < 3; a++) {
+		on[a] = off[a][c[a] + !up[a]];
+		of[a] = off[a][c[a] + up[a]];
+	}
+	for (;;) {
+		float lo, hi, qf[8];
+		int32_t qi[8];
+		int64_t nc, p;
+
+		leaf_load(g, on, of, qi, qf, &lo, &hi);
+		ax = tn[1] < tn[0] ? 1 : 0;
+		if (tn[2] < tn[ax])
+			ax = 2;
+		texit = tn[ax];
+		if (brackets(lo, hi, vals, nvals)) {
+			for (i = 0; i < 8; i++)
+				v.c[i] = isf ? qf[i ^ flip] : (float)qi[i ^ flip];
+			memcpy(v.i, c, sizeof v.i);
+			v.leaf = c[0] + (r->n[0] * (c[1] + r->n[1] * c[2]));
+			v.t0 = t;
+			v.t1 = texit < tb ? texit : tb;
+			v.entry_axis = e;
+			v.entry_side = e >= 0 && r->s[e] < 0;
+			v.exit_axis = texit <= tb && r->s[ax] ? ax : -1;
+			v.exit_side = v.exit_axis >= 0 && r->s[ax] > 0;
+			v.lo = lo;
+			v.hi = hi;
+			s->leaves++;
+			if ((rc = fn(ctx, &v)) != 0)
+				return rc;
+		} else
+			s->culled++;
+		if (!(texit < tb))
+			break;
+		nc = c[ax] + r->s[ax];
+		if (nc == lim[ax])
+			break;
+		/* the far plane of the next leaf, and its crossing time as
+		 * t_exit_of gives it at level 0 (inside the grid: no clamp) */
+		p = nc + up[ax];
+		c[ax] = nc;
+		on[ax] = of[ax];
+		of[ax] = off[ax][p];
+		tn[ax] = tcross(r, ax, p);
+		t = texit;
+		e = ax;
+	}
+	*tp = t;
+	*ep = e;
+	*axp = ax;
+	*texitp = texit;
+	return 0;
+}
+
 /* walk: the traversal behind both public entry points.  top is the level
- * whose DDA starts the walk (0: flat).  n: leaf dims.  mm0: stored leaf
- * ranges or NULL. */
+ * whose DDA starts the walk (0: flat).  n: leaf dims.  g: the volume whose
+ * cells are the leaves, or NULL; mm0: stored leaf ranges or NULL. */
 static int
 walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
     const float *mm0, const double o[3], const double d[3], double tmin,
@@ -561,14 +727,14 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
     vx_trav_stats *st)
 {
 	int64_t c[VX_MACRO_MAXLEV + 1][3];     /* current cell per level */
-	int64_t rlo[VX_MACRO_MAXLEV + 1][3];   /* its siblings' index range */
-	int64_t rhi[VX_MACRO_MAXLEV + 1][3];
+	int64_t lim[VX_MACRO_MAXLEV + 1][3];   /* first index past its
+	                                          siblings, walking order */
 	double tn[VX_MACRO_MAXLEV + 1][3];     /* next face crossing per axis */
 	int64_t leaf[3];
 	vx_trav_stats s;
 	vx_leaf_visit v;
-	double ta = tmin, tb = tmax, t;
-	int a, l, e, start, rc = 0;
+	double ta = tmin, tb = tmax, t, texit;
+	int a, l, e, ax, start, rc = 0;
 	ray r;
 
 	memset(&s, 0, sizeof s);
@@ -583,9 +749,11 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 		r.o[a] = o[a];
 		r.d[a] = d[a];
 		r.s[a] = d[a] > 0 ? 1 : d[a] < 0 ? -1 : 0;
+		r.up[a] = r.s[a] >= 0;
 		r.div[a] = !(ad >= 0x1p-1000 && ad <= 0x1p1000);
 		r.inv[a] = r.s[a] ? 1.0 / d[a] : 0.0;
 		r.fixed[a] = 0;
+		r.n[a] = n[a];
 		if (r.s[a] == 0) {
 			if (!(o[a] >= 0 && o[a] <= (double)n[a]))
 				goto done;
@@ -607,6 +775,12 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 	if (top > 0 && nvals > 0 && !brackets(m->root[0], m->root[1], vals,
 	    nvals))
 		goto done;
+	r.flip = (!r.up[0]) | (!r.up[1]) << 1 | (!r.up[2]) << 2;
+	for (l = 0; l <= top; l++)
+		for (a = 0; a < 3; a++) {
+			r.w[l][a] = l ? m->width[l][a] : 1;
+			r.iw[l][a] = l ? 1.0 / (double)m->width[l][a] : 1.0;
+		}
 
 	/* the start leaf and its ancestors (post-crossing at ta) */
 	e = -1;
@@ -615,42 +789,30 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 			leaf[a] = r.fixed[a];
 			continue;
 		}
-		leaf[a] = find_cell(&r, m, n, 0, a, 0, n[a], ta, 1);
+		leaf[a] = find_cell(&r, 0, a, 0, n[a], ta, 1);
 		if (tcross(&r, a, r.s[a] > 0 ? leaf[a] : leaf[a] + 1) == ta)
 			e = a;
 	}
 	for (l = 0; l <= top; l++)
 		for (a = 0; a < 3; a++)
-			c[l][a] = leaf[a] / lev_width(m, l, a);
+			c[l][a] = leaf[a] / r.w[l][a];
 	for (a = 0; a < 3; a++) {
-		rlo[top][a] = 0;
-		rhi[top][a] = top ? m->dims[top][a] : n[a];
-		tn[top][a] = t_exit_of(&r, m, n, top, a, c[top][a]);
+		lim[top][a] = r.up[a] ? (top ? m->dims[top][a] : n[a]) : -1;
+		tn[top][a] = t_exit_of(&r, top, a, c[top][a]);
 	}
 	l = top;
 	t = ta;
 	start = 1;
 
 	for (;;) {
-		double texit;
-		int ax;
-
-		if (l == 0) {
+		if (l == 0 && g != NULL) {
+			if ((rc = leaves(&r, g, c[0], lim[0], tn[0], &t, &e, tb,
+			    vals, nvals, fn, ctx, &s, &ax, &texit)) != 0)
+				goto done;
+		} else if (l == 0) {
 			float lo, hi;
 
-			if (g != NULL) {
-				vx_grid_cell(g, c[0][0], c[0][1], c[0][2], v.c);
-				lo = INFINITY;
-				hi = -INFINITY;
-				for (int k = 0; k < 8; k++) {
-					/* branch-free; NaN and +-Inf left out */
-					float x = v.c[k];
-					int fin = fabsf(x) <= FLT_MAX;
-
-					lo = fin && x < lo ? x : lo;
-					hi = fin && x > hi ? x : hi;
-				}
-			} else if (mm0 != NULL) {
+			if (mm0 != NULL) {
 				size_t k = 2 * (size_t)(c[0][0] + n[0] *
 				    (c[0][1] + n[1] * c[0][2]));
 
@@ -697,22 +859,19 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 
 					if (k1 > dk)
 						k1 = dk;
-					rlo[k][a] = k0;
-					rhi[k][a] = k1;
+					lim[k][a] = r.up[a] ? k1 : k0 - 1;
 					if (start)
 						;  /* c[k] set from the start leaf */
 					else if (r.s[a] == 0)
-						c[k][a] = r.fixed[a] /
-						    lev_width(m, k, a);
+						c[k][a] = r.fixed[a] / r.w[k][a];
 					else if (a == e)
-						c[k][a] = r.s[a] > 0 ? k0 : k1 - 1;
+						c[k][a] = r.up[a] ? k0 : k1 - 1;
 					else
 						/* tied axes before e were
 						 * crossed first, after e not */
-						c[k][a] = find_cell(&r, m, n, k, a,
-						    k0, k1, t, a < e);
-					tn[k][a] = t_exit_of(&r, m, n, k, a,
-					    c[k][a]);
+						c[k][a] = find_cell(&r, k, a, k0, k1,
+						    t, a < e);
+					tn[k][a] = t_exit_of(&r, k, a, c[k][a]);
 				}
 				l = k;
 				continue;
@@ -728,13 +887,13 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 		start = 0;
 		for (;;) {
 			c[l][ax] += r.s[ax];
-			if (c[l][ax] >= rlo[l][ax] && c[l][ax] < rhi[l][ax])
+			if (c[l][ax] != lim[l][ax])
 				break;
 			if (l == top)
 				goto done;
 			l++;   /* left the parent too, through the same face */
 		}
-		tn[l][ax] = t_exit_of(&r, m, n, l, ax, c[l][ax]);
+		tn[l][ax] = t_exit_of(&r, l, ax, c[l][ax]);
 		t = texit;
 		e = ax;
 	}
