@@ -1,4 +1,8 @@
-/* raycast.c: the ray-cast isosurface renderer (see vx_raycast.h). */
+/* raycast.c: the ray-cast isosurface renderer (see vx_raycast.h).  One
+ * shading and compositing path serves two surface sources: a volume
+ * (vx_iso_trace in index space) and a tet mesh (vx_tetleaf_trace in world
+ * space); each turns its hits into an rc_surf and traces its own shadow
+ * rays. */
 #include "vx_raycast.h"
 
 #include <math.h>
@@ -20,6 +24,10 @@ typedef struct rc_shared {
 	const vx_grid *const *tex;
 	const vx_raycast_opts *o;
 	vx_iso_tracer tr;
+	const vx_tetmesh *mesh;       /* non-NULL: draw this mesh, not g */
+	const vx_tetleaf *lg;         /* its leaf grid */
+	double mesh_off;              /* shadow-ray offset, world units */
+	double isod[VX_ISO_MAX];      /* the isovalues as double (meshes) */
 	float iso[VX_ISO_MAX];        /* drawn isovalues */
 	int surf[VX_ISO_MAX];         /* iso index -> scene surface index */
 	int niso;
@@ -30,6 +38,7 @@ typedef struct rc_shared {
 /* What each thread owns. */
 typedef struct rc_local {
 	vx_iso_stats st;
+	vx_tettrace_stats tst;
 	uint64_t primary, shadow, shaded, covered;
 	uint64_t cyc_total, cyc_shade, cyc_shadow;
 } rc_local;
@@ -95,6 +104,16 @@ sample(const vx_grid *g, const double w[3])
 	return vx_cell_trilinear(c, l);
 }
 
+/* rc_surf: a surface point to shade, whatever source found it. */
+typedef struct rc_surf {
+	double t;                 /* ray parameter (world distance) */
+	int iso;                  /* index into S->iso */
+	int entering;             /* the eye ray crossed from f < iso */
+	double P[3];              /* world point */
+	double n[3];              /* world unit normal, against the ray */
+	const double *pi;         /* volume: the point in index space */
+} rc_surf;
+
 typedef struct shadow_ctx {
 	const rc_shared *S;
 	double T;                 /* transmission so far */
@@ -104,10 +123,9 @@ typedef struct shadow_ctx {
 } shadow_ctx;
 
 static int
-shadow_hit(void *ctx, const vx_iso_hit *h)
+shadow_absorb(shadow_ctx *x, int iso, int entering)
 {
-	shadow_ctx *x = ctx;
-	const vx_surface *sf = &x->S->s->surface[x->S->surf[h->surface]];
+	const vx_surface *sf = &x->S->s->surface[x->S->surf[iso]];
 	double a = x->S->composite ? sf->m.opacity : 1.0;
 	int first = x->first;
 
@@ -117,11 +135,55 @@ shadow_hit(void *ctx, const vx_iso_hit *h)
 	 * it.  A first crossing of that surface the other way means the start
 	 * point was a little inside (the root is only as exact as the solver):
 	 * the ray is just leaving its own surface, not shadowed by it. */
-	if (first && h->surface == x->self_surface &&
-	    h->entering != x->self_entering)
+	if (first && iso == x->self_surface && entering != x->self_entering)
 		return 0;
 	x->T *= 1.0 - a;
 	return x->T <= 1e-4;      /* opaque enough: stop */
+}
+
+static int
+shadow_hit(void *ctx, const vx_iso_hit *h)
+{
+	return shadow_absorb(ctx, h->surface, h->entering);
+}
+
+static int
+shadow_tet_hit(void *ctx, const vx_tethit *h)
+{
+	return shadow_absorb(ctx, h->iso, h->enter);
+}
+
+/* visibility: transmission from surface point h toward a light in unit
+ * world direction Ld at distance dist, through every drawn surface. */
+static double
+visibility(const rc_shared *S, rc_local *L, const rc_surf *h,
+    const double Ld[3], double dist)
+{
+	shadow_ctx x = { S, 1.0, h->iso, h->entering, 1 };
+	int a;
+
+	L->shadow++;
+	if (S->mesh != NULL) {
+		double o[3];
+
+		/* start a small step off the surface, on the lit side */
+		for (a = 0; a < 3; a++)
+			o[a] = h->P[a] + S->mesh_off * h->n[a];
+		vx_tetleaf_trace(S->lg, S->mesh, o, Ld, S->isod, S->niso, 0,
+		    dist, shadow_tet_hit, &x, &L->tst);
+	} else {
+		double oi[3], di[3], ni[3];
+
+		/* start a small step off the surface, on the lit side */
+		vx_world_to_index_dir(S->g, h->n, ni);
+		normalize3(ni);
+		for (a = 0; a < 3; a++)
+			oi[a] = h->pi[a] + S->o->shadow_offset * ni[a];
+		vx_world_to_index_dir(S->g, Ld, di);
+		vx_iso_trace(&S->tr, oi, di, 0, dist, S->iso, S->niso,
+		    shadow_hit, &x, &L->st);
+	}
+	return x.T;
 }
 
 /* light_dir: unit direction from world point P toward light k, its
@@ -165,20 +227,19 @@ light_at(const rc_shared *S, int k, const double P[3], double L[3],
 		rad[a] = lt->color[a] * scale;
 }
 
-/* shade: outgoing radiance at hit h seen along world direction dw. */
+/* shade: outgoing radiance at surface point h seen along world direction
+ * dw. */
 static void
-shade(const rc_shared *S, rc_local *L, const vx_iso_hit *h,
-    const double dw[3], double col[3], double nout[3])
+shade(const rc_shared *S, rc_local *L, const rc_surf *h,
+    const double dw[3], double col[3])
 {
 	const vx_scene *s = S->s;
 	const vx_plan *p = S->p;
-	int k = S->surf[h->surface], a, l;
+	int k = S->surf[h->iso], a, l;
 	const vx_material *m = &s->surface[k].m;
-	double n[3], P[3], V[3], alb[3], amb[3];
+	const double *n = h->n, *P = h->P;
+	double V[3], alb[3], amb[3];
 
-	vx_iso_normal(S->g, h, dw, n);
-	memcpy(nout, n, sizeof n);
-	vx_index_to_world(S->g, h->p, P);
 	for (a = 0; a < 3; a++)
 		V[a] = -dw[a];
 	normalize3(V);
@@ -205,20 +266,9 @@ shade(const rc_shared *S, rc_local *L, const vx_iso_hit *h,
 		if (!(ndl > 0))
 			continue;
 		if (p->shadow_on[l]) {
-			double oi[3], di[3], ni[3];
-			shadow_ctx x = { S, 1.0, h->surface, h->entering, 1 };
 			uint64_t c0 = S->o->timing ? vx_cycles() : 0;
 
-			/* start a small step off the surface, on the lit side */
-			vx_world_to_index_dir(S->g, n, ni);
-			normalize3(ni);
-			for (a = 0; a < 3; a++)
-				oi[a] = h->p[a] + S->o->shadow_offset * ni[a];
-			vx_world_to_index_dir(S->g, Ld, di);
-			L->shadow++;
-			vx_iso_trace(&S->tr, oi, di, 0, dist, S->iso, S->niso,
-			    shadow_hit, &x, &L->st);
-			vis = x.T;
+			vis = visibility(S, L, h, Ld, dist);
 			if (S->o->timing)
 				L->cyc_shadow += vx_cycles() - c0;
 			if (vis <= 1e-4)
@@ -243,34 +293,76 @@ shade(const rc_shared *S, rc_local *L, const vx_iso_hit *h,
 typedef struct layer_ctx {
 	const rc_shared *S;
 	rc_local *L;
-	const double *dw;
+	const double *ow, *dw;
 	double C[3], A;
 	int first;
 	double depth, n[3];
 } layer_ctx;
 
+/* composite: shade surface point h and put it under the layers so far;
+ * c0 is when the work on this hit began (timing). */
 static int
-layer(void *ctx, const vx_iso_hit *h)
+composite(layer_ctx *x, const rc_surf *h, uint64_t c0)
 {
-	layer_ctx *x = ctx;
 	const rc_shared *S = x->S;
-	const vx_surface *sf = &S->s->surface[S->surf[h->surface]];
-	double a = S->composite ? sf->m.opacity : 1.0, col[3], n[3];
-	uint64_t c0 = S->o->timing ? vx_cycles() : 0;
+	const vx_surface *sf = &S->s->surface[S->surf[h->iso]];
+	double a = S->composite ? sf->m.opacity : 1.0, col[3];
 	int i;
 
-	shade(S, x->L, h, x->dw, col, n);
+	shade(S, x->L, h, x->dw, col);
 	if (S->o->timing)
 		x->L->cyc_shade += vx_cycles() - c0;
 	if (x->first) {
 		x->first = 0;
 		x->depth = h->t;
-		memcpy(x->n, n, sizeof n);
+		memcpy(x->n, h->n, sizeof x->n);
 	}
 	for (i = 0; i < 3; i++)
 		x->C[i] += (1 - x->A) * a * col[i];
 	x->A += (1 - x->A) * a;
 	return x->A >= 0.9999;
+}
+
+/* layer: a volume hit, as a surface point. */
+static int
+layer(void *ctx, const vx_iso_hit *h)
+{
+	layer_ctx *x = ctx;
+	const rc_shared *S = x->S;
+	uint64_t c0 = S->o->timing ? vx_cycles() : 0;
+	rc_surf sp;
+
+	sp.t = h->t;
+	sp.iso = h->surface;
+	sp.entering = h->entering;
+	vx_iso_normal(S->g, h, x->dw, sp.n);
+	vx_index_to_world(S->g, h->p, sp.P);
+	sp.pi = h->p;
+	return composite(x, &sp, c0);
+}
+
+/* tet_layer: a mesh hit, as a surface point: the tet's constant gradient
+ * turned to face the viewer. */
+static int
+tet_layer(void *ctx, const vx_tethit *h)
+{
+	layer_ctx *x = ctx;
+	const rc_shared *S = x->S;
+	uint64_t c0 = S->o->timing ? vx_cycles() : 0;
+	rc_surf sp;
+	int a;
+
+	sp.t = h->t;
+	sp.iso = h->iso;
+	sp.entering = h->enter;
+	memcpy(sp.n, h->n, sizeof sp.n);
+	if (dot3(sp.n, x->dw) > 0)
+		for (a = 0; a < 3; a++)
+			sp.n[a] = -sp.n[a];
+	for (a = 0; a < 3; a++)
+		sp.P[a] = x->ow[a] + h->t * x->dw[a];
+	sp.pi = NULL;
+	return composite(x, &sp, c0);
 }
 
 /* pixel: one camera sample; returns 1 if it hit a surface. */
@@ -284,15 +376,21 @@ pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
 	memset(&x, 0, sizeof x);
 	x.S = S;
 	x.L = L;
+	x.ow = ow;
 	x.dw = dw;
 	x.first = 1;
 	x.depth = INFINITY;
 	vx_camera_ray(&S->s->camera, px, py, ow, dw);
-	vx_world_to_index(S->g, ow, oi);
-	vx_world_to_index_dir(S->g, dw, di);
 	L->primary++;
-	vx_iso_trace(&S->tr, oi, di, 0, INFINITY, S->iso, S->niso, layer, &x,
-	    &L->st);
+	if (S->mesh != NULL)
+		vx_tetleaf_trace(S->lg, S->mesh, ow, dw, S->isod, S->niso, 0,
+		    INFINITY, tet_layer, &x, &L->tst);
+	else {
+		vx_world_to_index(S->g, ow, oi);
+		vx_world_to_index_dir(S->g, dw, di);
+		vx_iso_trace(&S->tr, oi, di, 0, INFINITY, S->iso, S->niso, layer,
+		    &x, &L->st);
+	}
 	for (int i = 0; i < 3; i++)
 		out[i] = x.C[i];          /* premultiplied (formats/image.md) */
 	out[3] = x.A;
@@ -308,27 +406,30 @@ add_local(vx_raycast_stats *st, const rc_local *L, double *cyc)
 
 	st->primary += L->primary;
 	st->shadow += L->shadow;
-	st->cells += L->st.cells;
+	st->cells += L->st.cells + L->tst.tets;
 	st->roots += L->st.roots;
-	st->hits += L->st.hits;
+	st->hits += L->st.hits + L->tst.hits;
+	st->leaves += L->tst.leaves;
+	st->entries += L->tst.entries;
 	st->nonfinite += L->st.nonfinite;
 	st->shaded += L->shaded;
 	st->covered += L->covered;
 	for (l = 0; l <= VX_MACRO_MAXLEV; l++)
-		st->macro[l] += L->st.trav.macro[l];
+		st->macro[l] += L->st.trav.macro[l] + L->tst.trav.macro[l];
 	cyc[0] += (double)L->cyc_total;
-	cyc[1] += (double)L->st.cyc_isect;
+	cyc[1] += (double)(L->st.cyc_isect + L->tst.cyc_isect);
 	cyc[2] += (double)(L->cyc_shade - L->cyc_shadow);
 }
 
-int
-vx_raycast_render(const vx_scene *s, const vx_plan *p, const vx_grid *g,
-    const vx_macro *m, const vx_grid *const *tex, const vx_raycast_opts *o,
-    vx_image *color, vx_image *depth, vx_image *normal, vx_raycast_stats *st,
-    vx_err *e)
+/* render: the picture of S's source (filled in by the caller: g and tr, or
+ * mesh, lg and mesh_off); the scene, plan, textures and options here. */
+static int
+render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
+    const vx_grid *const *tex, const vx_raycast_opts *o, vx_image *color,
+    vx_image *depth, vx_image *normal, vx_raycast_stats *st, vx_err *e)
 {
 	const vx_camera *cam = &s->camera;
-	rc_shared S;
+	rc_shared S = *S_;
 	vx_raycast_stats local_st;
 	double cyc[3] = { 0, 0, 0 };
 	struct timespec t0, t1;
@@ -338,23 +439,19 @@ vx_raycast_render(const vx_scene *s, const vx_plan *p, const vx_grid *g,
 	if (st == NULL)
 		st = &local_st;
 	memset(st, 0, sizeof *st);
+	st->mesh = S.mesh != NULL;
 	if (!cam->ready)
 		return vx_err_set(e, VX_EINTERNAL, "raycast: camera not resolved");
-	memset(&S, 0, sizeof S);
 	S.s = s;
 	S.p = p;
-	S.g = g;
 	S.tex = tex;
 	S.o = o;
-	S.tr.g = g;
-	S.tr.m = m;
-	S.tr.flat = o->flat || m == NULL;
-	S.tr.solver = o->solver;
 	S.composite = p->composite;
 	for (k = 0; k < s->nsurface && S.niso < VX_ISO_MAX; k++) {
 		if (!p->surface_on[k])
 			continue;
 		S.iso[S.niso] = (float)s->surface[k].iso;
+		S.isod[S.niso] = S.iso[S.niso];
 		S.surf[S.niso++] = k;
 		if (p->texture_on[k] && tex != NULL && tex[k] != NULL) {
 			const vx_material *mt = &s->surface[k].m;
@@ -391,8 +488,10 @@ vx_raycast_render(const vx_scene *s, const vx_plan *p, const vx_grid *g,
 	rc_local *loc = calloc((size_t)nthr, sizeof *loc);
 	if (loc == NULL)
 		return vx_err_set(e, VX_ENOMEM, "raycast: out of memory");
-	for (k = 0; k < nthr; k++)
+	for (k = 0; k < nthr; k++) {
 		loc[k].st.timing = o->timing;
+		loc[k].tst.timing = o->timing;
+	}
 	clock_gettime(CLOCK_MONOTONIC, &t0);
 #ifdef _OPENMP
 #pragma omp parallel for num_threads(nthr) schedule(dynamic, 1)
@@ -453,4 +552,48 @@ vx_raycast_render(const vx_scene *s, const vx_plan *p, const vx_grid *g,
 		st->share_traverse = 1 - st->share_isect - st->share_shade;
 	}
 	return 0;
+}
+
+int
+vx_raycast_render(const vx_scene *s, const vx_plan *p, const vx_grid *g,
+    const vx_macro *m, const vx_grid *const *tex, const vx_raycast_opts *o,
+    vx_image *color, vx_image *depth, vx_image *normal, vx_raycast_stats *st,
+    vx_err *e)
+{
+	rc_shared S;
+
+	memset(&S, 0, sizeof S);
+	S.g = g;
+	S.tr.g = g;
+	S.tr.m = m;
+	S.tr.flat = o->flat || m == NULL;
+	S.tr.solver = o->solver;
+	return render(&S, s, p, tex, o, color, depth, normal, st, e);
+}
+
+int
+vx_raycast_render_mesh(const vx_scene *s, const vx_plan *p,
+    const vx_tetmesh *mesh, const vx_tetleaf *lg, const vx_grid *const *tex,
+    const vx_raycast_opts *o, vx_image *color, vx_image *depth,
+    vx_image *normal, vx_raycast_stats *st, vx_err *e)
+{
+	rc_shared S;
+
+	memset(&S, 0, sizeof S);
+	S.mesh = mesh;
+	S.lg = lg;
+	/* the offset is in units of the mean tet size, the cube root of the
+	 * box's volume per tet (a property of the mesh, not of its leaf grid,
+	 * so that pictures do not depend on the grid) */
+	double vol = 1, ext = 0;
+	for (int a = 0; a < 3; a++) {
+		double x = mesh->npoint ? mesh->bmax[a] - mesh->bmin[a] : 0;
+		vol *= x;
+		ext = x > ext ? x : ext;
+	}
+	double size = vol > 0 && mesh->ntet > 0 ?
+	    cbrt(vol / (double)mesh->ntet) : mesh->ntet > 0 ?
+	    ext / cbrt((double)mesh->ntet) : 1;
+	S.mesh_off = o->shadow_offset * (size > 0 ? size : 1);
+	return render(&S, s, p, tex, o, color, depth, normal, st, e);
 }

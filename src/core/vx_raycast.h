@@ -22,6 +22,7 @@
 #include "vx_macro.h"
 #include "vx_plan.h"
 #include "vx_scene.h"
+#include "vx_tetmesh.h"
 
 typedef struct vx_raycast_opts {
 	int nthreads;            /* <= 0: all cores */
@@ -30,13 +31,21 @@ typedef struct vx_raycast_opts {
 	int aa;                  /* samples per pixel edge (aa x aa grid), >= 1 */
 	int tile;                /* tile edge in pixels (default 16) */
 	double shadow_offset;    /* shadow-ray start offset along the normal,
-	                            in voxels (default 1e-3) */
+	                            in voxels (meshes: in units of the mean tet
+	                            size, (box volume / tets)^(1/3); default
+	                            1e-3) */
 	int timing;              /* 1: measure the share of time per phase */
 } vx_raycast_opts;
 
 typedef struct vx_raycast_stats {
 	uint64_t primary, shadow;        /* rays */
-	uint64_t cells, roots, hits;     /* cell kernel work, all rays */
+	uint64_t cells, roots, hits;     /* cell kernel work, all rays (meshes:
+	                                    cells = tets tested (segment
+	                                    computed), hits = crossings,
+	                                    roots 0) */
+	uint64_t leaves, entries;        /* meshes: leaf lists searched, and
+	                                    their entries scanned */
+	int mesh;                        /* 1: the source was a mesh */
 	uint64_t macro[VX_MACRO_MAXLEV + 1];
 	uint64_t nonfinite;              /* cells skipped for NaN/Inf corners */
 	uint64_t shaded;                 /* surface points shaded */
@@ -54,6 +63,18 @@ void vx_raycast_opts_init(vx_raycast_opts *o);
  * st may be NULL.  Errors: VX_ENOMEM, VX_EDATA (no surface to draw). */
 int vx_raycast_render(const vx_scene *s, const vx_plan *p, const vx_grid *g,
     const vx_macro *m, const vx_grid *const *tex,
+    const vx_raycast_opts *o, vx_image *color, vx_image *depth,
+    vx_image *normal, vx_raycast_stats *st, vx_err *e);
+
+/* vx_raycast_render_mesh: the same picture of tet mesh `mesh` through its
+ * leaf grid lg (vx_tetleaf_build or vx_tetleaf_from_stream): every
+ * crossing of the primary ray in order (vx_tetleaf_trace), shaded with the
+ * tet's constant gradient as normal (facing the viewer), composited,
+ * shadowed and counted exactly as for a volume; the camera is resolved
+ * over the mesh's box by the caller.  o->solver and o->flat do not apply.
+ * Same outputs and errors as vx_raycast_render. */
+int vx_raycast_render_mesh(const vx_scene *s, const vx_plan *p,
+    const vx_tetmesh *mesh, const vx_tetleaf *lg, const vx_grid *const *tex,
     const vx_raycast_opts *o, vx_image *color, vx_image *depth,
     vx_image *normal, vx_raycast_stats *st, vx_err *e);
 

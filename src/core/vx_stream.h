@@ -25,7 +25,8 @@
 #define VX_CHUNK_IMAGE    "IMAG" /* float image */
 #define VX_CHUNK_SCENE    "SCNE" /* scene description (text) */
 #define VX_CHUNK_MACRO    "MCEL" /* multilevel min/max macrocells */
-#define VX_CHUNK_TETMESH  "TETM" /* tetrahedral mesh (reserved) */
+#define VX_CHUNK_TETMESH  "TETM" /* tetrahedral mesh */
+#define VX_CHUNK_TETLEAF  "TLEF" /* a tet mesh's leaf grid and levels */
 #define VX_CHUNK_IRRAD    "IRRV" /* irradiance volume (reserved) */
 #define VX_CHUNK_SHXFER   "SHTV" /* SH transfer volume (reserved) */
 #define VX_CHUNK_SHLIGHT  "SHLC" /* SH lighting coefficients (reserved) */

@@ -18,6 +18,7 @@
 
 #include "vx_err.h"
 #include "vx_grid.h"
+#include "vx_import.h"
 #include "vx_macro.h"
 #include "vx_stream.h"
 
@@ -348,5 +349,111 @@ int vx_tet_nearest(const vx_tetmesh *m, const uint32_t *list, size_t n,
 int vx_tetleaf_nearest(const vx_tetleaf *lg, const vx_tetmesh *m,
     const double o[3], const double d[3], const double *iso, int niso,
     double tmin, double tmax, vx_tethit *hit, vx_trav_stats *st);
+
+/* ---- every crossing along a ray (tettrace.c) ---- */
+
+typedef struct vx_tettrace_stats {
+	uint64_t rays;           /* traces started */
+	uint64_t leaves;         /* leaf searches (leaves whose lists were
+	                            scanned, the end extensions included) */
+	uint64_t entries;        /* list entries scanned */
+	uint64_t tets;           /* tets whose segment was computed (their
+	                            values bracket an isovalue) */
+	uint64_t hits;           /* crossings handed to the callback */
+	uint64_t cyc_isect;      /* ticks inside the tet tests (timing only) */
+	int timing;              /* 1: count cyc_isect (a clock read per leaf) */
+	vx_trav_stats trav;      /* the hierarchy walk */
+} vx_tettrace_stats;
+
+/* vx_tethit_fn: called for each crossing in order; return nonzero to stop
+ * the trace (which then returns that value). */
+typedef int (*vx_tethit_fn)(void *ctx, const vx_tethit *h);
+
+/* vx_tetleaf_trace: every crossing in [tmin, tmax) of the ray o + t d
+ * (world space) with the isosurfaces iso[0..niso-1] of mesh m, each exactly
+ * once, in increasing order of (t, tet, iso), handed to fn with its normal
+ * (vx_tet_normal, towards larger values) and entering flag.  A crossing is
+ * a (tet, isovalue) pair whose segment (vx_tet_segment) changes side of
+ * the isovalue at t, t computed exactly as vx_tet_nearest does, so the
+ * first one handed over is vx_tetleaf_nearest's hit.  Each visited leaf
+ * reports the crossings of its tets whose t lies in the leaf's own
+ * [t0, t1) of the walk (the first leaf from tmin, the last one again up to
+ * tmax, as vx_tetleaf_nearest does); these intervals tile [tmin, tmax), so
+ * a crossing listed by many leaves is reported by one.  A transparent
+ * layer or a shadow ray sees every crossing once: the count along a ray
+ * through a closed isosurface of a conforming mesh is even (see the
+ * watertightness contract above, and its limit for an isovalue equal to a
+ * vertex value).  Returns 0 when the ray ended, fn's nonzero value when
+ * it stopped.  lg must have been built from (or matched to) m.  st may be
+ * NULL.  Reentrant; no allocation. */
+int vx_tetleaf_trace(const vx_tetleaf *lg, const vx_tetmesh *m,
+    const double o[3], const double d[3], const double *iso, int niso,
+    double tmin, double tmax, vx_tethit_fn fn, void *ctx,
+    vx_tettrace_stats *st);
+
+/* ---- the leaf grid in the stream: the TLEF chunk (tetleafio.c) ----
+ * formats/tetmesh.md, "TLEF": the leaf grid's geometry, its tet lists and
+ * its min/max levels (level 0 = the leaves, then levels 1..nlev as in an
+ * MCEL body), tied to its mesh by name, counts and vx_tetmesh_crc. */
+
+/* vx_tetmesh_crc: CRC-32 (zlib's) of the mesh's TETM body in raw form:
+ * points as f64, tets as u32, values as f32, all little-endian.  Equal for
+ * equal meshes whatever the chunk's encoding. */
+uint32_t vx_tetmesh_crc(const vx_tetmesh *m);
+
+/* vx_tetleaf_to_chunk: the TLEF chunk of lg, built from m (zlevel 0 raw,
+ * 1..9 zlib); c is filled (its payload owned by the caller). */
+int vx_tetleaf_to_chunk(const vx_tetleaf *lg, const vx_tetmesh *m,
+    int zlevel, vx_chunk *c, vx_err *e);
+
+/* vx_tetleaf_ident: the identity a TLEF chunk names: its mesh's name,
+ * point and tet counts and CRC. */
+typedef struct vx_tetleaf_ident {
+	char mesh[VX_TETMESH_NAME];
+	uint64_t npoint, ntet;
+	uint32_t crc;
+} vx_tetleaf_ident;
+
+/* vx_tetleaf_from_chunk: parse a TLEF chunk into lg (initialized by the
+ * call) and *id (may be NULL).  Every count is bounded by the body's
+ * bytes before allocating; offsets must start at 0, never decrease and end
+ * at the entry count; each leaf's tets strictly ascending and below the
+ * named tet count; no NaN in the levels.  VX_EDATA, VX_ENOMEM. */
+int vx_tetleaf_from_chunk(vx_tetleaf *lg, vx_tetleaf_ident *id,
+    const vx_chunk *c, vx_err *e);
+
+/* vx_tetleaf_from_stream: the TLEF chunk of mesh m (same name), loaded when
+ * its counts and CRC match m (*status VX_MACRO_LOADED), else
+ * VX_MACRO_STALE (lg empty), or VX_MACRO_ABSENT; *index (may be NULL) gets
+ * the chunk's position or -1.  A malformed chunk of that name is an
+ * error. */
+int vx_tetleaf_from_stream(vx_tetleaf *lg, const vx_stream *s,
+    const vx_tetmesh *m, int *status, long *index, vx_err *e);
+
+/* vx_tetmesh_find_source: the chunk a renderer draws: the first VOLM or
+ * TETM chunk of s, or with name non-NULL the first whose name (header
+ * "name"; default "density" for volumes, "mesh" for meshes) equals it.
+ * Returns its index and sets *is_mesh (1 for TETM), or -1 when there is
+ * none (a chunk whose header cannot be read matches no name). */
+long vx_tetmesh_find_source(const vx_stream *s, const char *name,
+    int *is_mesh);
+
+/* ---- volumes or meshes from one file (import_any.c) ---- */
+
+/* vx_tetmesh_detect: 1 if buf (gzip-compressed or not) holds a mesh file
+ * that vx_tetmesh_import_mem reads: a gmsh file ("$MeshFormat") or a VTK
+ * legacy file whose DATASET line (the fourth line) names
+ * UNSTRUCTURED_GRID; else 0. */
+int vx_tetmesh_detect(const void *buf, size_t n);
+
+/* vx_import_volume_or_mesh: read path ("-": standard input) once; when its
+ * content is a mesh (vx_tetmesh_detect) and vopt->format is unknown or
+ * VTK, import the mesh into m (named after the file) and set *is_mesh = 1;
+ * otherwise import a volume into g exactly as vx_import_file does (*is_mesh
+ * = 0).  Both g and m are initialized by the call; the other stays empty.
+ * Errors are prefixed with the path. */
+int vx_import_volume_or_mesh(vx_grid *g, vx_tetmesh *m, int *is_mesh,
+    const char *path, const vx_import_opts *vopt,
+    const vx_tetimport_opt *mopt, vx_tetimport_info *info, vx_err *e);
 
 #endif
