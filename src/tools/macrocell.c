@@ -1,6 +1,8 @@
 /* macrocell.c: build the multilevel min/max hierarchy over a volume's cells
  * and store it in the stream as an MCEL chunk (added after the volume, or
- * replacing the one already there for that volume). */
+ * replacing the one already there for that volume); for a tet mesh, build
+ * its leaf grid of tet lists with the levels above it, stored as a TLEF
+ * chunk the same way. */
 #include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,16 +13,19 @@
 #include "vx_grid.h"
 #include "vx_macro.h"
 #include "vx_stream.h"
+#include "vx_tetmesh.h"
 
 static const char usage[] =
     "macrocell [--levels N] [--sizes AxBxC[,DxExF...]] [--name NAME] "
-    "[-j N] [--stats] [-o OUT] [IN|-]";
+    "[--density D] [--bbox] [-j N] [--stats] [-o OUT] [IN|-]";
 
 typedef struct opts {
 	const char *in, *out, *name, *sizes;
 	long levels;     /* -1: not given */
 	long jobs;
 	int stats;
+	double density;  /* meshes: leaves per tet (0: not given) */
+	int bbox;        /* meshes: bounding-box lists */
 } opts;
 
 static void
@@ -31,6 +36,8 @@ parse_args(opts *o, int argc, char **argv)
 		{ "sizes", required_argument, NULL, 'S' },
 		{ "name", required_argument, NULL, 'n' },
 		{ "stats", no_argument, NULL, 's' },
+		{ "density", required_argument, NULL, 'D' },
+		{ "bbox", no_argument, NULL, 'B' },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 },
 	};
@@ -55,6 +62,13 @@ parse_args(opts *o, int argc, char **argv)
 			break;
 		case 's':
 			o->stats = 1;
+			break;
+		case 'D':
+			o->density = tool_parse_double("--density", optarg,
+			    1e-3, 64);
+			break;
+		case 'B':
+			o->bbox = 1;
 			break;
 		case 'j':
 			o->jobs = tool_parse_long("-j", optarg, 1, 1024);
@@ -155,6 +169,101 @@ print_stats(const vx_macro *m, const vx_grid *g, double tbuild, int nt)
 	    data > 0 ? 100.0 * (double)bytes / data : 0.0, data, tbuild, nt);
 }
 
+/* find_tlef: index of the TLEF chunk of mesh `name`, or -1. */
+static long
+find_tlef(const vx_stream *s, const char *name)
+{
+	long i = -1;
+
+	while ((i = vx_stream_find(s, VX_CHUNK_TETLEAF, (size_t)(i + 1))) >= 0) {
+		const unsigned char *body;
+		const char *v;
+		size_t n;
+		vx_hdr h;
+		int mine;
+
+		vx_hdr_init(&h);
+		mine = vx_payload_parse(&s->chunk[i], &h, &body, &n, NULL) == 0 &&
+		    (v = vx_hdr_get(&h, "mesh")) != NULL && strcmp(v, name) == 0;
+		vx_hdr_free(&h);
+		if (mine)
+			return i;
+	}
+	return -1;
+}
+
+static void
+print_mesh_stats(const vx_tetleaf *lg, const vx_tetmesh *m, double density,
+    int bbox, double tbuild, int nt)
+{
+	const vx_macro *mc = &lg->mc;
+	double ntet = m->ntet > 0 ? (double)m->ntet : 1;
+	size_t nidx = lg->off[lg->nleaf], bytes = vx_tetleaf_bytes(lg);
+	size_t mbytes = m->npoint * (3 * sizeof(double) + sizeof(float)) +
+	    m->ntet * 4 * sizeof(uint32_t);
+	int l;
+
+	fprintf(stderr, "%s: %s: %zu tets, %zu points; leaf grid %lldx%lldx%lld"
+	    " = %zu leaves (%.2f per tet, density %g), %s lists\n", tool_name,
+	    m->name, m->ntet, m->npoint, (long long)lg->dims[0],
+	    (long long)lg->dims[1], (long long)lg->dims[2], lg->nleaf,
+	    (double)lg->nleaf / ntet, density, bbox ? "bounding-box" : "exact");
+	fprintf(stderr, "%s:   lists: %zu entries (%.2f per tet, %.2f per "
+	    "leaf)\n", tool_name, nidx, (double)nidx / ntet,
+	    lg->nleaf ? (double)nidx / (double)lg->nleaf : 0.0);
+	for (l = 1; l <= mc->nlev; l++)
+		fprintf(stderr, "%s:   level %d: %lldx%lldx%lld macrocells of "
+		    "%dx%dx%d below\n", tool_name, l, (long long)mc->dims[l][0],
+		    (long long)mc->dims[l][1], (long long)mc->dims[l][2],
+		    mc->size[l][0], mc->size[l][1], mc->size[l][2]);
+	if (mc->root[0] <= mc->root[1])
+		fprintf(stderr, "%s:   root: [%.9g, %.9g]\n", tool_name,
+		    (double)mc->root[0], (double)mc->root[1]);
+	fprintf(stderr, "%s: memory %zu bytes = %.1f B/tet (offsets %.1f, "
+	    "lists %.1f, min/max %.1f; the mesh itself %.1f B/tet); build "
+	    "%.3f s = %.2f us/tet with %d thread%s\n", tool_name, bytes,
+	    (double)bytes / ntet, 4.0 * (double)(lg->nleaf + 1) / ntet,
+	    4.0 * (double)nidx / ntet, (double)vx_macro_bytes(mc) / ntet,
+	    (double)mbytes / ntet, tbuild, 1e6 * tbuild / ntet, nt,
+	    nt == 1 ? "" : "s");
+}
+
+/* mesh_main: the leaf grid of the mesh in chunk idx, into the stream. */
+static void
+mesh_main(vx_stream *s, long idx, const opts *o, int nlev,
+    int sizes[][3])
+{
+	vx_tetmesh m;
+	vx_tetleaf lg;
+	vx_chunk c;
+	vx_err e = { 0, "" };
+	double t0, density = o->density > 0 ? o->density : 1;
+	long old;
+	int nt = tool_threads(o->jobs);
+
+	if (vx_tetmesh_from_chunk(&m, &s->chunk[idx], &e) != 0)
+		tool_fail_err(&e);
+	if (o->sizes == NULL && nlev > 0)
+		vx_macro_default_sizes(VX_F32, nlev, sizes);
+	t0 = now();
+	if (vx_tetleaf_build_levels(&lg, &m, density, o->bbox ?
+	    VX_TETLEAF_BBOX : 0, nlev, (const int (*)[3])sizes, nt, &e) != 0) {
+		vx_err_push(&e, "%s", m.name);
+		tool_fail_err(&e);
+	}
+	if (o->stats)
+		print_mesh_stats(&lg, &m, density, o->bbox, now() - t0, nt);
+	memset(&c, 0, sizeof c);
+	if (vx_tetleaf_to_chunk(&lg, &m, 0, &c, &e) != 0)
+		tool_fail_err(&e);
+	if ((old = find_tlef(s, m.name)) >= 0)
+		vx_stream_replace(s, (size_t)old, &c);
+	else if (vx_stream_insert(s, (size_t)idx + 1, &c, &e) != 0)
+		tool_fail_err(&e);
+	vx_tetleaf_free(&lg);
+	vx_tetmesh_free(&m);
+}
+
 int
 main(int argc, char **argv)
 {
@@ -180,6 +289,23 @@ main(int argc, char **argv)
 		nlev = o.levels >= 0 ? (int)o.levels : VX_MACRO_DEFAULT_LEVELS;
 	vx_stream_init(&s);
 	tool_read_stream(&s, o.in);
+	{
+		int is_mesh = 0;
+		long src = vx_tetmesh_find_source(&s, o.name, &is_mesh);
+
+		if (src >= 0 && is_mesh) {
+			mesh_main(&s, src, &o, nlev, sizes);
+			tool_write_stream(&s, o.out);
+			vx_stream_free(&s);
+			return tool_finish();
+		}
+		if (src < 0 && o.name != NULL)
+			tool_fail(VX_EDATA, "no volume or mesh named '%s' in the "
+			    "stream", o.name);
+	}
+	if (o.density > 0 || o.bbox)
+		tool_usage_fail(usage, "--density and --bbox apply to tet "
+		    "meshes");
 	if (vx_grid_from_stream(&g, &s, o.name, &idx, &e) != 0)
 		tool_fail_err(&e);
 	if (o.sizes == NULL && nlev > 0)

@@ -1,4 +1,5 @@
-/* raycast: ray-traced isosurfaces of a volume (Parker et al. 1999 §4.1). */
+/* raycast: ray-traced isosurfaces of a volume (Parker et al. 1999 §4.1) or
+ * of a tetrahedral mesh (§4.2). */
 #include <getopt.h>
 #include <math.h>
 #include <stdio.h>
@@ -13,13 +14,14 @@
 #include "vx_plan.h"
 #include "vx_raycast.h"
 #include "vx_scene.h"
+#include "vx_tetmesh.h"
 #include "vx_tonemap.h"
 
 static const char usage[] =
     "raycast [--scene FILE] [--iso V[,V...]] [--size WxH] [--view NAME|AZ,EL]\n"
     "        [--ortho] [--fov DEG] [--light SPEC] [--lights none]\n"
     "        [--effects WORDS] [--background R,G,B] [--set LINE]\n"
-    "        [--name VOLUME] [--solver exact|neubauer|linear] [--flat]\n"
+    "        [--name NAME] [--solver exact|neubauer|linear] [--flat]\n"
     "        [--aa N] [-j N] [--stats] [--explain] [-n]\n"
     "        [--hdr] [--bits 8|16] [--exposure STOPS] [--depth FILE.pfm]\n"
     "        [--normals FILE.pfm] [-o OUT] [STREAM|-]";
@@ -170,6 +172,7 @@ static void
 print_stats(const vx_raycast_stats *st, const vx_macro *m, int w, int h,
     int nthr)
 {
+	double rays = (double)(st->primary + st->shadow) + 1e-300;
 	double px = (double)w * h;
 	int l;
 
@@ -180,12 +183,22 @@ print_stats(const vx_raycast_stats *st, const vx_macro *m, int w, int h,
 	    "covered pixels %.1f%%\n", (unsigned long long)st->primary,
 	    (unsigned long long)st->shadow,
 	    100.0 * (double)st->covered / (px > 0 ? px : 1));
-	fprintf(stderr, "raycast: cells visited %llu (%.1f per ray), roots "
-	    "solved %llu, hits %llu, shaded %llu, non-finite cells %llu\n",
-	    (unsigned long long)st->cells,
-	    (double)st->cells / (double)(st->primary + st->shadow + 1e-300),
-	    (unsigned long long)st->roots, (unsigned long long)st->hits,
-	    (unsigned long long)st->shaded, (unsigned long long)st->nonfinite);
+	if (st->mesh)
+		fprintf(stderr, "raycast: leaves searched %llu (%.1f per ray), "
+		    "list entries %llu (%.1f per ray), tets tested %llu (%.1f "
+		    "per ray), crossings %llu, shaded %llu\n",
+		    (unsigned long long)st->leaves, (double)st->leaves / rays,
+		    (unsigned long long)st->entries, (double)st->entries / rays,
+		    (unsigned long long)st->cells,
+		    (double)st->cells / rays, (unsigned long long)st->hits,
+		    (unsigned long long)st->shaded);
+	else
+		fprintf(stderr, "raycast: cells visited %llu (%.1f per ray), "
+		    "roots solved %llu, hits %llu, shaded %llu, non-finite "
+		    "cells %llu\n", (unsigned long long)st->cells,
+		    (double)st->cells / rays, (unsigned long long)st->roots,
+		    (unsigned long long)st->hits, (unsigned long long)st->shaded,
+		    (unsigned long long)st->nonfinite);
 	if (m != NULL) {
 		fprintf(stderr, "raycast: macrocells examined:");
 		for (l = m->nlev; l >= 1; l--)
@@ -193,9 +206,10 @@ print_stats(const vx_raycast_stats *st, const vx_macro *m, int w, int h,
 			    (unsigned long long)st->macro[l]);
 		fputc('\n', stderr);
 	}
-	fprintf(stderr, "raycast: time: traversal %.0f%%, intersection %.0f%%, "
+	fprintf(stderr, "raycast: time: traversal %.0f%%, %s %.0f%%, "
 	    "shading %.0f%%\n", 100 * st->share_traverse,
-	    100 * st->share_isect, 100 * st->share_shade);
+	    st->mesh ? "tet tests" : "intersection", 100 * st->share_isect,
+	    100 * st->share_shade);
 }
 
 int
@@ -215,7 +229,10 @@ main(int argc, char **argv)
 	vx_err e = { 0, "" };
 	double lo[3], hi[3];
 	long gi;
-	int status, k, nthr;
+	int status, k, nthr, is_mesh = 0;
+	vx_tetmesh mesh;
+	vx_tetleaf lg;
+	const char *want;
 
 	tool_init("raycast", argc, argv);
 	parse(&o, argc, argv);
@@ -223,10 +240,25 @@ main(int argc, char **argv)
 	tool_read_stream(&st, o.in);
 	vx_scene_init(&s);
 	load_scene(&s, &o, &st);
-	if (vx_grid_from_stream(&g, &st, o.name ? o.name :
-	    (s.volume[0] ? s.volume : NULL), &gi, &e) != 0)
+	/* what to draw: the named (or first) volume or mesh */
+	want = o.name ? o.name : (s.volume[0] ? s.volume : NULL);
+	vx_grid_init(&g);
+	vx_tetmesh_init(&mesh);
+	vx_tetleaf_init(&lg);
+	gi = vx_tetmesh_find_source(&st, want, &is_mesh);
+	if (gi < 0 && want != NULL)
+		tool_fail(VX_EDATA, "no volume or mesh named '%s' in the stream",
+		    want);
+	if (gi < 0)
+		tool_fail(VX_EDATA, "no volume or mesh in the stream");
+	if (is_mesh) {
+		if (vx_tetmesh_from_chunk(&mesh, &st.chunk[gi], &e) != 0)
+			tool_fail_err(&e);
+		if (mesh.ntet == 0)
+			tool_fail(VX_EDATA, "mesh '%s' has no tets", mesh.name);
+	} else if (vx_grid_from_stream(&g, &st, want, &gi, &e) != 0)
 		tool_fail_err(&e);
-	for (int a = 0; a < 3; a++)
+	for (int a = 0; a < 3 && !is_mesh; a++)
 		if (g.dims[a] < 2)
 			tool_fail(VX_EDATA, "volume '%s': dims %lld %lld %lld: "
 			    "needs at least 2 samples per axis", g.name,
@@ -242,20 +274,51 @@ main(int argc, char **argv)
 			tool_fail(VX_ENOMEM, "out of memory");
 		vx_plan_format(&plan, buf, n);
 		fprintf(stderr, "%s", buf);
-		fprintf(stderr, "raycast: %dx%d pixels, %d sample%s per pixel, "
-		    "about %.0f rays; solver %s, %s traversal, %d thread%s\n",
-		    s.camera.w, s.camera.h, o.aa * o.aa, o.aa > 1 ? "s" : "",
-		    plan.rays_per_pixel * s.camera.w * s.camera.h * o.aa * o.aa,
-		    vx_cell_solver_name(o.solver), o.flat ? "flat" :
-		    "hierarchical", nthr, nthr == 1 ? "" : "s");
+		if (is_mesh)
+			fprintf(stderr, "raycast: %dx%d pixels, %d sample%s per "
+			    "pixel, about %.0f rays; mesh '%s' (%zu tets): leaf "
+			    "grid of tet lists, %s, linear field per tet, %d "
+			    "thread%s\n", s.camera.w, s.camera.h, o.aa * o.aa,
+			    o.aa > 1 ? "s" : "", plan.rays_per_pixel *
+			    s.camera.w * s.camera.h * o.aa * o.aa, mesh.name,
+			    mesh.ntet, o.flat ? "no macrocell levels" :
+			    "hierarchical", nthr, nthr == 1 ? "" : "s");
+		else
+			fprintf(stderr, "raycast: %dx%d pixels, %d sample%s per "
+			    "pixel, about %.0f rays; solver %s, %s traversal, %d "
+			    "thread%s\n", s.camera.w, s.camera.h, o.aa * o.aa,
+			    o.aa > 1 ? "s" : "", plan.rays_per_pixel *
+			    s.camera.w * s.camera.h * o.aa * o.aa,
+			    vx_cell_solver_name(o.solver), o.flat ? "flat" :
+			    "hierarchical", nthr, nthr == 1 ? "" : "s");
 		free(buf);
 	}
 	if (plan.nsurface_on == 0)
 		tool_fail(VX_EUSAGE, "no surface to draw: give --iso V or a "
 		    "surface line in the scene");
-	/* the hierarchy: from the stream, else built here */
+	/* the hierarchy: from the stream, else built here; for a mesh, its
+	 * leaf grid (--flat: the leaves alone, no levels above) */
 	vx_macro_init(&m);
-	if (!o.flat) {
+	if (is_mesh) {
+		status = VX_MACRO_ABSENT;
+		if (!o.flat && vx_tetleaf_from_stream(&lg, &st, &mesh, &status,
+		    NULL, &e) != 0)
+			tool_fail_err(&e);
+		if (status != VX_MACRO_LOADED) {
+			int sizes[VX_MACRO_MAXLEV][3];
+			int nlev = o.flat ? 0 : vx_macro_default_sizes(VX_F32,
+			    VX_MACRO_DEFAULT_LEVELS, sizes);
+
+			if (!o.dry && !o.flat)
+				fprintf(stderr, "raycast: note: %s leaf grid for "
+				    "mesh '%s'; building it (run macrocell(1) in "
+				    "the pipeline to keep it)\n", status ==
+				    VX_MACRO_STALE ? "stale" : "no", mesh.name);
+			if (!o.dry && vx_tetleaf_build_levels(&lg, &mesh, 1, 0,
+			    nlev, (const int (*)[3])sizes, nthr, &e) != 0)
+				tool_fail_err(&e);
+		}
+	} else if (!o.flat) {
 		if (vx_macro_from_stream(&m, &st, &g, &status, NULL, &e) != 0)
 			tool_fail_err(&e);
 		if (status != VX_MACRO_LOADED) {
@@ -274,6 +337,8 @@ main(int argc, char **argv)
 		}
 	}
 	if (o.dry) {
+		vx_tetleaf_free(&lg);
+		vx_tetmesh_free(&mesh);
 		vx_macro_free(&m);
 		vx_grid_free(&g);
 		vx_stream_free(&st);
@@ -293,7 +358,13 @@ main(int argc, char **argv)
 			}
 			tex[k] = &texg[k];
 		}
-	vx_grid_box(&g, lo, hi);
+	if (is_mesh)
+		for (int a = 0; a < 3; a++) {
+			lo[a] = mesh.bmin[a];
+			hi[a] = mesh.bmax[a];
+		}
+	else
+		vx_grid_box(&g, lo, hi);
 	if (vx_camera_resolve(&s.camera, lo, hi, &e) != 0)
 		tool_fail_err(&e);
 	vx_raycast_opts_init(&ro);
@@ -305,19 +376,26 @@ main(int argc, char **argv)
 	vx_image_init(&color);
 	vx_image_init(&depth);
 	vx_image_init(&normal);
-	if (vx_raycast_render(&s, &plan, &g, o.flat ? NULL : &m, tex, &ro,
-	    &color, (o.depth || o.hdr) ? &depth : NULL,
+	if (is_mesh) {
+		if (vx_raycast_render_mesh(&s, &plan, &mesh, &lg, tex, &ro,
+		    &color, (o.depth || o.hdr) ? &depth : NULL,
+		    (o.normals || o.hdr) ? &normal : NULL, &rs, &e) != 0)
+			tool_fail_err(&e);
+	} else if (vx_raycast_render(&s, &plan, &g, o.flat ? NULL : &m, tex,
+	    &ro, &color, (o.depth || o.hdr) ? &depth : NULL,
 	    (o.normals || o.hdr) ? &normal : NULL, &rs, &e) != 0)
 		tool_fail_err(&e);
 	if (o.stats)
-		print_stats(&rs, o.flat ? NULL : &m, s.camera.w, s.camera.h, nthr);
+		print_stats(&rs, is_mesh ? &lg.mc : o.flat ? NULL : &m,
+		    s.camera.w, s.camera.h, nthr);
 	if (o.depth)
 		write_pfm(o.depth, &depth);
 	if (o.normals)
 		write_pfm(o.normals, &normal);
 	if (o.hdr) {
 		/* the stream out: history, scene, images and every chunk we did
-		 * not consume (volumes and macrocells are consumed) */
+		 * not consume (volumes, meshes and their hierarchies are
+		 * consumed) */
 		vx_stream out;
 		vx_chunk c;
 		size_t i;
@@ -328,6 +406,8 @@ main(int argc, char **argv)
 
 			if (memcmp(t, VX_CHUNK_VOLUME, 4) == 0 ||
 			    memcmp(t, VX_CHUNK_MACRO, 4) == 0 ||
+			    memcmp(t, VX_CHUNK_TETMESH, 4) == 0 ||
+			    memcmp(t, VX_CHUNK_TETLEAF, 4) == 0 ||
 			    memcmp(t, VX_CHUNK_SCENE, 4) == 0 ||
 			    memcmp(t, VX_CHUNK_IMAGE, 4) == 0)
 				continue;
@@ -392,6 +472,8 @@ main(int argc, char **argv)
 	vx_image_free(&color);
 	vx_image_free(&depth);
 	vx_image_free(&normal);
+	vx_tetleaf_free(&lg);
+	vx_tetmesh_free(&mesh);
 	vx_macro_free(&m);
 	vx_grid_free(&g);
 	vx_stream_free(&st);

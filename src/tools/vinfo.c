@@ -456,6 +456,84 @@ json_tetm(const vx_tetmesh *m)
 	putchar('}');
 }
 
+/* What vinfo learned about a leaf-grid chunk: the grid, the mesh it
+ * names, and whether it still matches that mesh. */
+typedef struct tlef_info {
+	vx_tetleaf lg;
+	vx_tetleaf_ident id;
+	const char *status;     /* "matches", "stale" or "no such mesh" */
+} tlef_info;
+
+static int
+decode_tlef(const vx_stream *s, const vx_chunk *c, tlef_info *ti, vx_err *e)
+{
+	vx_tetmesh m;
+	vx_err me = { 0, "" };
+	int rc;
+
+	memset(ti, 0, sizeof *ti);
+	if ((rc = vx_tetleaf_from_chunk(&ti->lg, &ti->id, c, e)) != 0)
+		return rc;
+	if (vx_tetmesh_from_stream(&m, s, ti->id.mesh, NULL, &me) != 0) {
+		ti->status = "no such mesh";
+		return 0;
+	}
+	ti->status = m.npoint == ti->id.npoint && m.ntet == ti->id.ntet &&
+	    vx_tetmesh_crc(&m) == ti->id.crc ? "matches" : "stale";
+	vx_tetmesh_free(&m);
+	return 0;
+}
+
+static void
+text_tlef(const tlef_info *ti)
+{
+	const vx_macro *mc = &ti->lg.mc;
+	double nt = ti->id.ntet ? (double)ti->id.ntet : 1;
+	int l;
+
+	printf("  leaf grid: %lld x %lld x %lld leaves, %lu list entries "
+	    "(%.2f per tet), %d level%s\n", (long long)ti->lg.dims[0],
+	    (long long)ti->lg.dims[1], (long long)ti->lg.dims[2],
+	    (unsigned long)ti->lg.off[ti->lg.nleaf],
+	    (double)ti->lg.off[ti->lg.nleaf] / nt, mc->nlev,
+	    mc->nlev == 1 ? "" : "s");
+	for (l = 1; l <= mc->nlev; l++)
+		printf("    level %d: %dx%dx%d of level %d, %lld x %lld x %lld "
+		    "cells\n", l, mc->size[l][0], mc->size[l][1],
+		    mc->size[l][2], l - 1, (long long)mc->dims[l][0],
+		    (long long)mc->dims[l][1], (long long)mc->dims[l][2]);
+	printf("    root range: %.9g %.9g\n", (double)mc->root[0],
+	    (double)mc->root[1]);
+	printf("    memory: %zu bytes (%.1f per tet)\n",
+	    vx_tetleaf_bytes(&ti->lg), (double)vx_tetleaf_bytes(&ti->lg) / nt);
+	printf("    mesh: ");
+	put_str(ti->id.mesh);
+	printf(" (%s)\n", ti->status);
+}
+
+static void
+json_tlef(const tlef_info *ti)
+{
+	const vx_macro *mc = &ti->lg.mc;
+	double r[2] = { mc->root[0], mc->root[1] };
+	int l;
+
+	printf(",\"leaf_grid\":{\"leaf_dims\":[%lld,%lld,%lld],\"entries\":%lu,"
+	    "\"levels\":%d,\"sizes\":[", (long long)ti->lg.dims[0],
+	    (long long)ti->lg.dims[1], (long long)ti->lg.dims[2],
+	    (unsigned long)ti->lg.off[ti->lg.nleaf], mc->nlev);
+	for (l = 1; l <= mc->nlev; l++)
+		printf("%s[%d,%d,%d]", l > 1 ? "," : "", mc->size[l][0],
+		    mc->size[l][1], mc->size[l][2]);
+	printf("],\"root\":");
+	json_nums(r, 2);
+	printf(",\"bytes\":%zu,\"mesh\":", vx_tetleaf_bytes(&ti->lg));
+	json_str(ti->id.mesh);
+	printf(",\"status\":");
+	json_str(ti->status);
+	putchar('}');
+}
+
 /* ---- text report ---- */
 
 static void
@@ -658,6 +736,15 @@ text_chunk(const vx_stream *s, size_t idx, const vx_chunk *c, const opts *o)
 		} else
 			text_tetm(&m);
 		vx_tetmesh_free(&m);
+	} else if (memcmp(c->type, VX_CHUNK_TETLEAF, 4) == 0) {
+		tlef_info ti;
+
+		if ((rc = decode_tlef(s, c, &ti, &e)) != 0) {
+			printf("  error: %s\n", e.msg);
+			chunk_error(c, &e);
+		} else
+			text_tlef(&ti);
+		vx_tetleaf_free(&ti.lg);
 	}
 }
 
@@ -854,6 +941,14 @@ json_chunk(const vx_stream *s, size_t idx, const vx_chunk *c, const opts *o)
 		else
 			json_tetm(&m);
 		vx_tetmesh_free(&m);
+	} else if (memcmp(c->type, VX_CHUNK_TETLEAF, 4) == 0) {
+		tlef_info ti;
+
+		if (decode_tlef(s, c, &ti, &e) != 0)
+			json_error(c, &e);
+		else
+			json_tlef(&ti);
+		vx_tetleaf_free(&ti.lg);
 	}
 done:
 	putchar('}');

@@ -1,5 +1,7 @@
-/* vread.c: import a volume (raw, NRRD, NIfTI-1, VTK legacy) or make a
- * synthetic one, and write it as a voxlux stream with one VOLM chunk. */
+/* vread.c: import a volume (raw, NRRD, NIfTI-1, VTK legacy) or a tet mesh
+ * (VTK legacy unstructured grid, gmsh), or make a synthetic volume, and
+ * write it as a voxlux stream with one VOLM or TETM chunk (a volume split
+ * into tets with --split). */
 #include <getopt.h>
 #include <limits.h>
 #include <math.h>
@@ -12,13 +14,16 @@
 #include "vx_grid.h"
 #include "vx_import.h"
 #include "vx_stream.h"
+#include "vx_tetmesh.h"
 
 static const char usage[] =
     "vread [-o out] [--format F] [--raw NX,NY,NZ --type T "
     "[--endian little|big] [--skip BYTES]] [--spacing SX,SY,SZ] "
-    "[--origin X,Y,Z] [--name NAME] [--add STREAM] [-z LEVEL] [FILE|-]\n"
+    "[--origin X,Y,Z] [--name NAME] [--scalar NAME] [--skip-cells] "
+    "[--split 5|6] [--add STREAM] [-z LEVEL] [FILE|-]\n"
     "       vread --synth NAME [--size N[,NY,NZ]] [--spacing SX,SY,SZ] "
-    "[--origin X,Y,Z] [--name NAME] [--add STREAM] [-o out] [-z LEVEL]";
+    "[--origin X,Y,Z] [--name NAME] [--split 5|6] [--add STREAM] [-o out] "
+    "[-z LEVEL]";
 
 typedef struct opts {
 	const char *out, *in, *name, *add;
@@ -30,10 +35,12 @@ typedef struct opts {
 	int have_size;
 	int64_t size[3];
 	int zlevel;
+	int split;                 /* 5 or 6: the volume as a tet mesh */
+	vx_tetimport_opt mesh;     /* --scalar, --skip-cells */
 } opts;
 
 enum { O_FORMAT = 256, O_RAW, O_TYPE, O_ENDIAN, O_SKIP, O_SPACING, O_ORIGIN,
-	O_NAME, O_SYNTH, O_SIZE, O_ADD };
+	O_NAME, O_SYNTH, O_SIZE, O_ADD, O_SPLIT, O_SCALAR, O_SKIPCELLS };
 
 /* parse_dims: "N,NY,NZ" (or just "N" when one_ok, meaning N,N,N). */
 static void
@@ -91,6 +98,9 @@ parse_args(opts *o, int argc, char **argv)
 		{ "synth", required_argument, NULL, O_SYNTH },
 		{ "size", required_argument, NULL, O_SIZE },
 		{ "add", required_argument, NULL, O_ADD },
+		{ "split", required_argument, NULL, O_SPLIT },
+		{ "scalar", required_argument, NULL, O_SCALAR },
+		{ "skip-cells", no_argument, NULL, O_SKIPCELLS },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 }
 	};
@@ -111,6 +121,15 @@ parse_args(opts *o, int argc, char **argv)
 			break;
 		case O_ADD:
 			o->add = optarg;
+			break;
+		case O_SPLIT:
+			o->split = (int)tool_parse_long("--split", optarg, 5, 6);
+			break;
+		case O_SCALAR:
+			o->mesh.scalar = optarg;
+			break;
+		case O_SKIPCELLS:
+			o->mesh.skip_volume_cells = 1;
 			break;
 		case O_FORMAT:
 			o->imp.format = vx_format_parse(optarg);
@@ -205,6 +224,10 @@ parse_args(opts *o, int argc, char **argv)
 		    "--type T");
 	if (o->raw)
 		o->imp.format = VX_FORMAT_RAW;
+	if ((o->mesh.scalar != NULL || o->mesh.skip_volume_cells) &&
+	    (o->split || o->synth != VX_SYNTH_UNKNOWN || o->raw))
+		tool_fail(VX_EUSAGE, "--scalar and --skip-cells apply to tet "
+		    "mesh files, not to volumes");
 	if (o->have_size && o->synth == VX_SYNTH_UNKNOWN)
 		tool_fail(VX_EUSAGE, "--size goes with --synth");
 	if (o->synth != VX_SYNTH_UNKNOWN) {
@@ -217,6 +240,36 @@ parse_args(opts *o, int argc, char **argv)
 		o->in = "-";
 }
 
+/* name_taken: 1 if stream s already holds a volume or a mesh named name. */
+static int
+name_taken(const vx_stream *s, const char *name)
+{
+	static const char *const kinds[] = { VX_CHUNK_VOLUME, VX_CHUNK_TETMESH };
+	vx_err e = { 0, "" };
+
+	for (int k = 0; k < 2; k++)
+		for (long i = -1; (i = vx_stream_find(s, kinds[k],
+		    (size_t)(i + 1))) >= 0;) {
+			vx_hdr h;
+			const unsigned char *b;
+			size_t bl;
+			const char *nm;
+			int same;
+
+			vx_hdr_init(&h);
+			if (vx_payload_parse(&s->chunk[i], &h, &b, &bl, &e) != 0)
+				tool_fail_err(&e);
+			nm = vx_hdr_get(&h, "name");
+			if (nm == NULL)
+				nm = k == 0 ? "density" : "mesh";
+			same = strcmp(nm, name) == 0;
+			vx_hdr_free(&h);
+			if (same)
+				return 1;
+		}
+	return 0;
+}
+
 int
 main(int argc, char **argv)
 {
@@ -224,13 +277,17 @@ main(int argc, char **argv)
 	vx_stream s;
 	vx_chunk c;
 	vx_grid g;
+	vx_tetmesh m;
+	vx_tetimport_info info;
 	opts o;
-	int a;
+	int a, is_mesh = 0;
 
 	tool_init("vread", argc, argv);
 	if (argc == 1 && isatty(STDIN_FILENO))
 		tool_usage_fail(usage, "no input");
 	parse_args(&o, argc, argv);
+	memset(&info, 0, sizeof info);
+	vx_tetmesh_init(&m);
 	if (o.synth != VX_SYNTH_UNKNOWN) {
 		if (vx_synth_make(&g, o.synth, o.size, &e) != 0)
 			tool_fail_err(&e);
@@ -238,16 +295,45 @@ main(int argc, char **argv)
 		if (strcmp(o.in, "-") == 0 && isatty(STDIN_FILENO))
 			tool_fail(VX_EUSAGE, "standard input is a terminal: give "
 			    "a file or pipe the data in");
-		if (vx_import_file(&g, o.in, &o.imp, &e) != 0)
+		if (vx_import_volume_or_mesh(&g, &m, &is_mesh, o.in, &o.imp,
+		    &o.mesh, &info, &e) != 0)
 			tool_fail_err(&e);
 	}
-	if (o.name != NULL)
-		snprintf(g.name, sizeof g.name, "%s", o.name);
-	for (a = 0; a < 3; a++) {
-		if (o.have_spacing)
-			g.spacing[a] = o.spacing[a];
-		if (o.have_origin)
-			g.origin[a] = o.origin[a];
+	if (is_mesh) {
+		if (o.split)
+			tool_fail(VX_EUSAGE, "--split: %s is a tet mesh already",
+			    o.in);
+		if (o.have_spacing || o.have_origin)
+			tool_fail(VX_EUSAGE, "--spacing and --origin apply to "
+			    "volumes; %s is a tet mesh", o.in);
+		if (info.nskip_volume > 0)
+			fprintf(stderr, "vread: note: %s: skipped %zu volume "
+			    "cells that are not linear tetrahedra\n", o.in,
+			    info.nskip_volume);
+		if (o.name != NULL)
+			vx_tetmesh_set_name(&m, o.name);
+	} else {
+		if (o.mesh.scalar != NULL || o.mesh.skip_volume_cells)
+			tool_fail(VX_EUSAGE, "--scalar and --skip-cells apply to "
+			    "tet mesh files; %s is a volume", o.in);
+		if (o.name != NULL)
+			snprintf(g.name, sizeof g.name, "%s", o.name);
+		for (a = 0; a < 3; a++) {
+			if (o.have_spacing)
+				g.spacing[a] = o.spacing[a];
+			if (o.have_origin)
+				g.origin[a] = o.origin[a];
+		}
+		if (o.split) {
+			/* the volume's tet split: vertices at the samples */
+			if (vx_tetsynth_from_grid(&m, &g, o.split, &e) != 0) {
+				vx_err_push(&e, "--split");
+				tool_fail_err(&e);
+			}
+			vx_tetmesh_set_name(&m, g.name);
+			vx_grid_free(&g);
+			is_mesh = 1;
+		}
 	}
 	if (strcmp(o.out, "-") == 0 && isatty(STDOUT_FILENO))
 		tool_fail(VX_EUSAGE, "standard output is a terminal: redirect it "
@@ -256,27 +342,22 @@ main(int argc, char **argv)
 	if (o.add != NULL) {
 		/* append to an existing stream, e.g. a texture volume */
 		tool_read_stream(&s, o.add);
-		for (long i = -1; (i = vx_stream_find(&s, VX_CHUNK_VOLUME,
-		    (size_t)(i + 1))) >= 0;) {
-			vx_hdr h;
-			const unsigned char *b;
-			size_t bl;
-			const char *nm;
-
-			vx_hdr_init(&h);
-			if (vx_payload_parse(&s.chunk[i], &h, &b, &bl, &e) != 0)
-				tool_fail_err(&e);
-			nm = vx_hdr_get(&h, "name");
-			if (nm != NULL && strcmp(nm, g.name) == 0)
-				tool_fail(VX_EUSAGE, "--add: the stream already has a "
-				    "volume named '%s': give --name", g.name);
-			vx_hdr_free(&h);
-		}
+		if (name_taken(&s, is_mesh ? m.name : g.name))
+			tool_fail(VX_EUSAGE, "--add: the stream already has a "
+			    "volume or mesh named '%s': give --name",
+			    is_mesh ? m.name : g.name);
 	}
-	if (vx_grid_to_chunk(&g, o.zlevel, &c, &e) != 0 ||
-	    vx_stream_append(&s, &c, &e) != 0)
-		tool_fail_err(&e);
-	vx_grid_free(&g);
+	if (is_mesh) {
+		if (vx_tetmesh_to_chunk(&m, o.zlevel, &c, &e) != 0 ||
+		    vx_stream_append(&s, &c, &e) != 0)
+			tool_fail_err(&e);
+		vx_tetmesh_free(&m);
+	} else {
+		if (vx_grid_to_chunk(&g, o.zlevel, &c, &e) != 0 ||
+		    vx_stream_append(&s, &c, &e) != 0)
+			tool_fail_err(&e);
+		vx_grid_free(&g);
+	}
 	tool_write_stream(&s, o.out);
 	vx_stream_free(&s);
 	return tool_finish();

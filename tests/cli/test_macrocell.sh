@@ -218,7 +218,7 @@ expect_fail "bad sizes" 64 "sizes" macrocell --sizes 2x2 "$T/i.vx"
 expect_fail "size 0" 64 "1..1024" macrocell --sizes 0x2x2 "$T/i.vx"
 expect_fail "levels out of range" 64 "out of range" macrocell --levels 7 "$T/i.vx"
 expect_fail "-j 0" 64 "out of range" macrocell -j 0 "$T/i.vx"
-expect_fail "no such volume" 65 "no volume named 'q'" macrocell --name q "$T/i.vx"
+expect_fail "no such volume or mesh" 65 "no volume or mesh named 'q'" macrocell --name q "$T/i.vx"
 expect_fail "unknown option" 64 "unknown option '--fast'" macrocell --fast "$T/i.vx"
 
 done_testing

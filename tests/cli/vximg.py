@@ -8,6 +8,8 @@ voxlux stream, written from formats/stream.md and the PFM definition only
                                      decode to the same bytes, else "differ"
     vximg.py pngsame A B             "same" if two PNGs hold the same pixel
                                      bytes (text chunks ignored)
+    vximg.py covdiff A B             pixels where one depth PFM is finite
+                                     (a hit) and the other is not
 Prints the value with repr() precision ("inf", "nan" as Python prints).
 """
 import struct, sys, zlib
@@ -80,6 +82,18 @@ if a[0] == 'same':
     raise SystemExit
 if a[0] == 'pngsame':
     print('same' if png_pixels(a[1]) == png_pixels(a[2]) else 'differ')
+    raise SystemExit
+if a[0] == 'covdiff':
+    import math
+    def cov(path):
+        data = open(path, 'rb').read()
+        parts = data.split(maxsplit=4)
+        w, h, scale = int(parts[1]), int(parts[2]), float(parts[3])
+        off = len(data) - w * h * 4
+        fmt = ('<' if scale < 0 else '>') + '%df' % (w * h)
+        return [math.isfinite(v) for v in struct.unpack(fmt, data[off:])]
+    ca, cb = cov(a[1]), cov(a[2])
+    print(sum(x != y for x, y in zip(ca, cb)) + abs(len(ca) - len(cb)))
     raise SystemExit
 if a[0] == 'pfm':
     v = pfm(a[1], int(a[2]), int(a[3]), int(a[4]))
