@@ -153,7 +153,7 @@ main(int argc, char **argv)
 	vx_mip_stats ms;
 	double lo[3], hi[3], wlo, whi;
 	int status, nthr, i;
-	struct timespec t0, t1;
+	struct timespec t0, t1, c0, c1;
 
 	tool_init("mip", argc, argv);
 	parse(&o, argc, argv);
@@ -226,6 +226,7 @@ main(int argc, char **argv)
 		if (vx_mip_work_init(&wk[i], &m, &e) != 0)
 			tool_fail_err(&e);
 	double miss = g.has_range ? g.vmin : 0;
+	clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c0);
 	clock_gettime(CLOCK_MONOTONIC, &t0);
 #ifdef _OPENMP
 #pragma omp parallel for num_threads(nthr) schedule(dynamic, 1)
@@ -257,6 +258,7 @@ main(int argc, char **argv)
 			}
 	}
 	clock_gettime(CLOCK_MONOTONIC, &t1);
+	clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c1);
 	memset(&ms, 0, sizeof ms);
 	for (i = 0; i < nthr; i++) {
 		ms.rays += mst[i].rays;
@@ -275,9 +277,11 @@ main(int argc, char **argv)
 	if (o.stats) {
 		double sec = (double)(t1.tv_sec - t0.tv_sec) +
 		    1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+		double cpu = (double)(c1.tv_sec - c0.tv_sec) +
+		    1e-9 * (double)(c1.tv_nsec - c0.tv_nsec);
 
-		fprintf(stderr, "mip: %dx%d, %d thread%s, %.3f s\n", w, h, nthr,
-		    nthr == 1 ? "" : "s", sec);
+		fprintf(stderr, "mip: %dx%d, %d thread%s, %.3f s (cpu %.3f s)\n",
+		    w, h, nthr, nthr == 1 ? "" : "s", sec, cpu);
 		fprintf(stderr, "mip: queue pushes %llu, pops %llu, longest "
 		    "queue %llu, pushes saved by last t %llu\n",
 		    (unsigned long long)ms.pushes, (unsigned long long)ms.pops,

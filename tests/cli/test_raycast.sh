@@ -94,4 +94,5 @@ mip --size 65x65 --hdr --exhaustive "$T/sph.vx" > "$T/m4.vx"
 check_eq "mip: queue = exhaustive at the centre" "$(px img "$T/m4.vx" mip 32 32 0)" "$(px img "$T/m.vx" mip 32 32 0)"
 mip --size 65x65 --stats "$T/sph.vx" 2>"$T/mst" >/dev/null
 check "mip: stats report queue work" grep -q 'queue pushes [0-9]*, pops [0-9]*' "$T/mst"
+check "mip: stats report wall and CPU time" grep -q ' [0-9.]* s (cpu [0-9.]* s)$' "$T/mst"
 done_testing
