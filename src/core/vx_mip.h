@@ -18,7 +18,12 @@
  *
  * Rays are in index space (vx_world_to_index*).  Non-finite samples are
  * ignored (a cell with a non-finite corner contributes nothing): no NaN key
- * and no NaN result. */
+ * and no NaN result.
+ *
+ * Ties: among equal maxima the result is the first found in the queue's
+ * order (smallest t within a walked macrocell), so the depth (not the
+ * value) of a tie can depend on the hierarchy's shape; for one hierarchy
+ * it is the same whatever the thread count, bound or layout. */
 #ifndef VX_MIP_H
 #define VX_MIP_H
 
@@ -42,6 +47,11 @@ typedef struct vx_mip_work {
 	void *q;
 	size_t cap;
 	double last_t;               /* previous ray's t of the maximum, or NaN */
+	int plain;                   /* 1: the plain walk, a generic cell walk
+	                                with a visitor per cell (the reference
+	                                the tests compare the specialized walks
+	                                with: the same bits, slower); 0 (what
+	                                vx_mip_work_init sets): the fast one */
 } vx_mip_work;
 
 /* vx_mip_work_init: size the queue for hierarchy m (its capacity bound is

@@ -330,6 +330,120 @@ randomized(void **state)
 		    refined_bad, refined);
 }
 
+/* The specialized walks (fused, typed, the default) against the plain walk
+ * (walk() with a visitor per cell, w.plain = 1): every ray gives the same
+ * hit, the same value and t bit for bit, and the same queue and cell
+ * counts, for each sample type (integer ones with many equal samples, so
+ * that ties decide t; f32 with NaN and Inf), linear and bricked layouts,
+ * hierarchies of 0 to 3 levels, the last-t bound on, and rays along axes,
+ * in grid planes, through lattice lines and corners, grazing the box
+ * (oracle: the plain walk is the straightforward implementation). */
+static void
+fast_equals_plain(void **state)
+{
+	static const vx_type types[] = { VX_U8, VX_U16, VX_I16, VX_F32 };
+	static const char *const layouts[] = { NULL, "bricked 2x2x2 2x2x2",
+	    "bricked 4x4x4" };
+	static const int shapes[][2] = { { 0, 1 }, { 1, 2 }, { 2, 2 },
+	    { 1, 3 }, { 3, 2 } };
+	int64_t dims[3] = { 12, 9, 14 };
+	vx_err e = { 0, "" };
+	int rays = 0;
+
+	(void)state;
+	for (size_t ti = 0; ti < sizeof types / sizeof *types; ti++)
+	for (size_t li = 0; li < sizeof layouts / sizeof *layouts; li++)
+	for (size_t si = 0; si < sizeof shapes / sizeof *shapes; si++) {
+		vx_grid g;
+		vx_macro m;
+		vx_mip_work wf, wp;
+		uint64_t i = 0, seed = 100 * ti + 10 * li + si + 1;
+
+		assert_int_equal(vx_grid_alloc(&g, dims, types[ti], layouts[li],
+		    &e), 0);
+		for (int64_t z = 0; z < dims[2]; z++)
+			for (int64_t y = 0; y < dims[1]; y++)
+				for (int64_t x = 0; x < dims[0]; x++, i++) {
+					double h = hash01(seed, i), v;
+
+					switch (types[ti]) {
+					case VX_U8: v = 17 * floor(h * 16); break;
+					case VX_U16: v = 4000 * floor(h * 9); break;
+					case VX_I16: v = 1000 * floor(h * 9) - 4000; break;
+					default:
+						v = h < 0.01 ? NAN : h > 0.995 ? INFINITY :
+						    100 * h - 50;
+						break;
+					}
+					vx_grid_set(&g, x, y, z, v);
+				}
+		vx_grid_range(&g);
+		if (shapes[si][0] == 0)
+			vx_macro_init(&m);
+		else
+			build(&m, &g, shapes[si][0], shapes[si][1]);
+		assert_int_equal(vx_mip_work_init(&wf, &m, &e), 0);
+		assert_int_equal(vx_mip_work_init(&wp, &m, &e), 0);
+		wp.plain = 1;
+		for (int k = 0; k < 240; k++, rays++) {
+			double o[3], d[3], vf, tf, vp, tp;
+			vx_mip_stats sf, sp;
+
+			for (int a = 0; a < 3; a++) {
+				o[a] = -3 + 20 * hash01(seed * 7 + 1, 3 * k + a);
+				d[a] = hash01(seed * 7 + 2, 3 * k + a) - 0.5;
+			}
+			switch (k % 8) {
+			case 1:                          /* along an axis */
+				d[0] = d[1] = d[2] = 0;
+				d[k / 8 % 3] = k % 16 < 8 ? 1 : -1;
+				o[(k / 8 + 1) % 3] = floor(o[(k / 8 + 1) % 3]);
+				break;
+			case 2:                          /* in a grid plane */
+				d[k / 8 % 3] = 0;
+				break;
+			case 3:                          /* through lattice lines */
+				for (int a = 0; a < 3; a++)
+					o[a] = floor(o[a]);
+				d[0] = 1; d[1] = k % 16 < 8 ? 1 : -1; d[2] = 0;
+				break;
+			case 4:                          /* through corners */
+				o[0] = -2; o[1] = -2 + k % 3; o[2] = -1;
+				d[0] = 1; d[1] = 1; d[2] = k % 16 < 8 ? 1 : 0.5;
+				break;
+			case 5:                          /* grazing the box */
+				o[0] = -2; o[1] = 0; o[2] = 3.5;
+				d[0] = 1; d[1] = 0; d[2] = 0.01;
+				break;
+			default:
+				break;
+			}
+			memset(&sf, 0, sizeof sf);
+			memset(&sp, 0, sizeof sp);
+			int hf = vx_mip_ray(&g, &m, &wf, o, d, 0, INFINITY, 1, &vf,
+			    &tf, &sf);
+			int hp = vx_mip_ray(&g, &m, &wp, o, d, 0, INFINITY, 1, &vp,
+			    &tp, &sp);
+			if (hf != hp || memcmp(&vf, &vp, sizeof vf) != 0 ||
+			    memcmp(&tf, &tp, sizeof tf) != 0 ||
+			    memcmp(&sf, &sp, sizeof sf) != 0)
+				fail_msg("type %d layout %zu shape %zu ray %d: fast %d "
+				    "%.17g %.17g (%llu cells %llu pushes), plain %d "
+				    "%.17g %.17g (%llu cells %llu pushes)",
+				    (int)types[ti], li, si, k, hf, vf, tf,
+				    (unsigned long long)sf.cells,
+				    (unsigned long long)sf.pushes, hp, vp, tp,
+				    (unsigned long long)sp.cells,
+				    (unsigned long long)sp.pushes);
+		}
+		vx_mip_work_free(&wf);
+		vx_mip_work_free(&wp);
+		vx_macro_free(&m);
+		vx_grid_free(&g);
+	}
+	assert_int_equal(rays, 4 * 3 * 5 * 240);
+}
+
 int
 main(void)
 {
@@ -338,6 +452,7 @@ main(void)
 		cmocka_unit_test(constant_volume_stops),
 		cmocka_unit_test(nonfinite),
 		cmocka_unit_test(randomized),
+		cmocka_unit_test(fast_equals_plain),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
