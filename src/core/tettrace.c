@@ -62,6 +62,32 @@ typedef struct trace_ctx {
 	seg cache[NSEG];
 } trace_ctx;
 
+/* misses: 1 when the ray certainly misses tet q: in ray space (the ray is
+ * the z axis) all four vertices lie strictly on one side of x = 0 or of
+ * y = 0.  The images are computed as vx_tet_segment computes them
+ * (tetisect.c's to_ray, operation for operation), and its exact edge signs
+ * on those images then find no face around the origin, nor around the
+ * perturbed origin (eps, eps^2): skipping the tet changes nothing. */
+static int
+misses(const vx_tetmesh *m, const uint32_t *q, const vx_tetray *r)
+{
+	int neg_x = 0, pos_x = 0, neg_y = 0, pos_y = 0;
+
+	for (int k = 0; k < 4; k++) {
+		const double *p = m->pts + 3 * (size_t)q[k];
+		double az = p[r->kz] - r->o[r->kz];
+		double x = (p[r->kx] - r->o[r->kx]) - r->sx * az;
+		double y = (p[r->ky] - r->o[r->ky]) - r->sy * az;
+
+		neg_x |= !(x > 0);
+		pos_x |= !(x < 0);
+		neg_y |= !(y > 0);
+		pos_y |= !(y < 0);
+	}
+	/* neg_x: some vertex has x <= 0; pos_x: some has x >= 0 */
+	return !neg_x || !pos_x || !neg_y || !pos_y;
+}
+
 /* keep: insert c into the sorted kept[0..*n) (at most NCAND); *more is set
  * when a crossing is dropped. */
 static void
@@ -123,9 +149,12 @@ scan(trace_ctx *x, const uint32_t *list, size_t n, double a, double b,
 			continue;
 		seg *sg = &x->cache[t % NSEG];
 		if (sg->tet != t) {
+			sg->tet = t;
+			sg->ok = 0;
+			if (misses(m, q, &x->ray))
+				continue;
 			if (x->st != NULL)
 				x->st->tets++;
-			sg->tet = t;
 			sg->ok = vx_tet_segment(m, t, &x->ray, &sg->t0, &sg->f0,
 			    &sg->t1, &sg->f1);
 		}
