@@ -4,6 +4,7 @@
 #include "vx_tetmesh.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <string.h>
 
 #include "vx_iso.h"
@@ -41,7 +42,7 @@ cand_less(const cand *a, const cand *b)
 #define NSEG 64
 
 typedef struct seg {
-	uint32_t tet;            /* UINT32_MAX: empty */
+	uint32_t tet;            /* valid when its bit of trace_ctx.valid is */
 	int ok;                  /* vx_tet_segment's answer */
 	double t0, f0, t1, f1;
 } seg;
@@ -59,6 +60,7 @@ typedef struct trace_ctx {
 	uint64_t nvisit;         /* leaves visited so far */
 	int64_t last;            /* the last one, and where it ended */
 	double last_t1;
+	uint64_t valid;          /* bit k: cache[k] holds a segment */
 	seg cache[NSEG];
 } trace_ctx;
 
@@ -131,12 +133,10 @@ scan(trace_ctx *x, const uint32_t *list, size_t n, double a, double b,
 		q = m->tet + 4 * (size_t)t;
 		float v0 = m->val[q[0]], v1 = m->val[q[1]], v2 = m->val[q[2]],
 		    v3 = m->val[q[3]];
-		if (!isfinite(v0) || !isfinite(v1) || !isfinite(v2) ||
-		    !isfinite(v3))
-			continue;
 		/* f0 and f1 lie within the vertex values: a crossing needs
 		 * lo < iso <= hi for some isovalue (skips most tets of a leaf
-		 * before the costly segment) */
+		 * before the costly segment); then tets with a non-finite
+		 * value, which never hit, whatever this test said of them */
 		float lo = v0 < v1 ? v0 : v1, hi = v0 < v1 ? v1 : v0;
 		lo = v2 < lo ? v2 : lo;
 		hi = v2 > hi ? v2 : hi;
@@ -147,8 +147,13 @@ scan(trace_ctx *x, const uint32_t *list, size_t n, double a, double b,
 				break;
 		if (k == x->niso)
 			continue;
+		if (!isfinite(v0) || !isfinite(v1) || !isfinite(v2) ||
+		    !isfinite(v3))
+			continue;
 		seg *sg = &x->cache[t % NSEG];
-		if (sg->tet != t) {
+		uint64_t bit = (uint64_t)1 << (t % NSEG);
+		if (!(x->valid & bit) || sg->tet != t) {
+			x->valid |= bit;
 			sg->tet = t;
 			sg->ok = 0;
 			if (misses(m, q, &x->ray))
@@ -282,6 +287,7 @@ vx_tetleaf_trace(const vx_tetleaf *lg, const vx_tetmesh *m,
 		st->rays++;
 	if (lg->off == NULL || niso <= 0)
 		return 0;
+	_Static_assert(NSEG == 64, "the valid mask has 64 bits");
 	/* culling as in vx_tetleaf_nearest (float isovalues, up to 64) */
 	nv = niso <= 64 ? niso : 0;
 	for (k = 0; k < nv; k++)
@@ -290,7 +296,8 @@ vx_tetleaf_trace(const vx_tetleaf *lg, const vx_tetmesh *m,
 		lo[a] = (o[a] - lg->bmin[a]) / lg->cell[a];
 		ld[a] = d[a] / lg->cell[a];
 	}
-	memset(&x, 0, sizeof x);
+	/* everything but the cache, which is marked empty by x.valid */
+	memset(&x, 0, offsetof(trace_ctx, cache));
 	x.lg = lg;
 	x.m = m;
 	vx_tetray_init(&x.ray, o, d);
@@ -301,8 +308,7 @@ vx_tetleaf_trace(const vx_tetleaf *lg, const vx_tetmesh *m,
 	x.fn = fn;
 	x.ctx = ctx;
 	x.st = st;
-	for (k = 0; k < NSEG; k++)
-		x.cache[k].tet = UINT32_MAX;
+	x.valid = 0;
 	rc = vx_macro_traverse(&lg->mc, NULL, lo, ld, tmin, tmax, vals, nv,
 	    trace_visit, &x, st != NULL ? &st->trav : NULL);
 	if (rc != 0)
