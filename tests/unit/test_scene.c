@@ -1030,7 +1030,8 @@ examples(void **state)
 {
 	static const char *const files[] = {
 		"examples/scenes/head.scn", "examples/scenes/head-layers.scn",
-		"examples/scenes/orbit.scn", "examples/scenes/reserved.scn", NULL
+		"examples/scenes/orbit.scn", "examples/scenes/reserved.scn",
+		"examples/scenes/iso-headlight.scn", NULL
 	};
 	int i;
 

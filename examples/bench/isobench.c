@@ -1,0 +1,275 @@
+/* isobench.c: frame times of voxlux's ray-cast isosurface renderer
+ * (vx_raycast_render, what raycast(1) runs), for examples/bench/isobench.py.
+ *
+ * Loads a stream once (volume, and its macrocells when the stream has them:
+ * `vread | brick | macrocell`), then renders the scene --warm times untimed
+ * and -n times timed, and prints the medians; with --latency V,V,... it then
+ * changes the isovalue to each V in turn and times the one render that
+ * shows it: nothing is rebuilt for a new isovalue (the macrocells hold
+ * ranges, not surfaces).  Output: "key value" lines on stdout.
+ *
+ *   isobench --scene FILE [--set LINE]... [--iso V[,V...]] [--view NAME]
+ *            [--size WxH] [-j N] [--flat] [-n FRAMES] [--warm N]
+ *            [--latency V[,V...]] [--pfm OUT.pfm] [--stats] STREAM
+ *
+ * --pfm writes the first timed frame's red channel as a gray PFM (the
+ * bench scenes are white: r = g = b), flattened over black, as the Embree
+ * peer writes its frame.  --stats times the phases (traversal,
+ * intersection, shading: Parker's Table 1) in one extra frame; timed frames
+ * never run with the phase clocks on.
+ *
+ * Build (examples/bench/Makefile does): cc -O2 -fopenmp -I../../src/core
+ *   isobench.c ../../build/libvoxlux.a -lpng -lz -lm */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "vx_camera.h"
+#include "vx_grid.h"
+#include "vx_image.h"
+#include "vx_macro.h"
+#include "vx_plan.h"
+#include "vx_raycast.h"
+#include "vx_scene.h"
+#include "vx_stream.h"
+
+#define MAXFRAMES 1000
+
+static void
+die(const char *what, const vx_err *e)
+{
+	fprintf(stderr, "isobench: %s%s%s\n", what, e ? ": " : "",
+	    e ? e->msg : "");
+	exit(e && e->code ? e->code : 1);
+}
+
+static double
+now(clockid_t id)
+{
+	struct timespec ts;
+
+	clock_gettime(id, &ts);
+	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int
+cmp_double(const void *a, const void *b)
+{
+	double x = *(const double *)a, y = *(const double *)b;
+
+	return x < y ? -1 : x > y;
+}
+
+static double
+median(double *v, int n)
+{
+	qsort(v, (size_t)n, sizeof *v, cmp_double);
+	return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+typedef struct bench {
+	vx_scene s;
+	vx_plan plan;
+	vx_grid g;
+	vx_macro m;
+	int have_m;
+	vx_raycast_opts ro;
+	double lo[3], hi[3];
+} bench;
+
+/* render: one frame of the current scene; wall and CPU seconds. */
+static void
+render(bench *b, vx_image *color, vx_raycast_stats *rs, double *wall,
+    double *cpu)
+{
+	vx_err e = { 0, "" };
+	vx_scene s = b->s;
+	double w0, c0;
+
+	w0 = now(CLOCK_MONOTONIC);
+	c0 = now(CLOCK_PROCESS_CPUTIME_ID);
+	/* what an isovalue change costs: the plan, the camera, the frame */
+	vx_scene_plan_isosurface(&s, &b->plan);
+	if (vx_camera_resolve(&s.camera, b->lo, b->hi, &e) != 0)
+		die("camera", &e);
+	vx_image_init(color);
+	if (vx_raycast_render(&s, &b->plan, &b->g, b->have_m ? &b->m : NULL,
+	    NULL, &b->ro, color, NULL, NULL, rs, &e) != 0)
+		die("render", &e);
+	*wall = now(CLOCK_MONOTONIC) - w0;
+	*cpu = now(CLOCK_PROCESS_CPUTIME_ID) - c0;
+}
+
+static void
+write_gray_pfm(const char *path, const vx_image *color)
+{
+	vx_err e = { 0, "" };
+	vx_image gray;
+	FILE *f;
+	size_t i, n = (size_t)color->w * (size_t)color->h;
+
+	if (vx_image_alloc(&gray, color->w, color->h, 1, &e) != 0)
+		die("image", &e);
+	for (i = 0; i < n; i++)
+		gray.px[i] = color->px[4 * i];     /* premultiplied: over black */
+	if ((f = fopen(path, "wb")) == NULL)
+		die(path, NULL);
+	if (vx_pfm_write(&gray, f, &e) != 0 || fclose(f) != 0)
+		die(path, &e);
+	vx_image_free(&gray);
+}
+
+int
+main(int argc, char **argv)
+{
+	const char *scene = NULL, *stream = NULL, *pfm = NULL, *latency = NULL;
+	int nframes = 5, warm = 1, stats = 0, i, status;
+	bench b;
+	vx_stream st;
+	vx_err e = { 0, "" };
+	vx_image color;
+	vx_raycast_stats rs;
+	double wall[MAXFRAMES], cpu[MAXFRAMES], t0;
+	FILE *f;
+
+	memset(&b, 0, sizeof b);
+	vx_scene_init(&b.s);
+	vx_raycast_opts_init(&b.ro);
+	vx_macro_init(&b.m);
+	/* first pass: the scene file, so that the options apply over it */
+	for (i = 1; i < argc; i++)
+		if (strcmp(argv[i], "--scene") == 0 && i + 1 < argc)
+			scene = argv[++i];
+	if (scene == NULL)
+		die("usage: isobench --scene FILE [options] STREAM", NULL);
+	if ((f = fopen(scene, "r")) == NULL)
+		die(scene, NULL);
+	if (vx_scene_read(&b.s, f, &e) != 0)
+		die(scene, &e);
+	fclose(f);
+	for (i = 1; i < argc; i++) {
+		const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+		const char *opt = NULL;
+
+		if (strcmp(a, "--scene") == 0) {
+			i++;
+			continue;
+		}
+		if (strcmp(a, "--flat") == 0) {
+			b.ro.flat = 1;
+			continue;
+		}
+		if (strcmp(a, "--stats") == 0) {
+			stats = 1;
+			continue;
+		}
+		if (a[0] != '-') {
+			stream = a;
+			continue;
+		}
+		if (v == NULL)
+			die("option needs a value", NULL);
+		i++;
+		if (strcmp(a, "-j") == 0)
+			b.ro.nthreads = atoi(v);
+		else if (strcmp(a, "-n") == 0)
+			nframes = atoi(v);
+		else if (strcmp(a, "--warm") == 0)
+			warm = atoi(v);
+		else if (strcmp(a, "--pfm") == 0)
+			pfm = v;
+		else if (strcmp(a, "--latency") == 0)
+			latency = v;
+		else if (strcmp(a, "--set") == 0)
+			opt = "set";
+		else if (strcmp(a, "--iso") == 0)
+			opt = "iso";
+		else if (strcmp(a, "--view") == 0)
+			opt = "view";
+		else if (strcmp(a, "--size") == 0)
+			opt = "size";
+		else
+			die("unknown option", NULL);
+		if (opt != NULL && vx_scene_option(&b.s, opt, v, &e) != 0)
+			die(a, &e);
+	}
+	if (stream == NULL || nframes < 1 || nframes > MAXFRAMES || warm < 0)
+		die("usage: isobench --scene FILE [options] STREAM", NULL);
+
+	/* load: the stream, the volume, its macrocells */
+	t0 = now(CLOCK_MONOTONIC);
+	vx_stream_init(&st);
+	if ((f = fopen(stream, "rb")) == NULL)
+		die(stream, NULL);
+	if (vx_stream_read(&st, f, &e) != 0)
+		die(stream, &e);
+	fclose(f);
+	if (vx_grid_from_stream(&b.g, &st, NULL, NULL, &e) != 0)
+		die(stream, &e);
+	if (!b.ro.flat) {
+		if (vx_macro_from_stream(&b.m, &st, &b.g, &status, NULL, &e) != 0)
+			die("macrocells", &e);
+		if (status != VX_MACRO_LOADED)
+			die("the stream has no macrocells for its volume (run "
+			    "macrocell) or use --flat", NULL);
+		b.have_m = 1;
+	}
+	vx_stream_free(&st);
+	printf("load_ms %.3f\n", 1e3 * (now(CLOCK_MONOTONIC) - t0));
+	printf("layout %s\n", b.g.lay.nlev ? "bricked" : "linear");
+	printf("traversal %s\n", b.ro.flat ? "flat" : "hierarchical");
+	vx_grid_box(&b.g, b.lo, b.hi);
+
+	for (i = 0; i < warm; i++) {
+		render(&b, &color, &rs, &wall[0], &cpu[0]);
+		vx_image_free(&color);
+	}
+	for (i = 0; i < nframes; i++) {
+		render(&b, &color, &rs, &wall[i], &cpu[i]);
+		if (i == 0 && pfm != NULL)
+			write_gray_pfm(pfm, &color);
+		vx_image_free(&color);
+	}
+	printf("threads %d\n", b.ro.nthreads);
+	printf("frames %d\n", nframes);
+	printf("frame_ms %.3f\n", 1e3 * median(wall, nframes));
+	printf("frame_ms_min %.3f\n", 1e3 * wall[0]);
+	printf("frame_ms_max %.3f\n", 1e3 * wall[nframes - 1]);
+	printf("frame_cpu_ms %.3f\n", 1e3 * median(cpu, nframes));
+	printf("rays %llu\ncells %llu\nroots %llu\nhits %llu\ncovered %llu\n",
+	    (unsigned long long)rs.primary, (unsigned long long)rs.cells,
+	    (unsigned long long)rs.roots, (unsigned long long)rs.hits,
+	    (unsigned long long)rs.covered);
+	if (stats) {
+		b.ro.timing = 1;
+		render(&b, &color, &rs, &wall[0], &cpu[0]);
+		vx_image_free(&color);
+		b.ro.timing = 0;
+		printf("share_traverse %.4f\nshare_isect %.4f\n"
+		    "share_shade %.4f\n", rs.share_traverse, rs.share_isect,
+		    rs.share_shade);
+	}
+	if (latency != NULL) {
+		/* an isovalue change: the new surface's first frame */
+		char *list = strdup(latency), *tok, *save = NULL;
+
+		for (tok = strtok_r(list, ",", &save); tok != NULL;
+		    tok = strtok_r(NULL, ",", &save)) {
+			double w, c;
+
+			if (vx_scene_option(&b.s, "iso", tok, &e) != 0)
+				die("--latency", &e);
+			render(&b, &color, &rs, &w, &c);
+			vx_image_free(&color);
+			printf("latency iso %s ms %.3f cpu_ms %.3f covered %llu\n",
+			    tok, 1e3 * w, 1e3 * c,
+			    (unsigned long long)rs.covered);
+		}
+		free(list);
+	}
+	vx_macro_free(&b.m);
+	vx_grid_free(&b.g);
+	return 0;
+}
