@@ -593,6 +593,23 @@ imax(int32_t a, int32_t b)
 		q[6] = d[x0 + yz11]; q[7] = d[x1 + yz11];                \
 	} while (0)
 
+/* integer samples: the range from the loaded values themselves (no store
+ * and reload of the array: a wide reload of narrow stores stalls) */
+#define LEAF_INT(T)                                                      \
+	do {                                                             \
+		const T *d = (const T *)g->data;                         \
+		int32_t a0 = d[x0 + yz00], a1 = d[x1 + yz00];            \
+		int32_t a2 = d[x0 + yz10], a3 = d[x1 + yz10];            \
+		int32_t a4 = d[x0 + yz01], a5 = d[x1 + yz01];            \
+		int32_t a6 = d[x0 + yz11], a7 = d[x1 + yz11];            \
+		qi[0] = a0; qi[1] = a1; qi[2] = a2; qi[3] = a3;          \
+		qi[4] = a4; qi[5] = a5; qi[6] = a6; qi[7] = a7;          \
+		mn = imin(imin(imin(a0, a1), imin(a2, a3)),              \
+		    imin(imin(a4, a5), imin(a6, a7)));                   \
+		mx = imax(imax(imax(a0, a1), imax(a2, a3)),              \
+		    imax(imax(a4, a5), imax(a6, a7)));                   \
+	} while (0)
+
 /* leaf_load: the 8 samples of the leaf whose near and far planes are at
  * layout offsets on, of, in walking order (integer types into qi, f32 into
  * qf) and their range over the finite ones (empty: lo = +Inf, hi = -Inf);
@@ -604,13 +621,14 @@ leaf_load(const vx_grid *g, const int64_t on[3], const int64_t of[3],
 	int64_t x0 = on[0], x1 = of[0];
 	int64_t yz00 = on[1] + on[2], yz10 = of[1] + on[2];
 	int64_t yz01 = on[1] + of[2], yz11 = of[1] + of[2];
+	int32_t mn = 0, mx = 0;
 	float l[8], h[8];
 	int k;
 
 	switch (g->type) {
-	case VX_U8: LEAF_LOAD(uint8_t, qi); break;
-	case VX_U16: LEAF_LOAD(uint16_t, qi); break;
-	case VX_I16: LEAF_LOAD(int16_t, qi); break;
+	case VX_U8: LEAF_INT(uint8_t); break;
+	case VX_U16: LEAF_INT(uint16_t); break;
+	case VX_I16: LEAF_INT(int16_t); break;
 	case VX_F32:
 		LEAF_LOAD(float, qf);
 		/* NaN and +-Inf left out: they become the identities */
@@ -631,14 +649,8 @@ leaf_load(const vx_grid *g, const int64_t on[3], const int64_t of[3],
 		memset(qi, 0, 8 * sizeof *qi);
 		break;
 	}
-	for (k = 0; k < 8; k++)
-		l[k] = (float)qi[k];
-	*lo = min_first(min_first(min_first(l[0], l[1]),
-	    min_first(l[2], l[3])), min_first(min_first(l[4], l[5]),
-	    min_first(l[6], l[7])));
-	*hi = max_first(max_first(max_first(l[0], l[1]),
-	    max_first(l[2], l[3])), max_first(max_first(l[4], l[5]),
-	    max_first(l[6], l[7])));
+	*lo = (float)mn;
+	*hi = (float)mx;
 }
 
 /* leaves: the level-0 part of the walk over volume leaves: from leaf c
