@@ -2,7 +2,7 @@
 # Parker et al.'s Tables 1-3 (included by the Makefile here).
 #
 #   make -C examples/bench iso            every table below into results/ (RUNS=5 rounds)
-#   make -C examples/bench iso ISO_ONLY=frames       one part: frames, latency, table3, pictures
+#   make -C examples/bench iso ISO_ONLY=frames       one part: frames, latency, table3, sizes, pictures
 #   make -C examples/bench iso ISO_CASES="ch2:127.5" RUNS=1   a quick look
 #
 # The picture: examples/scenes/iso-headlight.scn (one white Lambert surface,
@@ -23,7 +23,7 @@
 RESULTS ?= results
 ISO_SCENE := ../scenes/iso-headlight.scn
 ISO_CASES ?= ch2:127.5 ch2:40.5 $(if $(wildcard $(vhf_SRC)),vhf:600.5 vhf:1224.5)
-ISO_ONLY ?= frames,latency,table3,pictures
+ISO_ONLY ?= frames,latency,table3,sizes,pictures
 ISO_DATASETS = $(sort $(foreach c,$(ISO_CASES),$(firstword $(subst :, ,$(c)))))
 ISOBENCH := $(OUT)/isobench
 # the view that shows the face: ch2 is stored RAS (face at +y), the VHF CT
@@ -54,7 +54,7 @@ iso: $(ISOBENCH) $(EMBREE) $(foreach d,$(ISO_DATASETS),$(OUT)/$(d).nrrd $(OUT)/$
 	  $(foreach d,$(ISO_DATASETS),--dataset $(d) $(OUT)/$(d).nrrd $(OUT)/$(d)-b.vx \
 	    $(OUT)/$(d)-l.vx $($(d)_FACE) "$($(d)_ISOCAM)") \
 	  $(foreach c,$(ISO_CASES),--case $(c))
-	cd $(RESULTS) && cat $$(ls frames.md latency.md table3.md pictures.md 2>/dev/null) > iso.md
+	cd $(RESULTS) && cat $$(ls frames.md latency.md table3.md sizes.md pictures.md 2>/dev/null) > iso.md
 
 iso-clean:
 	rm -rf $(RESULTS) $(OUT)/iso $(OUT)/isobench $(OUT)/*-b.vx $(OUT)/*-l.vx

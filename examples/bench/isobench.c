@@ -10,13 +10,16 @@
  *
  *   isobench --scene FILE [--set LINE]... [--iso V[,V...]] [--view NAME]
  *            [--size WxH] [-j N] [--flat] [-n FRAMES] [--warm N]
- *            [--latency V[,V...]] [--pfm OUT.pfm] [--stats] STREAM
+ *            [--latency V[,V...]] [--pfm OUT.pfm] [--stats]
+ *            [--sizes AxBxC[,DxExF...]] STREAM
  *
  * --pfm writes the first timed frame's red channel as a gray PFM (the
  * bench scenes are white: r = g = b), flattened over black, as the Embree
  * peer writes its frame.  --stats times the phases (traversal,
  * intersection, shading: Parker's Table 1) in one extra frame; timed frames
- * never run with the phase clocks on.
+ * never run with the phase clocks on.  --sizes builds the macrocells here
+ * with those level sizes (macrocell(1) --sizes) instead of using the
+ * stream's, and prints the build time.
  *
  * Build (examples/bench/Makefile does): cc -O2 -fopenmp -I../../src/core
  *   isobench.c ../../build/libvoxlux.a -lpng -lz -lm */
@@ -125,6 +128,7 @@ int
 main(int argc, char **argv)
 {
 	const char *scene = NULL, *stream = NULL, *pfm = NULL, *latency = NULL;
+	const char *sizes = NULL;
 	int nframes = 5, warm = 1, stats = 0, i, status;
 	bench b;
 	vx_stream st;
@@ -182,6 +186,8 @@ main(int argc, char **argv)
 			pfm = v;
 		else if (strcmp(a, "--latency") == 0)
 			latency = v;
+		else if (strcmp(a, "--sizes") == 0)
+			sizes = v;
 		else if (strcmp(a, "--set") == 0)
 			opt = "set";
 		else if (strcmp(a, "--iso") == 0)
@@ -208,16 +214,33 @@ main(int argc, char **argv)
 	fclose(f);
 	if (vx_grid_from_stream(&b.g, &st, NULL, NULL, &e) != 0)
 		die(stream, &e);
-	if (!b.ro.flat) {
+	if (!b.ro.flat && sizes == NULL) {
 		if (vx_macro_from_stream(&b.m, &st, &b.g, &status, NULL, &e) != 0)
 			die("macrocells", &e);
 		if (status != VX_MACRO_LOADED)
 			die("the stream has no macrocells for its volume (run "
-			    "macrocell) or use --flat", NULL);
+			    "macrocell) or use --flat or --sizes", NULL);
 		b.have_m = 1;
 	}
 	vx_stream_free(&st);
 	printf("load_ms %.3f\n", 1e3 * (now(CLOCK_MONOTONIC) - t0));
+	if (!b.ro.flat && sizes != NULL) {
+		int sz[VX_MACRO_MAXLEV][3], nlev;
+
+		if ((nlev = vx_macro_parse_sizes(sizes, sz, &e)) < 0)
+			die("--sizes", &e);
+		t0 = now(CLOCK_MONOTONIC);
+		if (vx_macro_build(&b.m, &b.g, nlev, (const int (*)[3])sz,
+		    b.ro.nthreads, &e) != 0)
+			die("macrocells", &e);
+		printf("build_ms %.3f\n", 1e3 * (now(CLOCK_MONOTONIC) - t0));
+		b.have_m = 1;
+	}
+	if (b.have_m)
+		printf("macro_bytes %zu\nmacro_share %.5f\n", vx_macro_bytes(&b.m),
+		    (double)vx_macro_bytes(&b.m) / ((double)b.g.dims[0] *
+		    (double)b.g.dims[1] * (double)b.g.dims[2] *
+		    (double)vx_type_size(b.g.type)));
 	printf("layout %s\n", b.g.lay.nlev ? "bricked" : "linear");
 	printf("traversal %s\n", b.ro.flat ? "flat" : "hierarchical");
 	vx_grid_box(&b.g, b.lo, b.hi);

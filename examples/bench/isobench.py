@@ -26,6 +26,8 @@ latency   (b) time to a new image after an isovalue change: voxlux renders
 table3    (c) plain (linear layout, no hierarchy), bricking only (bricked,
           no hierarchy), hierarchy + bricking (and hierarchy alone), for
           five views; one thread.
+sizes     macrocell level sizes (the stream's default against smaller
+          level-1 cells): frame time and the hierarchy's size; one thread.
 pictures  each case's voxlux and Embree frames as PNG, their difference
           (tonemap --compare) and the silhouette mismatch.
 """
@@ -297,6 +299,35 @@ class Bench:
                     key, view, m[0], m[1], m[2], m[3], m[0] / m[3]))
         self.save("table3", rows, "\n".join(md) + "\n")
 
+    # ---- macrocell sizes ----
+    def sizes(self):
+        R = self.a.runs
+        variants = ["stream"] + self.a.sizes.split()
+        rows = {}
+        for r in range(R):
+            for name, iso in self.cases:
+                for sz in variants:
+                    extra = ["-j", "1", "-n", "3", "--warm", "1"]
+                    if sz != "stream":
+                        extra += ["--sizes", sz]
+                    v = self.vox(name, iso, extra)
+                    x = rows.setdefault("%s:%s" % (name, iso), {}).setdefault(sz, dict(ms=[]))
+                    x["ms"].append(v["frame_ms"])
+                    x["share"] = v["macro_share"]
+                    x["build_ms"] = v.get("build_ms")
+                print("round %d %s %s: %s" % (r + 1, name, iso, " ".join(
+                    "%.0f" % rows["%s:%s" % (name, iso)][z]["ms"][-1] for z in variants)), flush=True)
+        md = ["### Macrocell sizes (ms per frame, 1 thread, the cameras of (a))", "",
+              "Median over %d interleaved rounds of each round's median of 3 frames; "
+              "'stream' is `macrocell`'s default (level 1 covers 2 KiB of samples: u8 "
+              "16x16x8, i16 16x8x8; level 2 64^3 cells). In brackets: the hierarchy's size "
+              "as a share of the samples' bytes." % R, "",
+              "| case | " + " | ".join(variants) + " |", "| --- |" + " --- |" * len(variants)]
+        for key, vs in rows.items():
+            md.append("| %s | " % key + " | ".join(
+                "%.0f (%.2f%%)" % (med(vs[z]["ms"]), 100 * vs[z]["share"]) for z in variants) + " |")
+        self.save("sizes", rows, "\n".join(md) + "\n")
+
     # ---- pictures ----
     def pictures(self):
         rows = {}
@@ -348,7 +379,9 @@ def main():
     p.add_argument("--dataset", nargs=6, action="append", required=True,
                    metavar=("NAME", "NRRD", "BRICKED", "LINEAR", "FACEVIEW", "CAMERA"))
     p.add_argument("--case", action="append", required=True, metavar="NAME:ISO")
-    p.add_argument("--only", default="frames,latency,table3,pictures")
+    p.add_argument("--only", default="frames,latency,table3,sizes,pictures")
+    p.add_argument("--sizes", default="8x8x8,8x8x8 4x4x4,8x8x8 4x4x4,4x4x4,4x4x4",
+                   help="macrocell level sizes for the sizes table (blank-separated)")
     a = p.parse_args()
     b = Bench(a)
     for what in a.only.split(","):
