@@ -66,6 +66,36 @@ inner_field(const vx_leaf_visit *v, const double *o, const double *d,
 
 #define MAXROOTS 3   /* a cubic crosses a value at most 3 times */
 
+/* finite8: 1 if all 8 corners are finite, as vx_cell_finite, without a
+ * call or a branch per corner: x * 0 is 0 for finite x, NaN otherwise. */
+static inline int
+finite8(const float c[8])
+{
+	float z = (c[0] * 0.0f + c[1] * 0.0f) + (c[2] * 0.0f + c[3] * 0.0f) +
+	    ((c[4] * 0.0f + c[5] * 0.0f) + (c[6] * 0.0f + c[7] * 0.0f));
+
+	return z == 0.0f;
+}
+
+/* fill: the hit at local root r (kind, entering) of surface s in leaf v. */
+static void
+fill(vx_iso_hit *h, const iso_ctx *x, const vx_leaf_visit *v, double r,
+    int s, int kind, int entering)
+{
+	int a;
+
+	h->t = v->t0 + r;
+	if (h->t > v->t1)     /* rounding of t0 + r */
+		h->t = v->t1;
+	h->surface = s;
+	h->kind = kind;
+	h->entering = entering;
+	memcpy(h->cell, v->i, sizeof h->cell);
+	memcpy(h->c, v->c, sizeof h->c);
+	for (a = 0; a < 3; a++)
+		h->p[a] = x->o[a] + h->t * x->d[a];
+}
+
 static int
 visit(void *vctx, const vx_leaf_visit *v)
 {
@@ -76,7 +106,7 @@ visit(void *vctx, const vx_leaf_visit *v)
 	uint64_t c0 = 0;
 	int nh = 0, s, a, i, j, rc;
 
-	if (!vx_cell_finite(v->c)) {
+	if (!finite8(v->c)) {
 		if (st)
 			st->nonfinite++;
 		return 0;
@@ -95,6 +125,45 @@ visit(void *vctx, const vx_leaf_visit *v)
 	for (a = 0; a < 3; a++)
 		ol[a] = (x->o[a] + v->t0 * x->d[a]) - (double)v->i[a];
 	len = v->t1 - v->t0;
+	if (x->niso == 1) {
+		/* One isovalue: its roots come in order of t, so each is handed
+		 * on as soon as it is found, and a hit that ends the ray (an
+		 * opaque surface) costs no further root.  The same hits in the
+		 * same order as the general case below. */
+		double iso = x->iso[0], sa = 0, fa, f1, r;
+		vx_iso_hit h;
+		int n, kind;
+
+		if (v->lo <= iso && iso <= v->hi) {
+			vx_cell_poly(v->c, ol, x->d, iso, k);
+			fa = e0 - iso;
+			f1 = e1 - iso;
+			for (n = 0; n < MAXROOTS; n++) {
+				if (st)
+					st->roots++;
+				kind = vx_cell_first_root(k, sa, len, fa, f1,
+				    x->tr->solver, &r, NULL);
+				if (kind == VX_CELL_MISS || (n > 0 && !(r > sa)))
+					break;
+				fill(&h, x, v, r, 0, kind, fa < 0);
+				if (st) {
+					st->hits++;
+					if (st->timing)
+						st->cyc_isect += vx_cycles() - c0;
+				}
+				if ((rc = x->fn(x->ctx, &h)) != 0)
+					return rc;
+				if (st && st->timing)
+					c0 = vx_cycles();
+				sa = r;
+				if (kind == VX_CELL_CROSS)
+					fa = fa >= 0 ? -1.0 : 1.0;
+			}
+		}
+		if (st && st->timing)
+			st->cyc_isect += vx_cycles() - c0;
+		return 0;
+	}
 	for (s = 0; s < x->niso; s++) {
 		double iso = x->iso[s], sa = 0, fa, f1, r;
 		int n, kind;
@@ -111,13 +180,7 @@ visit(void *vctx, const vx_leaf_visit *v)
 			    x->tr->solver, &r, NULL);
 			if (kind == VX_CELL_MISS || (n > 0 && !(r > sa)))
 				break;
-			vx_iso_hit *h = &hits[nh++];
-			h->t = v->t0 + r;
-			if (h->t > v->t1)     /* rounding of t0 + r */
-				h->t = v->t1;
-			h->surface = s;
-			h->kind = kind;
-			h->entering = fa < 0;
+			fill(&hits[nh++], x, v, r, s, kind, fa < 0);
 			sa = r;
 			if (kind == VX_CELL_CROSS)
 				fa = fa >= 0 ? -1.0 : 1.0;
@@ -134,15 +197,9 @@ visit(void *vctx, const vx_leaf_visit *v)
 		hits[j] = h;
 	}
 	for (i = 0; i < nh; i++) {
-		vx_iso_hit *h = &hits[i];
-
-		memcpy(h->cell, v->i, sizeof h->cell);
-		memcpy(h->c, v->c, sizeof h->c);
-		for (a = 0; a < 3; a++)
-			h->p[a] = x->o[a] + h->t * x->d[a];
 		if (st)
 			st->hits++;
-		if ((rc = x->fn(x->ctx, h)) != 0)
+		if ((rc = x->fn(x->ctx, &hits[i])) != 0)
 			return rc;
 	}
 	return 0;
