@@ -611,12 +611,13 @@ imax(int32_t a, int32_t b)
 	} while (0)
 
 /* leaf_load: the 8 samples of the leaf whose near and far planes are at
- * layout offsets on, of, in walking order (integer types into qi, f32 into
- * qf) and their range over the finite ones (empty: lo = +Inf, hi = -Inf);
- * integer samples are all finite and their range is exact in float. */
+ * layout offsets on, of, in walking order, and their range: integer types
+ * into qi, range imn..imx (all finite, exact in float); f32 into qf, range
+ * lo..hi over the finite ones (empty: lo = +Inf, hi = -Inf). */
 static inline void
 leaf_load(const vx_grid *g, const int64_t on[3], const int64_t of[3],
-    int32_t qi[8], float qf[8], float *lo, float *hi)
+    int32_t qi[8], float qf[8], int32_t *imn, int32_t *imx, float *lo,
+    float *hi)
 {
 	int64_t x0 = on[0], x1 = of[0];
 	int64_t yz00 = on[1] + on[2], yz10 = of[1] + on[2];
@@ -649,8 +650,8 @@ leaf_load(const vx_grid *g, const int64_t on[3], const int64_t of[3],
 		memset(qi, 0, 8 * sizeof *qi);
 		break;
 	}
-	*lo = (float)mn;
-	*hi = (float)mx;
+	*imn = mn;
+	*imx = mx;
 }
 
 /* leaves: the level-0 part of the walk over volume leaves: from leaf c
@@ -669,8 +670,8 @@ leaves(const ray *r, const vx_grid *g, int64_t c[3], const int64_t lim[3],
 {
 	const int64_t *off[3] = { g->lay.off[0], g->lay.off[1], g->lay.off[2] };
 	const int *up = r->up;
-	int64_t on[3], of[3];
-	int flip = r->flip, isf = g->type == VX_F32;
+	int64_t on[3], of[3], fl = 0, ce = 0;
+	int flip = r->flip, isf = g->type == VX_F32, ithr = 0;
 	double t = *tp, texit;
 	int a, i, ax, e = *ep, rc;
 	vx_leaf_visit v;
@@ -679,17 +680,41 @@ leaves(const ray *r, const vx_grid *g, int64_t c[3], const int64_t lim[3],
 		on[a] = off[a][c[a] + !up[a]];
 		of[a] = off[a][c[a] + up[a]];
 	}
-	for (;;) {
-		float lo, hi, qf[8];
-		int32_t qi[8];
-		int64_t nc, p;
+	/* integer samples and one value v: (float)min <= v <= (float)max is
+	 * min <= floor(v) and max >= ceil(v) (v clamped far beyond the 16-bit
+	 * range first; NaN brackets nothing and takes the float test) */
+	if (!isf && nvals == 1 && vals[0] == vals[0]) {
+		double w = vals[0] < -0x1p40 ? -0x1p40 : vals[0] > 0x1p40 ?
+		    0x1p40 : vals[0];
 
-		leaf_load(g, on, of, qi, qf, &lo, &hi);
-		ax = tn[1] < tn[0] ? 1 : 0;
-		if (tn[2] < tn[ax])
+		ithr = 1;
+		fl = (int64_t)floor(w);
+		ce = (int64_t)ceil(w);
+	}
+	for (;;) {
+		float lo = 0, hi = 0, qf[8];
+		int32_t qi[8], imn = 0, imx = 0;
+		int64_t nc, p;
+		double t0 = tn[0], t1 = tn[1], t2 = tn[2];
+		int in;
+
+		leaf_load(g, on, of, qi, qf, &imn, &imx, &lo, &hi);
+		ax = t1 < t0;
+		texit = ax ? t1 : t0;
+		if (t2 < texit) {
 			ax = 2;
-		texit = tn[ax];
-		if (brackets(lo, hi, vals, nvals)) {
+			texit = t2;
+		}
+		if (ithr)
+			in = imn <= fl && imx >= ce;
+		else {
+			if (!isf) {
+				lo = (float)imn;
+				hi = (float)imx;
+			}
+			in = brackets(lo, hi, vals, nvals);
+		}
+		if (in) {
 			for (i = 0; i < 8; i++)
 				v.c[i] = isf ? qf[i ^ flip] : (float)qi[i ^ flip];
 			memcpy(v.i, c, sizeof v.i);
@@ -700,8 +725,8 @@ leaves(const ray *r, const vx_grid *g, int64_t c[3], const int64_t lim[3],
 			v.entry_side = e >= 0 && r->s[e] < 0;
 			v.exit_axis = texit <= tb && r->s[ax] ? ax : -1;
 			v.exit_side = v.exit_axis >= 0 && r->s[ax] > 0;
-			v.lo = lo;
-			v.hi = hi;
+			v.lo = isf ? lo : (float)imn;
+			v.hi = isf ? hi : (float)imx;
 			s->leaves++;
 			if ((rc = fn(ctx, &v)) != 0)
 				return rc;
