@@ -35,9 +35,10 @@ typedef struct rc_shared {
 	double tex_lo[VX_SCENE_MAX_SURFACES], tex_hi[VX_SCENE_MAX_SURFACES];
 } rc_shared;
 
-/* What each thread owns. */
+/* What each thread owns: on cache lines of its own (the counters are
+ * written per cell; neighbours sharing a line would slow both threads). */
 typedef struct rc_local {
-	vx_iso_stats st;
+	_Alignas(64) vx_iso_stats st;
 	vx_tettrace_stats tst;
 	uint64_t primary, shadow, shaded, covered;
 	uint64_t cyc_total, cyc_shade, cyc_shadow;
@@ -485,9 +486,11 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 #else
 	nthr = 1;
 #endif
-	rc_local *loc = calloc((size_t)nthr, sizeof *loc);
+	rc_local *loc = aligned_alloc(_Alignof(rc_local),
+	    (size_t)nthr * sizeof *loc);
 	if (loc == NULL)
 		return vx_err_set(e, VX_ENOMEM, "raycast: out of memory");
+	memset(loc, 0, (size_t)nthr * sizeof *loc);
 	for (k = 0; k < nthr; k++) {
 		loc[k].st.timing = o->timing;
 		loc[k].tst.timing = o->timing;
