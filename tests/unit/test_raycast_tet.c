@@ -983,6 +983,44 @@ transparent_parity(void **state)
 		vx_tetmesh_free(&m);
 	}
 	vx_grid_free(&g);
+	/* An isovalue equal to a vertex value where the field only touches
+	 * it: -(|x| + |y| + |z|) peaks at 0 at the centre vertex; with iso 0
+	 * the "surface" is that point.  Rays through it, or through the
+	 * edges and vertices around it (orthographic, pixel centres on the
+	 * grid), see an even number of crossings (the documented policy:
+	 * f >= iso is inside), never one. */
+	l1_grid(&g, 9);
+	for (size_t i = 0; i < 9 * 9 * 9; i++)
+		((float *)g.data)[i] = -((float *)g.data)[i];
+	vx_grid_range(&g);
+	for (int how = 5; how <= 6; how++) {
+		vx_tetmesh m;
+		vx_tetleaf lg;
+		vx_scene s;
+		imgs mi;
+		double zero = 0, eye[3] = { 0, -5, 0 }, look[3] = { 0, 0, 0 };
+
+		split(&m, &g, how);
+		build_lg(&lg, &m, 1, 0, 2);
+		base_scene(&s, 33, 33, &zero, 1);
+		s.surface[0].m.opacity = a;
+		/* 33 pixels over 2.0625: pixel centres every 1/16, the grid's
+		 * lines every 1/4, the peak at the centre pixel */
+		set_camera(&s, VX_ORTHOGRAPHIC, eye, look, 2.0625);
+		render_mesh(&s, &m, &lg, 2, &mi, NULL);
+		for (int y = 0; y < 33; y++)
+			for (int x = 0; x < 33; x++) {
+				double al = vx_image_get(&mi.c, x, y, 3);
+				if (!(al == 0 || fabs(al - (1 - (1 - a) * (1 - a))) <
+				    1e-6))
+					fail_msg("touching vertex, split %d pixel %d %d: "
+					    "coverage %.7f", how, x, y, al);
+			}
+		imgs_free(&mi);
+		vx_tetleaf_free(&lg);
+		vx_tetmesh_free(&m);
+	}
+	vx_grid_free(&g);
 }
 
 /* Shadow rays see each crossing once: a floor under a sphere, both the
