@@ -206,4 +206,25 @@ expect_fail "--add: the name is taken" 64 "already has a volume or mesh named 'k
 expect_fail "macrocell --density of a volume" 64 "apply to tet meshes" macrocell --density 2 "$T/s.vx"
 expect_fail "macrocell: no such mesh" 65 "no volume or mesh named 'q'" macrocell --name q "$T/km.vx"
 expect_fail "raycast: no such mesh" 65 "no volume or mesh named 'q'" raycast --iso 1 --name q "$T/km.vx"
+# a TLEF chunk whose header lies (one entry more than the body holds; the
+# CRC recomputed so that only the leaf-grid reader can tell)
+python3 - "$T/km.vx" "$T/bad.vx" <<'EOF'
+import struct, sys, zlib
+d = open(sys.argv[1], "rb").read()
+out, p = bytearray(d[:8]), 8
+while p < len(d):
+    t = d[p:p + 4]; n = struct.unpack("<Q", d[p + 4:p + 12])[0]; pay = d[p + 12:p + 12 + n]
+    if t == b"TLEF":
+        head, body = pay.split(b"\n\n", 1)
+        lines = [l if not l.startswith(b"entries: ") else b"entries: %d" % (int(l[9:]) + 1)
+                 for l in head.split(b"\n")]
+        pay = b"\n".join(lines) + b"\n\n" + body
+    out += t + struct.pack("<Q", len(pay)) + pay + struct.pack("<I", zlib.crc32(t + pay))
+    p += 16 + n
+open(sys.argv[2], "wb").write(out)
+EOF
+expect_fail "raycast: a malformed leaf grid" 65 "leaf grid" raycast --iso 1 "$T/bad.vx"
+vinfo "$T/bad.vx" >"$T/bad.txt" 2>"$T/bad.err"
+check_eq "vinfo: a malformed leaf grid, exit 65" "$?" 65
+check "vinfo: says why" grep -q "leaf grid" "$T/bad.err"
 done_testing

@@ -1,8 +1,10 @@
 /* fuzz_stream.c: libFuzzer target for the stream reader and every chunk
  * decoder: vx_stream_read_mem, then VOLM (vx_grid_from_chunk), IMAG
  * (vx_image_from_chunk), MCEL (vx_macro_from_chunk, and against its volume)
- * TETM (vx_tetmesh_from_chunk) and SCNE (vx_scene_from_chunk); a stream
+ * TETM (vx_tetmesh_from_chunk, and its TLEF leaf grid, one ray through it),
+ * TLEF (vx_tetleaf_from_chunk) and SCNE (vx_scene_from_chunk); a stream
  * that reads is written back and must read back to the same chunks. */
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -145,8 +147,44 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 			rc = vx_tetmesh_from_chunk(&m, c, &e);
 			fuzz_err_check(rc, &e);
 			if (rc == 0) {
+				vx_tetleaf lg;
+				int status;
+				long idx;
+
 				sink += fuzz_tetmesh_touch(&m, 0);
+				/* its leaf grid, when the stream has one that
+				 * matches: trace one ray through it */
+				vx_err_clear(&e);
+				rc = vx_tetleaf_from_stream(&lg, &s, &m, &status,
+				    &idx, &e);
+				fuzz_err_check(rc, &e);
+				if (rc == 0 && status == VX_MACRO_LOADED) {
+					double o[3], d[3] = { 0.3, 0.5, 0.8 };
+					double iso = (m.vmin + m.vmax) / 2;
+					vx_tethit h;
+					for (int a = 0; a < 3; a++)
+						o[a] = m.bmin[a] - d[a];
+					sink += vx_tetleaf_nearest(&lg, &m, o, d, &iso,
+					    1, 0, INFINITY, &h, NULL);
+					vx_tetleaf_free(&lg);
+				}
 				vx_tetmesh_free(&m);
+			}
+		} else if (strcmp(c->type, VX_CHUNK_TETLEAF) == 0) {
+			vx_tetleaf lg;
+			vx_tetleaf_ident id;
+
+			rc = vx_tetleaf_from_chunk(&lg, &id, c, &e);
+			fuzz_err_check(rc, &e);
+			if (rc == 0) {
+				/* every list entry and every stored range */
+				for (size_t l = 0; l < lg.nleaf; l++)
+					for (uint32_t k = lg.off[l]; k < lg.off[l + 1];
+					    k++)
+						if (lg.idx[k] >= id.ntet)
+							fuzz_fail("tlef: index out of range");
+				sink += touch_macro(&lg.mc);
+				vx_tetleaf_free(&lg);
 			}
 		}
 	}

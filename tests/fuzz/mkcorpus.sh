@@ -22,6 +22,7 @@ python3 -c 'import sys; d = bytearray(open(sys.argv[1], "rb").read()); d[40] ^= 
     "$out/stream/tetm.vxs" >"$out/stream/bad-crc.vxs"
 python3 tests/cli/mkstream.py add "$out/stream/imag-rgb.vxs" \
     "$out/stream/unknown-critical.vxs" ZZZZ "whatever"
+bin/vread --synth sphere --size 3 --split 6 | bin/macrocell -o "$out/stream/tetm-tlef.vxs"
 bin/vread --synth torus --size 4,3,2 | bin/vwrite -o "$out/nrrd/vwrite.nrrd"
 bin/vread --synth linear --size 2 | bin/vwrite --gzip -o "$out/nrrd/vwrite-gzip.nrrd"
 bin/tonemap --pfm -o "$out/pfm/tonemap.pfm" "$tmp/img.vxs"
