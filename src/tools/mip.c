@@ -18,6 +18,7 @@
 #include "vx_mip.h"
 #include "vx_plan.h"
 #include "vx_scene.h"
+#include "vx_tetmesh.h"
 #include "vx_tonemap.h"
 
 static const char usage[] =
@@ -179,8 +180,17 @@ main(int argc, char **argv)
 	for (i = 0; i < o.nset; i++)
 		if (vx_scene_option(&s, o.set_name[i], o.set_val[i], &e) != 0)
 			tool_fail_err(&e);
-	if (vx_grid_from_stream(&g, &st, o.name, NULL, &e) != 0)
+	if (vx_grid_from_stream(&g, &st, o.name, NULL, &e) != 0) {
+		/* no such volume, but a tet mesh: say so */
+		int is_mesh = 0;
+
+		if (vx_tetmesh_find_source(&st, o.name, &is_mesh) >= 0 && is_mesh)
+			tool_fail(VX_EDATA, "%s%s%s is a tet mesh: mip draws "
+			    "volumes (raycast draws a mesh's isosurfaces)",
+			    o.name ? "'" : "the stream's source", o.name ? o.name :
+			    "", o.name ? "'" : "");
 		tool_fail_err(&e);
+	}
 	for (int a = 0; a < 3; a++)
 		if (g.dims[a] < 2)
 			tool_fail(VX_EDATA, "volume '%s': needs at least 2 samples "

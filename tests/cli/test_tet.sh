@@ -205,6 +205,7 @@ expect_fail "--add: the name is taken" 64 "already has a volume or mesh named 'k
     vread --name kuhn --add "$T/ka.vtk.vx" "$T/k2.msh"
 expect_fail "macrocell --density of a volume" 64 "apply to tet meshes" macrocell --density 2 "$T/s.vx"
 expect_fail "macrocell: no such mesh" 65 "no volume or mesh named 'q'" macrocell --name q "$T/km.vx"
+expect_fail "mip: a mesh is refused with a pointer to raycast" 65 "is a tet mesh: mip draws volumes" mip "$T/km.vx"
 expect_fail "raycast: no such mesh" 65 "no volume or mesh named 'q'" raycast --iso 1 --name q "$T/km.vx"
 # a TLEF chunk whose header lies (one entry more than the body holds; the
 # CRC recomputed so that only the leaf-grid reader can tell)
