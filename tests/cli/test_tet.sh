@@ -140,6 +140,7 @@ check "macrocell --stats: build time" grep -q "us/tet" "$T/km.err"
 vinfo "$T/km.vx" >"$T/km.txt"
 check "vinfo: TLEF right after the mesh" grep -q "chunk 2: TLEF" "$T/km.txt"
 check "vinfo: the leaf grid matches its mesh" grep -q "mesh: kuhn (matches)" "$T/km.txt"
+check_eq "vinfo --json: the leaf grid and its status" "$(vinfo --json "$T/km.vx" | python3 -c 'import json,sys; c=[c for c in json.load(sys.stdin)["chunks"] if c["type"]=="TLEF"][0]["leaf_grid"]; print(c["mesh"], c["status"], c["levels"], c["entries"] > 0)')" "kuhn matches 2 True"
 macrocell "$T/km.vx" >"$T/km2.vx"
 check_eq "macrocell again replaces the TLEF chunk" "$(vinfo "$T/km2.vx" | grep -c TLEF)" 1
 # stored or built on the fly: the same picture; a note only when built
