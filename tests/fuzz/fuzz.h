@@ -18,7 +18,7 @@
 #include "vx_tetmesh.h"
 
 /* fuzz_fail: an invariant did not hold: say which and abort. */
-static void
+static inline void
 fuzz_fail(const char *what)
 {
 	fprintf(stderr, "fuzz invariant broken: %s\n", what);
@@ -27,7 +27,7 @@ fuzz_fail(const char *what)
 
 /* fuzz_err_check: a failed call must leave a nonempty message and a
  * sysexits code; a successful one must return 0. */
-static void
+static inline void
 fuzz_err_check(int rc, const vx_err *e)
 {
 	if (rc == 0)
@@ -45,7 +45,7 @@ fuzz_err_check(int rc, const vx_err *e)
 /* fuzz_grid_touch: read every real sample through the offset tables (each
  * index must lie inside the allocation), fetch every cell's corners, and
  * check vx_grid_range against the samples. */
-static double
+static inline double
 fuzz_grid_touch(vx_grid *g)
 {
 	double sum = 0, lo = INFINITY, hi = -INFINITY;
@@ -88,7 +88,7 @@ fuzz_grid_touch(vx_grid *g)
 }
 
 /* fuzz_image_touch: read every value of a decoded image. */
-static double
+static inline double
 fuzz_image_touch(const vx_image *img)
 {
 	double sum = 0;
@@ -109,7 +109,7 @@ fuzz_image_touch(const vx_image *img)
 /* fuzz_tetmesh_touch: read every point, index and value of a validated
  * mesh; with deep set, also round-trip it through a TETM chunk (it must
  * come back identical), build its leaf grid and cast one ray through it. */
-static double
+static inline double
 fuzz_tetmesh_touch(const vx_tetmesh *m, int deep)
 {
 	double sum = 0;

@@ -1,11 +1,13 @@
 /* fuzz_scene.c: libFuzzer target for the scene text.  Any input either
  * fails cleanly or parses to a scene whose canonical text reads back to
- * an equal scene and the same text; the plan and camera never crash.
+ * an equal scene and the same text; the plan and camera never crash.  A
+ * failure leaves a one-line message.
  * Build: make fuzz-build; run: build/fuzz/fuzz_scene -max_total_time=30 */
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "fuzz.h"
 #include "vx_plan.h"
 
 int
@@ -18,8 +20,11 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 	char *t1, *t2, buf[256];
 	size_t n1, n2;
 
-	if (vx_scene_parse(&s, (const char *)data, size, &e) != 0)
+	if (vx_scene_parse(&s, (const char *)data, size, &e) != 0) {
+		/* one line, a sysexits code (fuzz.h) */
+		fuzz_err_check(e.code, &e);
 		return 0;
+	}
 	if (vx_scene_format(&s, &t1, &n1, &e) != 0)
 		abort();
 	if (vx_scene_parse(&back, t1, n1, &e) != 0 || !vx_scene_equal(&s, &back))
