@@ -32,14 +32,16 @@ endif
 # OpenMP: gcc always has it; clang needs libomp-dev.
 OPENMP ?= -fopenmp
 WARN := -Wall -Wextra -Wshadow -Wno-unused-parameter
-CPPFLAGS += -Isrc/core -Isrc/tools/common -D_GNU_SOURCE
+# `override`: a CFLAGS given on the command line (CI adds -Werror) keeps the
+# language level, warnings and OpenMP instead of replacing them.
+override CPPFLAGS += -Isrc/core -Isrc/tools/common -D_GNU_SOURCE
 CFLAGS ?= $(OPT) -g
-CFLAGS += -std=c11 $(WARN) $(OPENMP) $(SANFLAGS) -MMD -MP
+override CFLAGS += -std=c11 $(WARN) $(OPENMP) $(SANFLAGS) -MMD -MP
 PNG_CFLAGS := $(shell pkg-config --cflags libpng 2>/dev/null)
 PNG_LIBS := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
 LDLIBS := $(PNG_LIBS) -lz -lm
-LDFLAGS += $(OPENMP) $(SANFLAGS)
-CPPFLAGS += $(PNG_CFLAGS)
+override LDFLAGS += $(OPENMP) $(SANFLAGS)
+override CPPFLAGS += $(PNG_CFLAGS)
 
 CORE_SRC := $(sort $(wildcard src/core/*.c))
 CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/%.o)

@@ -105,7 +105,8 @@ parse(opts *o, int argc, char **argv)
 		case O_HDR: o->hdr = 1; break;
 		case O_DEPTH: o->depth = optarg; break;
 		default:
-			tool_usage_fail(usage, "unknown option");
+			tool_usage_fail(usage, "option '%s' is unknown or lacks its value",
+			    argv[optind - 1]);
 		}
 	}
 	if (optind < argc)

@@ -117,7 +117,8 @@ parse(opts *o, int argc, char **argv)
 		case O_DEPTH: o->depth = optarg; break;
 		case O_NORMALS: o->normals = optarg; break;
 		default:
-			tool_usage_fail(usage, "unknown option");
+			tool_usage_fail(usage, "option '%s' is unknown or lacks its value",
+			    argv[optind - 1]);
 		}
 	}
 	if (optind < argc)

@@ -91,7 +91,8 @@ parse_args(opts *o, int argc, char **argv)
 			printf("usage: %s\n", usage);
 			exit(tool_finish());
 		default:
-			tool_usage_fail(usage, "unknown option");
+			tool_usage_fail(usage, "option '%s' is unknown or lacks its value",
+			    argv[optind - 1]);
 		}
 	}
 	if (argc - optind > 1)

@@ -56,7 +56,8 @@ main(int argc, char **argv)
 			set_val[nset++] = optarg;
 			break;
 		default:
-			tool_usage_fail(usage, "unknown option");
+			tool_usage_fail(usage, "option '%s' is unknown or lacks its value",
+			    argv[optind - 1]);
 		}
 	}
 	if (optind < argc)

@@ -2,6 +2,7 @@
 #include "tool.h"
 
 #include <errno.h>
+#include <getopt.h>
 #include <math.h>
 #include <signal.h>
 #include <stdarg.h>
@@ -27,6 +28,7 @@ tool_init(const char *name, int argc, char **argv)
 	int i;
 
 	tool_name = name;
+	opterr = 0;     /* getopt's own messages would make a second line */
 	k = (size_t)snprintf(history, sizeof history, "%s %s", name, VX_VERSION);
 	for (i = 1; i < argc && k < sizeof history; i++)
 		k += (size_t)snprintf(history + k, sizeof history - k, " %s",
