@@ -266,8 +266,9 @@ class Bench:
                    ("hierarchy", "linear", []), ("hierarchy+bricking", "bricked", [])]
         views = ["face", "side", "top", "close-up", "feet"]
         rows = {}
+        cases = [c for c in self.cases if not self.a.t3_case or "%s:%s" % c in self.a.t3_case]
         for r in range(R):
-            for name, iso in self.cases:
+            for name, iso in cases:
                 d = self.data[name]
                 face = d["face"]
                 vset = {"face": ["--view", face], "side": ["--view", "right"],
@@ -279,10 +280,10 @@ class Bench:
                               ["-j", "1", "-n", "1", "--warm", "1"] + flags + [d[stream]]
                         v = keys(run(cmd, self.log)[0])
                         rows.setdefault("%s:%s" % (name, iso), {}).setdefault(view, {}) \
-                            .setdefault(cname, []).append(v["frame_ms"])
+                            .setdefault(cname, []).append((v["frame_ms"], v["frame_cpu_ms"]))
                     print("round %d %s %s %s: %s" % (r + 1, name, iso, view, " ".join(
-                        "%.0f" % rows["%s:%s" % (name, iso)][view][c][-1] for c, _, _ in configs)),
-                        flush=True)
+                        "%.0f" % rows["%s:%s" % (name, iso)][view][c][-1][0]
+                        for c, _, _ in configs)), flush=True)
         md = ["### Table 3: layout and hierarchy (ms per frame, 1 thread, 512x512)", "",
               "Median over %d interleaved rounds (one frame after one warm-up frame per "
               "round). plain: linear layout, every cell walked (`--flat`); bricking: the "
@@ -290,13 +291,16 @@ class Bench:
               "hierarchy+bricking: both (what `vread | brick | macrocell | raycast` does). "
               "Views: `camera auto` from the face, the side (right), the top, from the feet "
               "(bottom), and a close-up of the face (distance 0.4)." % R, "",
-              "| case | view | plain | bricking | hierarchy | hierarchy+bricking | plain / h+b |",
+              "Each entry: wall ms (CPU ms).", "",
+              "| case | view | plain | bricking | hierarchy | hierarchy+bricking | plain / h+b (CPU) |",
               "| --- | --- | --- | --- | --- | --- | --- |"]
         for key, vs in rows.items():
             for view in views:
-                m = [med(vs[view][c]) for c, _, _ in configs]
-                md.append("| %s | %s | %.0f | %.0f | %.0f | %.0f | %.1f |" % (
-                    key, view, m[0], m[1], m[2], m[3], m[0] / m[3]))
+                m = [med([x[0] for x in vs[view][c]]) for c, _, _ in configs]
+                u = [med([x[1] for x in vs[view][c]]) for c, _, _ in configs]
+                md.append("| %s | %s | %s | %.1f (%.1f) |" % (
+                    key, view, " | ".join("%.0f (%.0f)" % (m[k], u[k]) for k in range(4)),
+                    m[0] / m[3], u[0] / u[3]))
         self.save("table3", rows, "\n".join(md) + "\n")
 
     # ---- macrocell sizes ----
@@ -311,8 +315,10 @@ class Bench:
                     if sz != "stream":
                         extra += ["--sizes", sz]
                     v = self.vox(name, iso, extra)
-                    x = rows.setdefault("%s:%s" % (name, iso), {}).setdefault(sz, dict(ms=[]))
+                    x = rows.setdefault("%s:%s" % (name, iso), {}).setdefault(sz, dict(ms=[],
+                                                                                      cpu=[]))
                     x["ms"].append(v["frame_ms"])
+                    x["cpu"].append(v["frame_cpu_ms"])
                     x["share"] = v["macro_share"]
                     x["build_ms"] = v.get("build_ms")
                 print("round %d %s %s: %s" % (r + 1, name, iso, " ".join(
@@ -320,12 +326,13 @@ class Bench:
         md = ["### Macrocell sizes (ms per frame, 1 thread, the cameras of (a))", "",
               "Median over %d interleaved rounds of each round's median of 3 frames; "
               "'stream' is `macrocell`'s default (level 1 covers 2 KiB of samples: u8 "
-              "16x16x8, i16 16x8x8; level 2 64^3 cells). In brackets: the hierarchy's size "
-              "as a share of the samples' bytes." % R, "",
+              "16x16x8, i16 16x8x8; level 2 64^3 cells). Each entry: wall ms / CPU ms (the "
+              "hierarchy's size as a share of the samples' bytes)." % R, "",
               "| case | " + " | ".join(variants) + " |", "| --- |" + " --- |" * len(variants)]
         for key, vs in rows.items():
             md.append("| %s | " % key + " | ".join(
-                "%.0f (%.2f%%)" % (med(vs[z]["ms"]), 100 * vs[z]["share"]) for z in variants) + " |")
+                "%.0f / %.0f (%.2f%%)" % (med(vs[z]["ms"]), med(vs[z]["cpu"]), 100 * vs[z]["share"])
+                for z in variants) + " |")
         self.save("sizes", rows, "\n".join(md) + "\n")
 
     # ---- pictures ----
@@ -380,6 +387,8 @@ def main():
                    metavar=("NAME", "NRRD", "BRICKED", "LINEAR", "FACEVIEW", "CAMERA"))
     p.add_argument("--case", action="append", required=True, metavar="NAME:ISO")
     p.add_argument("--only", default="frames,latency,table3,sizes,pictures")
+    p.add_argument("--t3-case", action="append", metavar="NAME:ISO",
+                   help="Table 3 only for these cases (default: all)")
     p.add_argument("--sizes", default="8x8x8,8x8x8 4x4x4,8x8x8 4x4x4,4x4x4,4x4x4",
                    help="macrocell level sizes for the sizes table (blank-separated)")
     a = p.parse_args()
