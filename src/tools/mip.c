@@ -162,18 +162,7 @@ main(int argc, char **argv)
 	vx_stream_init(&st);
 	tool_read_stream(&st, o.in);
 	vx_scene_init(&s);
-	if (o.scene != NULL) {
-		FILE *f = fopen(o.scene, "r");
-
-		if (f == NULL)
-			tool_fail(VX_ENOINPUT, "%s: cannot open scene", o.scene);
-		if (vx_scene_read(&s, f, &e) != 0) {
-			vx_err_push(&e, "%s", o.scene);
-			tool_fail_err(&e);
-		}
-		fclose(f);
-	} else if (vx_scene_from_stream(&s, &st, NULL, &e) != 0)
-		tool_fail_err(&e);
+	tool_scene_load(&s, o.scene, &st, 0, NULL, NULL);
 	if (o.scene == NULL && vx_stream_find(&st, VX_CHUNK_SCENE, 0) < 0)
 		s.camera.projection = VX_ORTHOGRAPHIC;
 	if (o.persp)
@@ -305,33 +294,16 @@ main(int argc, char **argv)
 		    (unsigned long long)ms.cells_skipped,
 		    (unsigned long long)ms.macro_opened);
 	}
-	if (o.depth != NULL) {
-		tool_out out;
-
-		tool_out_open(&out, o.depth);
-		if (vx_pfm_write(&dep, out.f, &e) != 0) {
-			tool_out_abort(&out);
-			tool_fail_err(&e);
-		}
-		tool_out_close(&out);
-	}
+	if (o.depth != NULL)
+		tool_write_pfm(o.depth, &dep);
 	if (o.hdr) {
+		static const char *const consumed[] = { VX_CHUNK_VOLUME,
+		    VX_CHUNK_MACRO, VX_CHUNK_IMAGE, NULL };
 		vx_stream os;
 		vx_chunk c;
 
 		vx_stream_init(&os);
-		for (size_t k = 0; k < st.n; k++) {
-			const char *ty = st.chunk[k].type;
-
-			if (memcmp(ty, VX_CHUNK_VOLUME, 4) == 0 ||
-			    memcmp(ty, VX_CHUNK_MACRO, 4) == 0 ||
-			    memcmp(ty, VX_CHUNK_IMAGE, 4) == 0)
-				continue;
-			c = st.chunk[k];
-			memset(&st.chunk[k], 0, sizeof st.chunk[k]);
-			if (vx_stream_append(&os, &c, &e) != 0)
-				tool_fail_err(&e);
-		}
+		tool_stream_keep(&os, &st, consumed);
 		if (vx_image_to_chunk(&val, 6, &c, &e) != 0 ||
 		    vx_stream_append(&os, &c, &e) != 0 ||
 		    vx_image_to_chunk(&dep, 6, &c, &e) != 0 ||

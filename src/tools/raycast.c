@@ -131,42 +131,9 @@ parse(opts *o, int argc, char **argv)
 static void
 load_scene(vx_scene *s, const opts *o, const vx_stream *st)
 {
-	vx_err e = { 0, "" };
-	int i;
-
-	if (o->scene != NULL) {
-		FILE *f = fopen(o->scene, "r");
-
-		if (f == NULL)
-			tool_fail(VX_ENOINPUT, "%s: cannot open scene", o->scene);
-		if (vx_scene_read(s, f, &e) != 0) {
-			fclose(f);
-			vx_err_push(&e, "%s", o->scene);
-			tool_fail_err(&e);
-		}
-		fclose(f);
-	} else if (vx_scene_from_stream(s, st, NULL, &e) != 0)
-		tool_fail_err(&e);
-	for (i = 0; i < o->nset; i++)
-		if (vx_scene_option(s, o->set_name[i], o->set_val[i], &e) != 0)
-			tool_fail_err(&e);
+	tool_scene_load(s, o->scene, st, o->nset, o->set_name, o->set_val);
 	if (o->ortho)
 		s->camera.projection = VX_ORTHOGRAPHIC;
-}
-
-static void
-write_pfm(const char *path, const vx_image *img)
-{
-	vx_err e = { 0, "" };
-	tool_out out;
-
-	tool_out_open(&out, path);
-	if (vx_pfm_write(img, out.f, &e) != 0) {
-		tool_out_abort(&out);
-		vx_err_push(&e, "%s", path);
-		tool_fail_err(&e);
-	}
-	tool_out_close(&out);
 }
 
 static void
@@ -390,33 +357,21 @@ main(int argc, char **argv)
 		print_stats(&rs, is_mesh ? &lg.mc : o.flat ? NULL : &m,
 		    s.camera.w, s.camera.h, nthr);
 	if (o.depth)
-		write_pfm(o.depth, &depth);
+		tool_write_pfm(o.depth, &depth);
 	if (o.normals)
-		write_pfm(o.normals, &normal);
+		tool_write_pfm(o.normals, &normal);
 	if (o.hdr) {
 		/* the stream out: history, scene, images and every chunk we did
 		 * not consume (volumes, meshes and their hierarchies are
 		 * consumed) */
+		static const char *const consumed[] = { VX_CHUNK_VOLUME,
+		    VX_CHUNK_MACRO, VX_CHUNK_TETMESH, VX_CHUNK_TETLEAF,
+		    VX_CHUNK_SCENE, VX_CHUNK_IMAGE, NULL };
 		vx_stream out;
 		vx_chunk c;
-		size_t i;
 
 		vx_stream_init(&out);
-		for (i = 0; i < st.n; i++) {
-			const char *t = st.chunk[i].type;
-
-			if (memcmp(t, VX_CHUNK_VOLUME, 4) == 0 ||
-			    memcmp(t, VX_CHUNK_MACRO, 4) == 0 ||
-			    memcmp(t, VX_CHUNK_TETMESH, 4) == 0 ||
-			    memcmp(t, VX_CHUNK_TETLEAF, 4) == 0 ||
-			    memcmp(t, VX_CHUNK_SCENE, 4) == 0 ||
-			    memcmp(t, VX_CHUNK_IMAGE, 4) == 0)
-				continue;
-			c = st.chunk[i];
-			memset(&st.chunk[i], 0, sizeof st.chunk[i]);
-			if (vx_stream_append(&out, &c, &e) != 0)
-				tool_fail_err(&e);
-		}
+		tool_stream_keep(&out, &st, consumed);
 		if (vx_scene_to_stream(&s, &out, &e) != 0)
 			tool_fail_err(&e);
 		const vx_image *imgs[3] = { &color, &depth, &normal };

@@ -32,7 +32,7 @@ main(int argc, char **argv)
 	    "light", "lights", "effects", "background", "fov" };
 	const char *in = "-", *out = "-", *file = NULL;
 	const char *set_name[64], *set_val[64];
-	int nset = 0, print = 0, remove = 0, c, i;
+	int nset = 0, print = 0, remove = 0, c;
 	vx_stream st;
 	vx_scene s;
 	vx_err e = { 0, "" };
@@ -76,22 +76,7 @@ main(int argc, char **argv)
 		return tool_finish();
 	}
 	/* the base: the file, else the stream's scene, else the defaults */
-	if (file != NULL) {
-		FILE *f = fopen(file, "r");
-
-		if (f == NULL)
-			tool_fail(VX_ENOINPUT, "%s: cannot open scene", file);
-		if (vx_scene_read(&s, f, &e) != 0) {
-			fclose(f);
-			vx_err_push(&e, "%s", file);
-			tool_fail_err(&e);
-		}
-		fclose(f);
-	} else if (vx_scene_from_stream(&s, &st, NULL, &e) != 0)
-		tool_fail_err(&e);
-	for (i = 0; i < nset; i++)
-		if (vx_scene_option(&s, set_name[i], set_val[i], &e) != 0)
-			tool_fail_err(&e);
+	tool_scene_load(&s, file, &st, nset, set_name, set_val);
 	if (print) {
 		char *text;
 		size_t n;

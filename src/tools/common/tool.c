@@ -11,6 +11,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "vx_image.h"
+#include "vx_scene.h"
 #include "vx_version.h"
 
 #ifdef _OPENMP
@@ -300,4 +302,67 @@ tool_threads(long j)
 	(void)j;
 	return 1;
 #endif
+}
+
+void
+tool_scene_load(vx_scene *s, const char *file, const vx_stream *st, int n,
+    const char *const *names, const char *const *vals)
+{
+	vx_err e = { 0, "" };
+	int i;
+
+	if (file != NULL) {
+		FILE *f = fopen(file, "r");
+
+		if (f == NULL)
+			tool_fail(VX_ENOINPUT, "%s: cannot open scene: %s", file,
+			    strerror(errno));
+		if (vx_scene_read(s, f, &e) != 0) {
+			fclose(f);
+			vx_err_push(&e, "%s", file);
+			tool_fail_err(&e);
+		}
+		fclose(f);
+	} else if (vx_scene_from_stream(s, st, NULL, &e) != 0)
+		tool_fail_err(&e);
+	for (i = 0; i < n; i++)
+		if (vx_scene_option(s, names[i], vals[i], &e) != 0)
+			tool_fail_err(&e);
+}
+
+void
+tool_write_pfm(const char *path, const vx_image *img)
+{
+	vx_err e = { 0, "" };
+	tool_out out;
+
+	tool_out_open(&out, path);
+	if (vx_pfm_write(img, out.f, &e) != 0) {
+		tool_out_abort(&out);
+		vx_err_push(&e, "%s", path);
+		tool_fail_err(&e);
+	}
+	tool_out_close(&out);
+}
+
+void
+tool_stream_keep(vx_stream *out, vx_stream *in, const char *const *drop)
+{
+	vx_err e = { 0, "" };
+	size_t i;
+	int k;
+
+	for (i = 0; i < in->n; i++) {
+		vx_chunk c;
+
+		for (k = 0; drop[k] != NULL; k++)
+			if (memcmp(in->chunk[i].type, drop[k], 4) == 0)
+				break;
+		if (drop[k] != NULL)
+			continue;
+		c = in->chunk[i];
+		memset(&in->chunk[i], 0, sizeof in->chunk[i]);
+		if (vx_stream_append(out, &c, &e) != 0)
+			tool_fail_err(&e);
+	}
 }

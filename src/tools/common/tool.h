@@ -65,6 +65,23 @@ void tool_out_abort(tool_out *o);
 /* tool_finish: check stdout for write errors before exiting 0. */
 int tool_finish(void);
 
+/* tool_scene_load: the scene from FILE (when not NULL), else the stream's,
+ * else the defaults; then the n command-line scene options (names and
+ * values as vx_scene_option takes them) in order.  Exits on error. */
+struct vx_scene;
+void tool_scene_load(struct vx_scene *s, const char *file, const vx_stream *st,
+    int n, const char *const *names, const char *const *vals);
+
+/* tool_write_pfm: write img to path as a PFM, atomically; exits on error. */
+struct vx_image;
+void tool_write_pfm(const char *path, const struct vx_image *img);
+
+/* tool_stream_keep: move every chunk of in whose type is not in drop
+ * (NULL-terminated) to the end of out, in order (a renderer's output keeps
+ * what it did not consume).  Exits on error. */
+void tool_stream_keep(vx_stream *out, vx_stream *in,
+    const char *const *drop);
+
 /* tool_threads: number of threads for -j N (0: all cores). */
 int tool_threads(long j);
 
