@@ -1080,9 +1080,8 @@ out:
 	return rc;
 }
 
-/* parse_sizes_hdr: the "sizes" value: nlev space-separated AxBxC. */
-static int
-parse_sizes_hdr(const char *v, int nlev, int sizes[][3], vx_err *e)
+int
+vx_macro_sizes_hdr_parse(const char *v, int nlev, int sizes[][3], vx_err *e)
 {
 	const char *p = v;
 	int l, used;
@@ -1137,7 +1136,7 @@ vx_macro_from_chunk(vx_macro *m, const vx_chunk *c, vx_err *e)
 		rc = vx_err_set(e, VX_EDATA, "missing sizes");
 		goto out;
 	}
-	if ((rc = parse_sizes_hdr(v, (int)nl, sizes, e)) != 0 ||
+	if ((rc = vx_macro_sizes_hdr_parse(v, (int)nl, sizes, e)) != 0 ||
 	    (rc = vx_hdr_get_i64(&h, "leaf-dims", n, 3, e)) != 0)
 		goto out;
 	/* setup checks every size and dim before anything is allocated

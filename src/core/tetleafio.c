@@ -135,28 +135,6 @@ out:
 	return rc;
 }
 
-static int
-parse_sizes(const char *v, int nlev, int sizes[][3], vx_err *e)
-{
-	const char *p = v;
-	int l, used;
-
-	for (l = 0; l < nlev; l++) {
-		if (l > 0 && *p++ != ' ')
-			goto bad;
-		if (*p < '0' || *p > '9' ||
-		    sscanf(p, "%5dx%5dx%5d%n", &sizes[l][0], &sizes[l][1],
-		    &sizes[l][2], &used) != 3)
-			goto bad;
-		p += used;
-	}
-	if (*p == '\0')
-		return 0;
-bad:
-	return vx_err_set(e, VX_EDATA, "sizes '%.60s': expected %d sizes "
-	    "AxBxC separated by spaces", v, nlev);
-}
-
 /* ident: the header's mesh identity. */
 static int
 ident(const vx_hdr *h, vx_tetleaf_ident *id, vx_err *e)
@@ -248,7 +226,7 @@ vx_tetleaf_from_chunk(vx_tetleaf *lg, vx_tetleaf_ident *idp,
 		rc = vx_err_set(e, VX_EDATA, "missing sizes");
 		goto out;
 	}
-	if ((rc = parse_sizes(v, (int)nl, sizes, e)) != 0)
+	if ((rc = vx_macro_sizes_hdr_parse(v, (int)nl, sizes, e)) != 0)
 		goto out;
 	ncell = nleaf;
 	for (l = 1; l <= nl; l++) {

@@ -83,6 +83,11 @@ int vx_macro_default_sizes(vx_type t, int nlev, int sizes[][3]);
  * returns the number of levels (1..VX_MACRO_MAXLEV) or -1 with e set. */
 int vx_macro_parse_sizes(const char *s, int sizes[][3], vx_err *e);
 
+/* vx_macro_sizes_hdr_parse: a chunk header's "sizes" value, exactly nlev
+ * space-separated AxBxC (the MCEL and TLEF headers); 0 or VX_EDATA. */
+int vx_macro_sizes_hdr_parse(const char *v, int nlev, int sizes[][3],
+    vx_err *e);
+
 /* vx_macro_build: the hierarchy over volume g's data cells, with nlev levels
  * of the given sizes (each 1..VX_MACRO_MAXSIZE; nlev 0 is allowed and
  * gives a flat grid).  nthreads <= 0 means OpenMP's default.  The result is
