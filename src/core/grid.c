@@ -460,8 +460,32 @@ vx_grid_relayout(vx_grid *dst, const vx_grid *src, const char *spec,
 
 /* ---- the VOLM chunk ---- */
 
+/* the keys the VOLM writer writes itself (formats/stream.md 9.1) */
+static const char *const volm_keys[] = {
+	"name", "dims", "type", "spacing", "origin", "layout", "range",
+	"encoding", NULL
+};
+
+static int
+volm_key_known(const char *k)
+{
+	int i;
+
+	for (i = 0; volm_keys[i] != NULL; i++)
+		if (strcmp(k, volm_keys[i]) == 0)
+			return 1;
+	return 0;
+}
+
 int
 vx_grid_to_chunk(const vx_grid *g, int zlevel, vx_chunk *c, vx_err *e)
+{
+	return vx_grid_to_chunk_extra(g, zlevel, NULL, c, e);
+}
+
+int
+vx_grid_to_chunk_extra(const vx_grid *g, int zlevel, const vx_hdr *extra,
+    vx_chunk *c, vx_err *e)
 {
 	size_t ts = vx_type_size(g->type), nbytes = g->nsample * ts;
 	char lay[128];
@@ -487,6 +511,11 @@ vx_grid_to_chunk(const vx_grid *g, int zlevel, vx_chunk *c, vx_err *e)
 	if (g->has_range &&
 	    (rc = vx_hdr_set(&h, "range", e, "%.17g %.17g", g->vmin, g->vmax)))
 		goto out;
+	for (size_t i = 0; extra != NULL && i < extra->n; i++)
+		if (!volm_key_known(extra->key[i]) &&
+		    (rc = vx_hdr_set_str(&h, extra->key[i], extra->val[i],
+		    e)) != 0)
+			goto out;
 	if (!vx_host_is_le() && ts > 1) {
 		if ((tmp = vx_malloc(nbytes, e)) == NULL) {
 			rc = VX_ENOMEM;

@@ -668,7 +668,6 @@ vx_hdr_set(vx_hdr *h, const char *key, vx_err *e, const char *fmt, ...)
 {
 	char buf[4096];
 	va_list ap;
-	size_t i;
 	int n;
 
 	va_start(ap, fmt);
@@ -677,17 +676,25 @@ vx_hdr_set(vx_hdr *h, const char *key, vx_err *e, const char *fmt, ...)
 	if (n < 0 || (size_t)n >= sizeof buf)
 		return vx_err_set(e, VX_EINTERNAL, "header: value of '%s' too long",
 		    key);
+	return vx_hdr_set_str(h, key, buf, e);
+}
+
+int
+vx_hdr_set_str(vx_hdr *h, const char *key, const char *val, vx_err *e)
+{
+	size_t i, n = strlen(val);
+
 	for (i = 0; key[i] != '\0' && key_char((unsigned char)key[i]); i++)
 		;
 	if (i == 0 || key[i] != '\0')
 		return vx_err_set(e, VX_EINTERNAL, "header: bad key '%.40s'", key);
-	if (strchr(buf, '\n') != NULL)
+	if (strchr(val, '\n') != NULL)
 		return vx_err_set(e, VX_EINTERNAL,
 		    "header: value of '%s' contains a newline", key);
-	if (vx_utf8_check(buf, (size_t)n) != (size_t)n)
+	if (vx_utf8_check(val, n) != n)
 		return vx_err_set(e, VX_EDATA,
 		    "header: value of '%s' is not valid UTF-8", key);
-	return hdr_put(h, key, strlen(key), buf, (size_t)n, 1, e);
+	return hdr_put(h, key, strlen(key), val, n, 1, e);
 }
 
 int

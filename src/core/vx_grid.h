@@ -121,6 +121,13 @@ int vx_grid_relayout(vx_grid *dst, const vx_grid *src, const char *spec,
  * Header keys: name, dims, type, spacing, origin, layout, range, encoding.
  * Body: nsample samples, little-endian, in layout order (pads are zero). */
 int vx_grid_to_chunk(const vx_grid *g, int zlevel, vx_chunk *c, vx_err *e);
+/* vx_grid_to_chunk_extra: the same, and then every key of `extra` (a
+ * header, e.g. of the chunk g was read from; NULL: none) that the VOLM
+ * writer does not write itself, with its value, in extra's order.  For tools
+ * that rewrite a volume without changing what its samples mean (brick):
+ * unknown keys then pass through (formats/stream.md 9.1). */
+int vx_grid_to_chunk_extra(const vx_grid *g, int zlevel, const vx_hdr *extra,
+    vx_chunk *c, vx_err *e);
 int vx_grid_from_chunk(vx_grid *g, const vx_chunk *c, vx_err *e);
 
 /* Convenience: the first VOLM chunk in a stream (or the one whose name

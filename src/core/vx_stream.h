@@ -132,6 +132,9 @@ const char *vx_hdr_get(const vx_hdr *h, const char *key);
  * bug in the caller), a value that is not UTF-8 is VX_EDATA. */
 int vx_hdr_set(vx_hdr *h, const char *key, vx_err *e, const char *fmt, ...)
 	__attribute__((format(printf, 4, 5)));
+/* vx_hdr_set_str: set key to the string val verbatim, of any length (the
+ * same checks as vx_hdr_set; the writer still bounds the whole header). */
+int vx_hdr_set_str(vx_hdr *h, const char *key, const char *val, vx_err *e);
 
 /* Typed getters: parse exactly `count` numbers separated by spaces or tabs,
  * in the grammar of formats/stream.md (decimal only: no hex, inf or nan).  A

@@ -1,6 +1,7 @@
 /* brick.c: rewrite a volume's samples into Parker's two-level bricked order
  * (cache-line bricks inside page bricks), or back to linear order; every
- * other chunk passes through unchanged and in order. */
+ * other chunk passes through unchanged and in order, and so do the volume's
+ * header keys that this version does not know. */
 #include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -112,21 +113,11 @@ bricks_spec(const char *arg, char *spec, size_t n)
 
 /* input_zlevel: keep the input's encoding: zlib stays zlib (level 6). */
 static int
-input_zlevel(const vx_chunk *c)
+input_zlevel(const vx_hdr *h)
 {
-	const unsigned char *body;
-	size_t n;
-	const char *enc;
-	vx_hdr h;
-	int z = 0;
+	const char *enc = vx_hdr_get(h, "encoding");
 
-	vx_hdr_init(&h);
-	if (vx_payload_parse(c, &h, &body, &n, NULL) == 0 &&
-	    (enc = vx_hdr_get(&h, "encoding")) != NULL &&
-	    strcmp(enc, "zlib") == 0)
-		z = 6;
-	vx_hdr_free(&h);
-	return z;
+	return enc != NULL && strcmp(enc, "zlib") == 0 ? 6 : 0;
 }
 
 static double
@@ -145,6 +136,9 @@ main(int argc, char **argv)
 	vx_stream s;
 	vx_grid g, b;
 	vx_chunk c;
+	vx_hdr h;
+	const unsigned char *body;
+	size_t bodylen;
 	vx_err e = { 0, "" };
 	long idx;
 	opts o;
@@ -186,9 +180,15 @@ main(int argc, char **argv)
 		    (long long)b.lay.pdims[2], b.nsample, real,
 		    100.0 * ((double)b.nsample - real) / real, now() - t0);
 	}
-	memset(&c, 0, sizeof c);
-	if (vx_grid_to_chunk(&b, input_zlevel(&s.chunk[idx]), &c, &e) != 0)
+	/* the volume is the same, only its layout changes: keys this version
+	 * does not know pass through (formats/stream.md 9.1) */
+	vx_hdr_init(&h);
+	if (vx_payload_parse(&s.chunk[idx], &h, &body, &bodylen, &e) != 0)
 		tool_fail_err(&e);
+	memset(&c, 0, sizeof c);
+	if (vx_grid_to_chunk_extra(&b, input_zlevel(&h), &h, &c, &e) != 0)
+		tool_fail_err(&e);
+	vx_hdr_free(&h);
 	vx_stream_replace(&s, (size_t)idx, &c);
 	vx_grid_free(&g);
 	vx_grid_free(&b);

@@ -4,9 +4,10 @@ independently of the C code (written from formats/stream.md alone).
 
   mkstream.py volume OUT --type T --dims NX NY NZ [--layout L] [--zlib]
               [--name N] [--spacing SX SY SZ] [--origin OX OY OZ]
-              [--range LO HI | --no-range] [--formula EXPR]
+              [--range LO HI | --no-range] [--formula EXPR] [--key K V]...
       a stream with one VOLM chunk; EXPR is a Python expression in x, y, z
-      (default x + 3*y + 11*z); the range is computed unless given.
+      (default x + 3*y + 11*z); the range is computed unless given; each
+      --key adds a header line "K: V" (before encoding).
   mkstream.py image OUT --size W H C [--formula EXPR]
       a stream with one IMAG chunk; EXPR in x, y, c.
   mkstream.py tetm OUT
@@ -134,6 +135,8 @@ def cmd_volume(a):
         hdr += "range: %s %s\n" % tuple(a.range)
     elif not a.no_range and fin:
         hdr += "range: %s %s\n" % (g17(min(fin)), g17(max(fin)))
+    for k, v in getattr(a, "key", None) or []:
+        hdr += "%s: %s\n" % (k, v)
     if a.zlib:
         body = zlib.compress(body, 6)
     hdr += "encoding: %s\n\n" % ("zlib" if a.zlib else "raw")
@@ -216,6 +219,7 @@ def main():
     v.add_argument("--range", nargs=2)
     v.add_argument("--no-range", action="store_true")
     v.add_argument("--formula", default="x + 3*y + 11*z")
+    v.add_argument("--key", nargs=2, action="append")
     i = sub.add_parser("image")
     i.add_argument("out")
     i.add_argument("--size", type=int, nargs=3, required=True)

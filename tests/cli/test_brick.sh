@@ -16,10 +16,11 @@ import argparse, sys, zlib
 sys.path.insert(0, "tests/cli")
 import mkstream as m
 
-def vol(out, typ, dims, formula, layout="linear", name="density", z=False):
+def vol(out, typ, dims, formula, layout="linear", name="density", z=False,
+        key=None):
     m.cmd_volume(argparse.Namespace(out=out, type=typ, dims=dims, formula=formula,
         layout=layout, name=name, zlib=z, spacing=["1", "1", "1"],
-        origin=["0", "0", "0"], range=None, no_range=False))
+        origin=["0", "0", "0"], range=None, no_range=False, key=key))
 
 def samples(path, name):
     import io, contextlib
@@ -107,6 +108,37 @@ check_eq "b: zlib kept" "$(a 22)" "zlib"
 check_eq "b: samples unchanged" "$(a 23)" "$(a 24)"
 check_eq "unknown chunk intact" "$(a 25)" "00016f7061717565"
 check_eq "MCEL intact" "$(a 26)" "$(a 27)"
+
+# header keys brick does not know pass through with their values (stream.md
+# 7.1, 9.1): a short one, one with inner and trailing blanks, one longer
+# than the 4 KiB of a formatted header value; raw and zlib, there and back
+python3 tests/cli/mkstream.py volume "$T/k.vx" --type u16 --dims 5 4 3 \
+    --key units HU --key x-comment "$(printf 'two  blanks and a tab\t')" \
+    --key long "$(printf '%5000s' | tr ' ' v)"
+python3 tests/cli/mkstream.py volume "$T/kz.vx" --type f32 --dims 5 4 3 --zlib \
+    --key units HU --key x-comment "$(printf 'two  blanks and a tab\t')" \
+    --key long "$(printf '%5000s' | tr ' ' v)"
+brick -o "$T/kb.vx" "$T/k.vx"
+brick --linear -o "$T/kbl.vx" "$T/kb.vx"
+brick --bricks 2x2x2 -o "$T/kzb.vx" "$T/kz.vx"
+for f in kb kbl kzb; do
+	python3 "$T/st.py" "hdr|$T/$f.vx|VOLM|units" "hdr|$T/$f.vx|VOLM|x-comment" \
+	    "hdr|$T/$f.vx|VOLM|long" "hdr|$T/$f.vx|VOLM|layout" >"$T/kans"
+	check_eq "$f: unknown keys kept" "$(head -2 "$T/kans" | tr '\n' '|')" \
+	    "$(printf 'HU|two  blanks and a tab\t|')"
+	check_eq "$f: a 5000-byte value kept" \
+	    "$(sed -n 3p "$T/kans" | grep -x 'v*' | tr -d '\n' | wc -c | tr -d ' ')" 5000
+	vinfo "$T/$f.vx" >"$T/kinfo"
+	check "$f: vinfo shows units" grep -qx '    units: HU' "$T/kinfo"
+	check_eq "$f: vinfo: the volume decodes, no error" "$(grep -c 'error' "$T/kinfo")" 0
+done
+check_eq "kb: layout rewritten" "$(python3 "$T/st.py" "hdr|$T/kb.vx|VOLM|layout")" "bricked 4x4x2 4x4x4"
+check_eq "kbl: back to linear" "$(python3 "$T/st.py" "hdr|$T/kbl.vx|VOLM|layout")" "linear"
+check_eq "kbl: samples unchanged" "$(python3 "$T/st.py" "samples|$T/kbl.vx")" "$(python3 "$T/st.py" "samples|$T/k.vx")"
+check_eq "kzb: zlib kept" "$(python3 "$T/st.py" "hdr|$T/kzb.vx|VOLM|encoding")" "zlib"
+# the known keys in the table's order, the others in theirs before encoding
+check_eq "kb: key order" "$(vinfo "$T/kb.vx" | sed -n '/^  header:/,/^  [a-z]/s/^    \([a-z-]*\):.*/\1/p' | tr '\n' ' ')" \
+    "name dims type spacing origin layout range units x-comment long encoding "
 
 # padding reported with --stats: 13x9x7 u8 in 16x16x16 bricks: 4096
 # samples for 819, padding (4096 - 819) / 819 = 400.12 %
