@@ -1,6 +1,10 @@
-/* err.c: error values, checked size arithmetic, allocation with errors. */
+/* err.c: error values, checked size arithmetic, allocation with errors,
+ * numbers read and written in the C locale. */
 #include "vx_err.h"
 
+#include <errno.h>
+#include <locale.h>
+#include <pthread.h>
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -109,4 +113,81 @@ vx_calloc(size_t count, size_t size, vx_err *e)
 		vx_err_set(e, VX_ENOMEM, "cannot allocate %zu x %zu bytes",
 		    count, size);
 	return p;
+}
+
+/* ---- numbers in the C locale ----
+ *
+ * Stream headers, scene files, NRRD and PFM headers write numbers with a
+ * '.', but strtod and printf follow LC_NUMERIC, which a program linking the
+ * library may set (a decimal comma under de_DE).  How: a "C" locale object,
+ * made once, installed for the calling thread around each strtod/vsnprintf
+ * with uselocale (POSIX.1-2008).  Not setlocale (process-wide, races with
+ * other threads), not rewriting '.' into localeconv()'s decimal point (not
+ * thread-safe either), not a hand-written strtod (correct rounding needs
+ * big-number arithmetic: glibc's strtod is exact).  Should the locale
+ * object be impossible to make (out of memory), the thread's own locale is
+ * used, as before. */
+
+static locale_t c_locale;
+static pthread_once_t c_once = PTHREAD_ONCE_INIT;
+
+static void
+c_locale_make(void)
+{
+	c_locale = newlocale(LC_ALL_MASK, "C", (locale_t)0);
+}
+
+/* c_locale_enter: install the C locale for this thread; returns what to
+ * give c_locale_leave (0: nothing was changed). */
+static locale_t
+c_locale_enter(void)
+{
+	pthread_once(&c_once, c_locale_make);
+	if (c_locale == (locale_t)0)
+		return (locale_t)0;
+	return uselocale(c_locale);
+}
+
+static void
+c_locale_leave(locale_t old)
+{
+	int saved = errno;
+
+	if (old != (locale_t)0)
+		uselocale(old);
+	errno = saved;
+}
+
+double
+vx_strtod(const char *s, char **end)
+{
+	locale_t old = c_locale_enter();
+	double v;
+
+	errno = 0;
+	v = strtod(s, end);
+	c_locale_leave(old);
+	return v;
+}
+
+int
+vx_vsnprintf_c(char *buf, size_t n, const char *fmt, va_list ap)
+{
+	locale_t old = c_locale_enter();
+	int k = vsnprintf(buf, n, fmt, ap);
+
+	c_locale_leave(old);
+	return k;
+}
+
+int
+vx_snprintf_c(char *buf, size_t n, const char *fmt, ...)
+{
+	va_list ap;
+	int k;
+
+	va_start(ap, fmt);
+	k = vx_vsnprintf_c(buf, n, fmt, ap);
+	va_end(ap);
+	return k;
 }

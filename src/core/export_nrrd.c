@@ -130,6 +130,7 @@ put_comment(FILE *f, const char *line)
 static void
 put_header(const vx_grid *g, FILE *f, const vx_nrrd_opts *o)
 {
+	char line[256];
 	size_t i;
 
 	fputs("NRRD0004\n", f);
@@ -145,14 +146,18 @@ put_header(const vx_grid *g, FILE *f, const vx_nrrd_opts *o)
 	fputs("space: 3D-right-handed\n", f);
 	fprintf(f, "sizes: %lld %lld %lld\n", (long long)g->dims[0],
 	    (long long)g->dims[1], (long long)g->dims[2]);
-	fprintf(f, "space directions: (%.17g,0,0) (0,%.17g,0) (0,0,%.17g)\n",
-	    g->spacing[0], g->spacing[1], g->spacing[2]);
+	/* reals with a '.' whatever LC_NUMERIC says */
+	vx_snprintf_c(line, sizeof line, "space directions: (%.17g,0,0) "
+	    "(0,%.17g,0) (0,0,%.17g)\n", g->spacing[0], g->spacing[1],
+	    g->spacing[2]);
+	fputs(line, f);
 	fputs("kinds: domain domain domain\n", f);
 	fputs("centerings: node node node\n", f);
 	fputs("endian: little\n", f);
 	fprintf(f, "encoding: %s\n", o->gzip ? "gzip" : "raw");
-	fprintf(f, "space origin: (%.17g,%.17g,%.17g)\n\n", g->origin[0],
-	    g->origin[1], g->origin[2]);
+	vx_snprintf_c(line, sizeof line, "space origin: (%.17g,%.17g,%.17g)\n\n",
+	    g->origin[0], g->origin[1], g->origin[2]);
+	fputs(line, f);
 }
 
 /* ---- body ---- */

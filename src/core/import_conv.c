@@ -475,7 +475,7 @@ imp_conv_ascii(imp_conv *c, imp_src *s, vx_err *e)
 			}
 			memcpy(buf, p + t0, i - t0);
 			buf[i - t0] = '\0';
-			v = strtod(buf, &end);
+			v = vx_strtod(buf, &end);
 			if (end == buf || *end != '\0') {
 				rc = vx_err_set(e, VX_EDATA, "value %llu '%s' is "
 				    "not a number", (unsigned long long)(c->next +

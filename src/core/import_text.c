@@ -101,8 +101,7 @@ imp_parse_f64(const char *p, size_t n, double *v)
 
 	if (token(p, n, buf, sizeof buf) != 0)
 		return -1;
-	errno = 0;
-	x = strtod(buf, &end);
+	x = vx_strtod(buf, &end);
 	if (end == buf || *end != '\0' || (errno == ERANGE && isinf(x)))
 		return -1;
 	*v = x;

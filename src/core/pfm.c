@@ -56,8 +56,7 @@ read_scale(const unsigned char *p, size_t n, size_t *pos, double *out)
 	tok[k] = '\0';
 	if (k == 0 || (*pos < n && !is_space(p[*pos])))
 		return -1;
-	errno = 0;
-	*out = strtod(tok, &end);
+	*out = vx_strtod(tok, &end);
 	if (*end != '\0' || errno == ERANGE || !isfinite(*out) || *out == 0)
 		return -1;
 	return 0;

@@ -3,7 +3,6 @@
 #include "vx_scene.h"
 #include "scene_text.h"
 
-#include <locale.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -14,19 +13,11 @@
 static void
 fmt_num(char *b, size_t n, double v)
 {
-	const char *dp = localeconv()->decimal_point;
-	size_t dl = strlen(dp);
 	double back;
 	int prec;
 
 	for (prec = 15; prec <= 17; prec++) {
-		char *q;
-
-		snprintf(b, n, "%.*g", prec, v);
-		if (dl > 0 && strcmp(dp, ".") != 0 && (q = strstr(b, dp)) != NULL) {
-			*q = '.';
-			memmove(q + 1, q + dl, strlen(q + dl) + 1);
-		}
+		vx_snprintf_c(b, n, "%.*g", prec, v);
 		if (vx_scn_number(b, &back) == 0 &&
 		    memcmp(&back, &v, sizeof v) == 0)
 			return;

@@ -5,7 +5,6 @@
 #include "scene_text.h"
 
 #include <errno.h>
-#include <locale.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
@@ -113,9 +112,9 @@ vx_effect_name(unsigned bit)
 int
 vx_scn_number(const char *t, double *out)
 {
-	const char *q = t, *dp;
-	char b[NUM_MAX + 16], *end;
-	size_t len = strlen(t), dl, i, k;
+	const char *q = t;
+	char *end;
+	size_t len = strlen(t);
 	int digits = 0;
 	double v;
 
@@ -141,24 +140,8 @@ vx_scn_number(const char *t, double *out)
 	}
 	if (*q != '\0')
 		return -1;
-	dp = localeconv()->decimal_point;
-	dl = strlen(dp);
-	if (dl == 0 || dl > 8) {
-		dp = ".";
-		dl = 1;
-	}
-	for (i = 0, k = 0; t[i] != '\0'; i++) {
-		if (t[i] == '.') {
-			memcpy(b + k, dp, dl);
-			k += dl;
-		} else {
-			b[k++] = t[i];
-		}
-	}
-	b[k] = '\0';
-	errno = 0;
-	v = strtod(b, &end);
-	if (end != b + k || !isfinite(v))
+	v = vx_strtod(t, &end);    /* the grammar is checked: a '.' only */
+	if (end != t + len || !isfinite(v))
 		return -1;
 	*out = v;
 	return 0;

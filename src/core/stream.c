@@ -671,7 +671,8 @@ vx_hdr_set(vx_hdr *h, const char *key, vx_err *e, const char *fmt, ...)
 	int n;
 
 	va_start(ap, fmt);
-	n = vsnprintf(buf, sizeof buf, fmt, ap);
+	n = vx_vsnprintf_c(buf, sizeof buf, fmt, ap);   /* '.' whatever
+	                                                  LC_NUMERIC says */
 	va_end(ap);
 	if (n < 0 || (size_t)n >= sizeof buf)
 		return vx_err_set(e, VX_EINTERNAL, "header: value of '%s' too long",
@@ -748,7 +749,8 @@ vx_hdr_parse(vx_hdr *h, const unsigned char *p, size_t n, size_t *body,
  * to a space, a tab or the end) is not in the grammar of formats/stream.md:
  *   integer  [+-]?[0-9]+
  *   real     [+-]?([0-9]+(\.[0-9]*)?|\.[0-9]+)([eE][+-]?[0-9]+)?
- * strtod alone would also take hex, "inf", "nan" and the locale's comma. */
+ * strtod alone would also take hex, "inf" and "nan" (and the locale's
+ * comma, but vx_strtod reads in the C locale). */
 static const char *
 number_end(const char *s, int isint)
 {
@@ -804,7 +806,7 @@ hdr_numbers(const vx_hdr *h, const char *key, size_t count, int isint,
 		if (isint)
 			oi[i] = strtoll(s, &end, 10);
 		else
-			of[i] = strtod(s, &end);
+			of[i] = vx_strtod(s, &end);
 		/* overflow is an error; underflow rounds towards zero, so a
 		 * subnormal written with %.17g reads back */
 		if (end != t || (errno == ERANGE && (isint || isinf(of[i]))))

@@ -123,8 +123,7 @@ scan_parse_double(const char *t, double *v)
 
 	if (t[0] == '\0')
 		return 0;
-	errno = 0;
-	*v = strtod(t, &q);
+	*v = vx_strtod(t, &q);
 	return *q == '\0';
 }
 

@@ -8,6 +8,7 @@
 #ifndef VX_ERR_H
 #define VX_ERR_H
 
+#include <stdarg.h>
 #include <stddef.h>
 
 enum {
@@ -51,5 +52,18 @@ int vx_add_size(size_t *out, size_t a, size_t b);
 /* vx_malloc / vx_calloc: allocation with an error on failure (VX_ENOMEM). */
 void *vx_malloc(size_t n, vx_err *e);
 void *vx_calloc(size_t count, size_t size, vx_err *e);
+
+/* Numbers in the C locale ('.' as decimal point), whatever the process or
+ * thread locale (LC_NUMERIC) says: every number the library reads or writes
+ * in text goes through these.  Thread-safe.
+ * vx_strtod: strtod(3) as in the C locale: same *end and result; errno is
+ * 0 or ERANGE (callers need not clear it).  Like strtod it also takes
+ * hex, inf and nan: callers check their own grammar first.
+ * vx_snprintf_c / vx_vsnprintf_c: snprintf(3) / vsnprintf(3) likewise. */
+double vx_strtod(const char *s, char **end);
+int vx_snprintf_c(char *buf, size_t n, const char *fmt, ...)
+	__attribute__((format(printf, 3, 4)));
+int vx_vsnprintf_c(char *buf, size_t n, const char *fmt, va_list ap)
+	__attribute__((format(printf, 3, 0)));
 
 #endif

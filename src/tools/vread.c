@@ -51,7 +51,7 @@ parse_dims(const char *opt, const char *s, int64_t out[3], int one_ok)
 	int a;
 
 	if (one_ok && strchr(s, ',') == NULL) {
-		double x = strtod(s, &end);
+		double x = vx_strtod(s, &end);
 
 		v[0] = v[1] = v[2] = x;
 		if (end == s || *end != '\0')

@@ -98,8 +98,7 @@ tool_parse_double(const char *opt, const char *s, double lo, double hi)
 	char *end;
 	double v;
 
-	errno = 0;
-	v = strtod(s, &end);
+	v = vx_strtod(s, &end);     /* '.' whatever the locale: ',' separates */
 	if (end == s || *end != '\0' || errno == ERANGE || isnan(v))
 		tool_fail(VX_EUSAGE, "%s: '%s' is not a number", opt, s);
 	if (v < lo || v > hi)
@@ -134,8 +133,7 @@ tool_parse_doubles(const char *opt, const char *s, double *out, int n)
 	for (i = 0; i < n; i++) {
 		while (*p == ' ' || *p == ',')
 			p++;
-		errno = 0;
-		out[i] = strtod(p, &end);
+		out[i] = vx_strtod(p, &end);
 		if (end == p || errno == ERANGE || !isfinite(out[i]))
 			tool_fail(VX_EUSAGE, "%s: '%s': expected %d numbers", opt,
 			    s, n);
