@@ -385,6 +385,66 @@ vx_cell_first_root(const double k[4], double t0, double t1, double f0,
 	return VX_CELL_MISS;
 }
 
+/* Proof of the vx_cell_sign_bound guarantee (u = 2^-53, gamma_n = n u /
+ * (1 - n u); L = len; S = |k0| + |k1| L + |k2| L^2 + |k3| L^3 exactly).
+ * 1. The Bernstein coefficients of f(t) on [0, L] (s = t / L, a_i = k_i L^i)
+ *    are b0 = a0, b1 = a0 + a1/3, b2 = a0 + (2 a1 + a2)/3, b3 = a0 + a1 +
+ *    a2 + a3, and f(t) = sum b_i B_i(s) with B_i >= 0, sum B_i = 1 on
+ *    [0, 1]: f(t) >= min b_i and <= max b_i for t in [0, L].  Each b_i is
+ *    computed here with at most 7 roundings of quantities bounded by S, so
+ *    |b_i computed - b_i| <= 8 u S; S computed >= (1 - gamma_7) S.
+ * 2. The test asks min |b_i computed| > 2^-38 S computed, all b_i of one
+ *    sign; so the exact b_i, hence f on [0, L], have that sign with
+ *    |f(t)| >= (2^-38 (1 - gamma_7) - 8 u) S > (2^-40 + 2^-48) S.
+ * 3. vx_cell_first_root leaves k unscaled here (normalize acts only when
+ *    some |k_i| >= 2^400 or all <= 2^-400, both excluded), evaluates f by
+ *    Horner only at critical points r strictly inside (0, L), and there
+ *    |fl(f(r)) - f(r)| <= gamma_6 terms(r) <= gamma_6 S < |f(r)|: the
+ *    computed value has f's sign (and is not 0), and its magnitude exceeds
+ *    (2^-40 + 2^-48 - gamma_6) S > VX_CELL_TOUCH_TOL (1 + gamma_6) S, which
+ *    bounds the touch threshold VX_CELL_TOUCH_TOL * terms(r) as computed
+ *    (terms(r) <= S as r < L).  So no critical point is a touch, every
+ *    value in the sign sequence f0, f(c_1), ..., f1 has the same sign when
+ *    f0 and f1 have it, and the result is a miss, whatever the solver (the
+ *    solvers differ only after a bracket is found).  With L = 0 the result
+ *    is a miss by the sign of f0 and f1 alone.
+ * 4. Gradual underflow adds at most 2^-1074 per operation, times at most
+ *    L^3 <= 2^300: below 2^-760, while the margin left in step 2 is at least
+ *    2^-41 S >= 2^-641 (S computed >= 2^-600 is required).  Overflow cannot
+ *    happen: |k_i| < 2^400 and L <= 2^100 bound every quantity by 2^702.
+ * NaN fails every comparison below, so it gives 0. */
+int
+vx_cell_sign_bound(const double k[4], double len)
+{
+	double m0 = fabs(k[0]), m1 = fabs(k[1]), m2 = fabs(k[2]), m3 = fabs(k[3]);
+	double mx, a1, a2, a3, b1, b2, b3, s, lo;
+
+	if (!(len >= 0 && len <= 0x1p100))
+		return 0;
+	if (!(m0 < 0x1p400 && m1 < 0x1p400 && m2 < 0x1p400 && m3 < 0x1p400))
+		return 0;
+	mx = m0 > m1 ? m0 : m1;
+	mx = m2 > mx ? m2 : mx;
+	mx = m3 > mx ? m3 : mx;
+	if (!(mx > 0x1p-400))
+		return 0;
+	a1 = k[1] * len;
+	a2 = k[2] * len * len;
+	a3 = k[3] * len * len * len;
+	s = m0 + fabs(a1) + fabs(a2) + fabs(a3);
+	if (!(s >= 0x1p-600))
+		return 0;
+	lo = 0x1p-38 * s;
+	b1 = k[0] + a1 / 3;
+	b2 = k[0] + (2 * a1 + a2) / 3;
+	b3 = k[0] + a1 + a2 + a3;
+	if (k[0] > lo && b1 > lo && b2 > lo && b3 > lo)
+		return 1;
+	if (k[0] < -lo && b1 < -lo && b2 < -lo && b3 < -lo)
+		return -1;
+	return 0;
+}
+
 int
 vx_cell_max(const double k[4], double t0, double t1, double *tmax,
     double *fmax)

@@ -96,13 +96,85 @@ fill(vx_iso_hit *h, const iso_ctx *x, const vx_leaf_visit *v, double r,
 		h->p[a] = x->o[a] + h->t * x->d[a];
 }
 
+/* face_pos: the sign (1: >= iso, 0: < iso) of face_field - iso on face
+ * (axis, side) from the face's four corners alone, when they decide it:
+ * vx_cell_face_value clamps into their [min, max], and a difference of
+ * doubles is >= 0 exactly when a >= b.  -1 when they straddle iso. */
+static int
+face_pos(const float *c, int axis, int side, double iso)
+{
+	int base = side << axis, bu = 1 << other[axis][0];
+	int bv = 1 << other[axis][1];
+	double c00 = c[base], c10 = c[base | bu], c01 = c[base | bv];
+	double c11 = c[base | bu | bv];
+
+	if (c00 >= iso && c10 >= iso && c01 >= iso && c11 >= iso)
+		return 1;
+	if (c00 < iso && c10 < iso && c01 < iso && c11 < iso)
+		return 0;
+	return -1;
+}
+
+/* ends: the field at the segment's entry (0) and exit (1), computed once,
+ * on demand. */
+typedef struct ends {
+	double e[2];
+	int have[2];
+} ends;
+
+static double
+end_field(ends *E, const iso_ctx *x, const vx_leaf_visit *v, int w)
+{
+	if (!E->have[w]) {
+		int axis = w ? v->exit_axis : v->entry_axis;
+		int side = w ? v->exit_side : v->entry_side;
+		double t = w ? v->t1 : v->t0;
+
+		E->e[w] = axis >= 0 ? face_field(v, x->o, x->d, t, axis, side) :
+		    inner_field(v, x->o, x->d, t);
+		E->have[w] = 1;
+	}
+	return E->e[w];
+}
+
+/* end_pos: pos(end_field - iso), from the face corners when they decide. */
+static int
+end_pos(ends *E, const iso_ctx *x, const vx_leaf_visit *v, int w,
+    double iso)
+{
+	int axis = w ? v->exit_axis : v->entry_axis;
+	int p = -1;
+
+	if (axis >= 0 && !E->have[w])
+		p = face_pos(v->c, axis, w ? v->exit_side : v->entry_side, iso);
+	if (p < 0)
+		p = end_field(E, x, v, w) - iso >= 0;
+	return p;
+}
+
+/* no_root: 1 when vx_cell_first_root(k, 0, len, f0, f1, any solver) is
+ * certainly a miss (vx_cell_sign_bound, and both ends of that sign), so
+ * the call and perhaps the end values can be skipped. */
+static int
+no_root(ends *E, const iso_ctx *x, const vx_leaf_visit *v,
+    const double k[4], double len, double iso)
+{
+	int sg = vx_cell_sign_bound(k, len);
+
+	if (sg == 0)
+		return 0;
+	sg = sg > 0;
+	return end_pos(E, x, v, 0, iso) == sg && end_pos(E, x, v, 1, iso) == sg;
+}
+
 static int
 visit(void *vctx, const vx_leaf_visit *v)
 {
 	iso_ctx *x = vctx;
 	vx_iso_stats *st = x->st;
 	vx_iso_hit hits[VX_ISO_MAX * MAXROOTS];
-	double e0, e1, ol[3], len, k[4];
+	double ol[3], len, k[4];
+	ends E = { { 0, 0 }, { 0, 0 } };
 	uint64_t c0 = 0;
 	int nh = 0, s, a, i, j, rc;
 
@@ -116,10 +188,6 @@ visit(void *vctx, const vx_leaf_visit *v)
 		if (st->timing)
 			c0 = vx_cycles();
 	}
-	e0 = v->entry_axis >= 0 ? face_field(v, x->o, x->d, v->t0,
-	    v->entry_axis, v->entry_side) : inner_field(v, x->o, x->d, v->t0);
-	e1 = v->exit_axis >= 0 ? face_field(v, x->o, x->d, v->t1,
-	    v->exit_axis, v->exit_side) : inner_field(v, x->o, x->d, v->t1);
 	/* Solve in a local parameter s = t - t0 from a point near the cell, so
 	 * the cubic is well conditioned however far the ray's origin is. */
 	for (a = 0; a < 3; a++)
@@ -136,8 +204,13 @@ visit(void *vctx, const vx_leaf_visit *v)
 
 		if (v->lo <= iso && iso <= v->hi) {
 			vx_cell_poly(v->c, ol, x->d, iso, k);
-			fa = e0 - iso;
-			f1 = e1 - iso;
+			if (no_root(&E, x, v, k, len, iso)) {
+				if (st)
+					st->roots++;   /* a root query, missed */
+				goto done;
+			}
+			fa = end_field(&E, x, v, 0) - iso;
+			f1 = end_field(&E, x, v, 1) - iso;
 			for (n = 0; n < MAXROOTS; n++) {
 				if (st)
 					st->roots++;
@@ -160,6 +233,7 @@ visit(void *vctx, const vx_leaf_visit *v)
 					fa = fa >= 0 ? -1.0 : 1.0;
 			}
 		}
+done:
 		if (st && st->timing)
 			st->cyc_isect += vx_cycles() - c0;
 		return 0;
@@ -171,8 +245,13 @@ visit(void *vctx, const vx_leaf_visit *v)
 		if (!(v->lo <= iso && iso <= v->hi))
 			continue;
 		vx_cell_poly(v->c, ol, x->d, iso, k);
-		fa = e0 - iso;
-		f1 = e1 - iso;
+		if (no_root(&E, x, v, k, len, iso)) {
+			if (st)
+				st->roots++;   /* a root query, missed */
+			continue;
+		}
+		fa = end_field(&E, x, v, 0) - iso;
+		f1 = end_field(&E, x, v, 1) - iso;
 		for (n = 0; n < MAXROOTS; n++) {
 			if (st)
 				st->roots++;

@@ -155,6 +155,20 @@ double vx_cell_face_value(const float c[8], int axis, int side, double u,
 int vx_cell_first_root(const double k[4], double t0, double t1, double f0,
     double f1, int solver, double *t, int *iters);
 
+/* vx_cell_sign_bound: a cheap, exact early-out for vx_cell_first_root on
+ * [0, len] (t measured from the entry point, as in the typical use above).
+ * Returns +1 when the cubic k provably stays positive on [0, len] by a
+ * margin that rounding cannot close, -1 when it provably stays negative, 0
+ * when it cannot tell (then call vx_cell_first_root).  Guarantee, for every
+ * solver: if it returns +1 and f0 >= 0 and f1 >= 0, or -1 and f0 < 0 and
+ * f1 < 0, then vx_cell_first_root(k, 0, len, f0, f1, solver, ...) returns
+ * VX_CELL_MISS.  (Only the signs of f0 and f1 are needed, so a caller can
+ * often skip computing them.)  Method: the Bernstein coefficients of f on
+ * [0, len] all of one sign with margin 2^-38 times the sum of the terms'
+ * magnitudes; the proof is in cell.c.  0 for non-finite input, len < 0 or
+ * > 2^100, or coefficients outside [2^-400, 2^400). */
+int vx_cell_sign_bound(const double k[4], double len);
+
 /* vx_cell_max: the exact maximum of the cubic k on [t0, t1]: the larger of
  * the ends and the critical points inside (stable quadratic formula), ties
  * broken by the smallest t.  Returns 1 and sets *tmax, *fmax; returns 0 (no

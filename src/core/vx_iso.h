@@ -44,7 +44,8 @@ typedef struct vx_iso_hit {
 typedef struct vx_iso_stats {
 	uint64_t rays;           /* queries */
 	uint64_t cells;          /* cells handed to the kernel */
-	uint64_t roots;          /* vx_cell_first_root calls */
+	uint64_t roots;          /* root queries: vx_cell_first_root calls
+	                            and exact early-outs (vx_cell_sign_bound) */
 	uint64_t hits;           /* hits reported */
 	uint64_t nonfinite;      /* cells skipped for a non-finite corner */
 	uint64_t cyc_isect;      /* clock ticks inside the cell kernel (only

@@ -977,6 +977,205 @@ gradient_normal(void **state)
 	}
 }
 
+/* ---- vx_cell_sign_bound: the early-out must never hide a root ---- */
+
+/* sb_check: the guarantee of vx_cell_sign_bound for the cubic k on [0, L]:
+ * when it returns +1 (-1), vx_cell_first_root misses with every solver for
+ * end values f0, f1 of that sign (the caller's own, 0 and tiny ones); and,
+ * by an independent oracle, the cubic sampled densely in long double keeps
+ * that sign.  Returns the bound's answer. */
+static int
+sb_check(const double k[4], double L, double f0, double f1, const char *what,
+    uint64_t i)
+{
+	int sg = vx_cell_sign_bound(k, L);
+	double t;
+
+	if (sg == 0)
+		return 0;
+	assert_true(sg == 1 || sg == -1);
+	const double ends[][2] = {
+		{ f0, f1 },
+		{ sg > 0 ? 0.0 : -0x1p-1074, sg > 0 ? 0x1p-1074 : -0.0 },
+		{ sg * 1e300, sg * 1e-300 },
+	};
+	for (size_t e = 0; e < sizeof ends / sizeof ends[0]; e++) {
+		double a = ends[e][0], b = ends[e][1];
+
+		if ((a >= 0) != (sg > 0) || (b >= 0) != (sg > 0))
+			continue;   /* the guarantee says nothing then */
+		for (int s = 0; s < VX_CELL_SOLVER_LAST; s++) {
+			int r = vx_cell_first_root(k, 0, L, a, b, s, &t, NULL);
+			if (r != VX_CELL_MISS)
+				fail_msg("%s %llu: sign_bound %d but solver %d "
+				    "finds %d at %.17g (k %a %a %a %a, L %a)",
+				    what, (unsigned long long)i, sg, s, r, t,
+				    k[0], k[1], k[2], k[3], L);
+		}
+	}
+	if (isfinite(L) && L < 1e100)
+		for (int j = 0; j <= 256; j++) {
+			long double x = (long double)L * j / 256;
+			long double f = ((k[3] * x + k[2]) * x + k[1]) * x + k[0];
+			if (!(sg > 0 ? f > 0 : f < 0))
+				fail_msg("%s %llu: sign_bound %d but f(%Lg) = %Lg",
+				    what, (unsigned long long)i, sg, x, f);
+		}
+	return sg;
+}
+
+/* Random cells (the three corner distributions of gen_case), each ray
+ * solved from its entry point as a renderer does, at the case's isovalue
+ * and at isovalues just beside the cubic's extrema on the segment (near
+ * double roots: the touch tolerance's territory), and the same cells
+ * scaled by 2^k up to the float limits.  Oracle: vx_cell_first_root
+ * itself (all three solvers) and dense long double sampling.  Also checks
+ * that the early-out is not vacuous: it decides most grazing rays. */
+static void
+sign_bound_cells(void **state)
+{
+	int decided = 0, misses = 0, total = 0;
+
+	(void)state;
+	for (int i = 0; i < 3000; i++) {
+		ray_case rc;
+		double ol[3], L, k[4], tm, fm, km[4], tn, fn;
+
+		gen_case(555, (uint64_t)i, &rc);
+		L = rc.t1 - rc.t0;
+		for (int a = 0; a < 3; a++)
+			ol[a] = rc.o[a] + rc.t0 * rc.d[a];
+		vx_cell_poly(rc.c, ol, rc.d, rc.iso, k);
+		int sg = sb_check(k, L, rc.f0, rc.f1, "cell", (uint64_t)i);
+		double t;
+		int r = vx_cell_first_root(k, 0, L, rc.f0, rc.f1, 0, &t, NULL);
+		total++;
+		if (r == VX_CELL_MISS) {
+			misses++;
+			decided += sg != 0 && (rc.f0 >= 0) == (sg > 0) &&
+			    (rc.f1 >= 0) == (sg > 0);
+		}
+		/* isovalues beside the extrema: f's max and min on [0, L],
+		 * moved by relative steps 2^-j around the touch tolerance */
+		vx_cell_poly(rc.c, ol, rc.d, 0, km);
+		if (!vx_cell_max(km, 0, L, &tm, &fm))
+			continue;
+		for (int a = 0; a < 4; a++)
+			km[a] = -km[a];
+		if (!vx_cell_max(km, 0, L, &tn, &fn))
+			continue;
+		fn = -fn;
+		for (int j = 20; j <= 60; j += 2)
+			for (int sgn = -1; sgn <= 1; sgn += 2) {
+				double sc = corner_scale(rc.c, 0);
+				double isos[2] = { fm + sgn * ldexp(sc, -j),
+				    fn + sgn * ldexp(sc, -j) };
+				for (int q = 0; q < 2; q++) {
+					double kk[4];
+					vx_cell_poly(rc.c, ol, rc.d, isos[q], kk);
+					sb_check(kk, L, rc.f0 + rc.iso - isos[q],
+					    rc.f1 + rc.iso - isos[q], "extremum",
+					    (uint64_t)i);
+				}
+			}
+		/* 2^k scaling, up to the float limits (corners stay floats) */
+		for (int e = -140; e <= 120; e += 20) {
+			float cs[8];
+			double ks[4];
+			int ok = 1;
+
+			for (int a = 0; a < 8; a++) {
+				cs[a] = ldexpf(rc.c[a], e);
+				ok &= isfinite(cs[a]) &&
+				    (double)cs[a] == ldexp(rc.c[a], e);
+			}
+			if (!ok)
+				continue;
+			vx_cell_poly(cs, ol, rc.d, ldexp(rc.iso, e), ks);
+			int ss = sb_check(ks, L, ldexp(rc.f0, e), ldexp(rc.f1, e),
+			    "scaled", (uint64_t)i);
+			/* exact scaling: the same decision (no range limit hit) */
+			if (sg != 0 && ss != sg)
+				fail_msg("scaled %d by 2^%d: %d vs %d", i, e, ss, sg);
+		}
+	}
+	/* non-vacuous: the test decides most misses (rough cells included) */
+	if (!(decided > misses / 2 && misses > total / 4))
+		fail_msg("sign_bound decided %d of %d misses (%d rays)", decided,
+		    misses, total);
+}
+
+/* Cubics built to be hard: a double root r inside [0, L] lifted or lowered
+ * by a relative 2^-j (j from 1 to 48: far from the surface down to below
+ * the margin 2^-38 and the touch tolerance 2^-40), scaled by 2^e across the whole range the bound
+ * accepts and beyond it (|k| near 2^-400 and 2^400: it must say 0 or be
+ * right), segment lengths from 0 to 2^110, and random coefficients of
+ * random magnitudes.  Oracle: vx_cell_first_root (all solvers) and dense
+ * sampling, through sb_check.  The exact touch cases must stay undecided. */
+static void
+sign_bound_adversarial(void **state)
+{
+	static const double Ls[] = { 0, 0x1p-60, 1e-9, 0.25, 1, 3, 1e3,
+	    0x1p50, 0x1p99, 0x1p100, 0x1p101, 0x1p110 };
+	static const int es[] = { -1020, -700, -420, -400, -390, -100, 0, 100,
+	    390, 399, 400, 401, 700, 1000 };
+
+	(void)state;
+	for (int i = 0; i < 2000; i++) {
+		double L = Ls[mix(91 ^ (uint64_t)i) % (sizeof Ls / sizeof Ls[0])];
+		int e = es[mix(92 ^ (uint64_t)i) % (sizeof es / sizeof es[0])];
+		double r = uni(93, (uint64_t)i, 0), q = -uni(93, (uint64_t)i, 1);
+		double A = 1 + uni(93, (uint64_t)i, 2), s = r < 0.5 ? 1 : -1;
+		int j = 1 + (int)(mix(94 ^ (uint64_t)i) % 48);
+		double eps = (uni(93, (uint64_t)i, 3) < 0.5 ? 1 : -1) * ldexp(1, -j);
+		double k[4], lk = L > 0 ? L : 1;
+
+		if (uni(93, (uint64_t)i, 4) < 0.3) {
+			q = 1 + uni(93, (uint64_t)i, 5);   /* third root beyond */
+		}
+		/* f(t) = s A (t/L - r)^2 (t/L - q) + eps A, expanded in t
+		 * (rounded: sb_check's oracles see these very coefficients) */
+		double c3 = A, c2 = -A * (2 * r + q), c1 = A * (r * r + 2 * r * q);
+		double c0 = -A * r * r * q + eps * A;
+		k[0] = ldexp(s * c0, e);
+		k[1] = ldexp(s * c1, e) / lk;
+		k[2] = ldexp(s * c2, e) / lk / lk;
+		k[3] = ldexp(s * c3, e) / lk / lk / lk;
+		sb_check(k, L, vx_cell_poly_eval(k, 0), vx_cell_poly_eval(k, L),
+		    "tangent", (uint64_t)i);
+		/* the pure double root (eps = 0) at r inside: always a hit
+		 * (touch or crossing) for the solver, so never decided */
+		k[0] = ldexp(s * (-A * r * r * q), e);
+		if (L > 0 && r > 0 && vx_cell_sign_bound(k, L) != 0 &&
+		    vx_cell_first_root(k, 0, L, vx_cell_poly_eval(k, 0),
+		    vx_cell_poly_eval(k, L), 0, &A, NULL) != VX_CELL_MISS)
+			fail_msg("tangent %d: double root decided", i);
+		/* random coefficients, random magnitudes and signs */
+		for (int a = 0; a < 4; a++)
+			k[a] = (uni(95, (uint64_t)i, (uint64_t)a) - 0.5) *
+			    ldexp(1, (int)(mix(96 ^ (uint64_t)(4 * i + a)) % 60) - 30 + e / 2);
+		sb_check(k, L, vx_cell_poly_eval(k, 0), vx_cell_poly_eval(k, L),
+		    "random", (uint64_t)i);
+	}
+	/* non-finite input and bad lengths: 0 */
+	{
+		double k[4] = { 1, 0, 0, 0 };
+		assert_int_equal(vx_cell_sign_bound(k, 1), 1);
+		k[0] = -1;
+		assert_int_equal(vx_cell_sign_bound(k, 1), -1);
+		assert_int_equal(vx_cell_sign_bound(k, -1), 0);
+		assert_int_equal(vx_cell_sign_bound(k, NAN), 0);
+		assert_int_equal(vx_cell_sign_bound(k, INFINITY), 0);
+		k[2] = NAN;
+		assert_int_equal(vx_cell_sign_bound(k, 1), 0);
+		k[2] = INFINITY;
+		assert_int_equal(vx_cell_sign_bound(k, 1), 0);
+		k[2] = 0;
+		k[0] = 0;
+		assert_int_equal(vx_cell_sign_bound(k, 1), 0);
+	}
+}
+
 static void
 solver_names(void **state)
 {
@@ -1005,6 +1204,8 @@ main(void)
 		cmocka_unit_test(random_roots),
 		cmocka_unit_test(cell_max),
 		cmocka_unit_test(gradient_normal),
+		cmocka_unit_test(sign_bound_cells),
+		cmocka_unit_test(sign_bound_adversarial),
 		cmocka_unit_test(solver_names),
 	};
 
