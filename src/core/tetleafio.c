@@ -372,7 +372,9 @@ vx_tetleaf_from_stream(vx_tetleaf *lg, const vx_stream *s,
 		if ((rc = vx_payload_parse(&s->chunk[i], &h, &body, &bodylen,
 		    e)) != 0) {
 			vx_hdr_free(&h);
-			return vx_err_push(e, "leaf grid");
+			vx_err_push(e, "leaf grid");
+			return vx_err_push(e, "chunk TLEF at %llu",
+			    (unsigned long long)s->chunk[i].offset);
 		}
 		v = vx_hdr_get(&h, "mesh");
 		mine = v != NULL && strcmp(v, m->name) == 0;
@@ -382,7 +384,8 @@ vx_tetleaf_from_stream(vx_tetleaf *lg, const vx_stream *s,
 		if (index != NULL)
 			*index = i;
 		if ((rc = vx_tetleaf_from_chunk(lg, &id, &s->chunk[i], e)) != 0)
-			return rc;
+			return vx_err_push(e, "chunk TLEF at %llu",
+			    (unsigned long long)s->chunk[i].offset);
 		if (id.npoint == m->npoint && id.ntet == m->ntet &&
 		    id.crc == vx_tetmesh_crc(m)) {
 			*status = VX_MACRO_LOADED;

@@ -229,4 +229,34 @@ expect_fail "raycast: a malformed leaf grid" 65 "leaf grid" raycast --iso 1 "$T/
 vinfo "$T/bad.vx" >"$T/bad.txt" 2>"$T/bad.err"
 check_eq "vinfo: a malformed leaf grid, exit 65" "$?" 65
 check "vinfo: says why" grep -q "leaf grid" "$T/bad.err"
+
+# the catalog's TLEF (tests/malformed/make.sh): the good one is used as is;
+# a stale one (mesh-crc32 not its mesh's: formats/tetmesh.md) is rebuilt
+# with a note, and the picture (depth and normals, bit for bit) is the one
+# without any TLEF; macrocell
+# replaces a malformed TLEF of its mesh by a good one
+M=tests/malformed
+python3 - "$M/good-tlef.vxs" "$T/notlef.vx" <<'EOF'
+import sys
+sys.path.insert(0, "tests/cli")
+import mkstream as m
+m.write_stream(sys.argv[2], [c for c in m.read_stream(sys.argv[1]) if c[0] != "TLEF"])
+EOF
+for f in "$M/good-tlef.vxs" "$M/stale-tlef.vxs" "$T/notlef.vx"; do
+	b=$T/$(basename "$f")
+	raycast --iso 1 --size 64x48 --depth "$b.d.pfm" --normals "$b.n.pfm" \
+	    -o "$b.png" "$f" 2>"$b.err"
+	cat "$b.d.pfm" "$b.n.pfm" >"$b.pfm"
+done
+check_eq "the mesh is seen: 47 pixels of finite depth" "$(python3 -c '
+import math, struct, sys
+d = open(sys.argv[1], "rb").read()[-64 * 48 * 4:]
+print(sum(math.isfinite(v) for v in struct.unpack("<3072f", d)))' "$T/notlef.vx.d.pfm")" 47
+check_eq "catalog TLEF: loaded, no note" "$(cat "$T/good-tlef.vxs.err")" ""
+check "stale TLEF: rebuilt, with a note" grep -q "^raycast: note: stale leaf grid for mesh 'mesh'" "$T/stale-tlef.vxs.err"
+check_eq "stale TLEF: the picture without TLEF" "$(cksum <"$T/stale-tlef.vxs.pfm")" "$(cksum <"$T/notlef.vx.pfm")"
+check_eq "good TLEF: the same picture" "$(cksum <"$T/good-tlef.vxs.pfm")" "$(cksum <"$T/notlef.vx.pfm")"
+check_eq "vinfo: stale" "$(vinfo "$M/stale-tlef.vxs" | grep -c '(stale)')" 1
+macrocell -o "$T/fixed.vx" "$M/tlef-nan-leaf.vxs"
+check_eq "macrocell replaces a malformed TLEF" "$(vinfo "$T/fixed.vx" | grep -c -e '(matches)' -e '^chunk .*TLEF')" 2
 done_testing

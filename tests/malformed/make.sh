@@ -456,6 +456,118 @@ case("mcel-levels-volume.vxs", "raycast --iso 3 --size 8x8 -o OUT FILE", 65,
 case("mcel-levels-volume.vxs", "mip --size 8x8 -o OUT FILE", 65, "levels 9",
      "(as above)", None)
 
+# ---- TLEF: a tet mesh's leaf grid (formats/tetmesh.md), read by raycast
+# (for the mesh it names) and vinfo (every one); macrocell only replaces it.
+# The good one: the corner tet of tetm() in one leaf, one level above.
+TETS = (0, 1, 2, 3)
+MESH_CRC = "%08x" % zlib.crc32(TETM_PTS + struct.pack("<4I", *TETS) + TETM_VAL)
+TLEF_KEYS = [("mesh", "mesh"), ("mesh-points", "4"), ("mesh-tets", "1"),
+             ("mesh-crc32", MESH_CRC), ("leaf-dims", "1 1 1"),
+             ("leaf-origin", "-0.5 -0.5 -0.5"), ("leaf-size", "2 2 2"),
+             ("entries", "1"), ("levels", "1"), ("sizes", "8x8x8"),
+             ("dims-1", "1 1 1"), ("range", "0.5 3.5"), ("encoding", "raw")]
+
+
+def tlef_body(off=(0, 1), idx=(0,), lev=(0.5, 3.5, 0.5, 3.5)):
+    return struct.pack("<%dI" % len(off), *off) + \
+        struct.pack("<%dI" % len(idx), *idx) + struct.pack("<%df" % len(lev), *lev)
+
+
+def tlef(body=None, crc=None, **kw):
+    """A TLEF chunk: the keys above with kw replacing (value None drops)."""
+    keys = []
+    for k, v in TLEF_KEYS:
+        v = kw.pop(k.replace("-", "_"), v)
+        if v is not None:
+            keys.append("%s: %s" % (k, v))
+    assert not kw, kw
+    return chunk("TLEF", payload(keys, tlef_body() if body is None else body),
+                 crc=crc)
+
+
+def mesh_tlef(*a, **kw):
+    return stream(tetm(), tlef(*a, **kw))
+
+
+GOOD_TLEF = mesh_tlef()    # raycast renders it, vinfo says "matches"
+TL = [
+    ("tlef-body-short.vxs", "body", "raw body one byte short",
+     mesh_tlef(body=tlef_body()[:-1])),
+    ("tlef-body-long.vxs", "body", "raw body one byte long",
+     mesh_tlef(body=tlef_body() + b"\0")),
+    ("tlef-cut.vxs", "truncated stream", "stream cut inside the TLEF body",
+     mesh_tlef()[:-40]),
+    ("tlef-crc.vxs", "CRC mismatch", "TLEF chunk with a wrong CRC",
+     mesh_tlef(crc=0x12345678)),
+    ("tlef-entries-lie.vxs", "body", "entries 2, the body holds 1",
+     mesh_tlef(entries="2")),
+    ("tlef-leaf-dims-lie.vxs", "body", "leaf-dims 2 1 1, the body holds 1 leaf",
+     mesh_tlef(leaf_dims="2 1 1")),
+    ("tlef-huge.vxs", "body", "2^31 leaves and 2^32-1 entries (25 GB) with "
+     "a 24-byte body", mesh_tlef(leaf_dims="1024 1024 2048",
+                                 entries="4294967295", levels="0", sizes="",
+                                 dims_1=None)),
+    ("tlef-huge-zlib.vxs", "zlib body", "the same claim with a 12-byte zlib "
+     "body (far beyond 1032:1)",
+     mesh_tlef(body=zlib.compress(bytes(64)), leaf_dims="1024 1024 2048",
+               entries="4294967295", levels="0", sizes="", dims_1=None,
+               encoding="zlib")),
+    ("tlef-leaves-limit.vxs", "leaves (limit", "leaf-dims 2048^3: 2^33 leaves",
+     mesh_tlef(leaf_dims="2048 2048 2048")),
+    ("tlef-leaf-dims-zero.vxs", "leaf-dims", "leaf-dims 0 1 1",
+     mesh_tlef(leaf_dims="0 1 1")),
+    ("tlef-entries-negative.vxs", "entries", "entries -1",
+     mesh_tlef(entries="-1")),
+    ("tlef-entries-2e32.vxs", "entries", "entries 2^32",
+     mesh_tlef(entries="4294967296")),
+    ("tlef-leaf-size-zero.vxs", "leaf-size", "leaf-size 0 2 2",
+     mesh_tlef(leaf_size="0 2 2")),
+    ("tlef-leaf-size-nan.vxs", "leaf-size", "leaf-size nan 2 2",
+     mesh_tlef(leaf_size="nan 2 2")),
+    ("tlef-leaf-origin-huge.vxs", "leaf-origin", "leaf-origin 1e300",
+     mesh_tlef(leaf_origin="1e300 0 0")),
+    ("tlef-leaf-origin-comma.vxs", "leaf-origin", "leaf-origin with decimal "
+     "commas", mesh_tlef(leaf_origin="-0,5 -0,5 -0,5")),
+    ("tlef-levels.vxs", "levels 9", "levels 9", mesh_tlef(levels="9")),
+    ("tlef-sizes.vxs", "sizes", "sizes 8x8 (not AxBxC)", mesh_tlef(sizes="8x8")),
+    ("tlef-sizes-zero.vxs", "sizes", "sizes 0x8x8",
+     mesh_tlef(sizes="0x8x8")),
+    ("tlef-dims-1.vxs", "dims-1", "dims-1 2 1 1 (leaf-dims and sizes give 1 1 1)",
+     mesh_tlef(dims_1="2 1 1")),
+    ("tlef-dims-1-missing.vxs", "dims-1", "no dims-1 key",
+     mesh_tlef(dims_1=None)),
+    ("tlef-crc32-key.vxs", "mesh-crc32", "mesh-crc32 in upper case",
+     mesh_tlef(mesh_crc32=MESH_CRC.upper() if MESH_CRC.upper() != MESH_CRC
+               else "XYZ")),
+    ("tlef-mesh-points.vxs", "mesh counts", "mesh-points -4",
+     mesh_tlef(mesh_points="-4")),
+    ("tlef-offsets-start.vxs", "offsets", "offsets 1 1",
+     mesh_tlef(body=tlef_body(off=(1, 1)))),
+    ("tlef-offsets-end.vxs", "offsets", "offsets 0 0 (the entry count is 1)",
+     mesh_tlef(body=tlef_body(off=(0, 0)))),
+    ("tlef-offsets-decrease.vxs", "offsets decrease", "offsets 0 2 1 of two "
+     "leaves", mesh_tlef(leaf_dims="2 1 1", entries="1",
+                         body=tlef_body(off=(0, 2, 1), lev=(0.5, 3.5) * 3))),
+    ("tlef-tet-range.vxs", "out of range", "a list holds tet 1 of 1 "
+     "(consistent counts and CRC)", mesh_tlef(body=tlef_body(idx=(1,)))),
+    ("tlef-tet-order.vxs", "out of order", "a list holds 0 0",
+     mesh_tlef(entries="2", body=tlef_body(off=(0, 2), idx=(0, 0)))),
+    ("tlef-nan-leaf.vxs", "NaN", "NaN in level 0",
+     mesh_tlef(body=tlef_body(lev=(float("nan"), 3.5, 0.5, 3.5)))),
+    ("tlef-nan-level.vxs", "NaN", "NaN in level 1",
+     mesh_tlef(body=tlef_body(lev=(0.5, 3.5, 0.5, float("nan"))))),
+    ("tlef-encoding.vxs", "encoding", "encoding lz4",
+     mesh_tlef(encoding="lz4")),
+    ("tlef-zlib-cut.vxs", "zlib", "zlib body cut short",
+     mesh_tlef(body=zlib.compress(tlef_body())[:-3], encoding="zlib")),
+]
+for name, phrase, what, data in TL:
+    case(name, T + " (listing)", 65, phrase, what, data)
+    # raycast reads the leaf grid of the mesh it draws (a stream error is
+    # found on reading, before any chunk)
+    case(name, "raycast --iso 1 --size 8x8 -o OUT FILE", 65, phrase,
+         "(as above)", None)
+
 # ---- no input, usage ----
 case("missing.vxs", "vinfo NOFILE", 66, "No such file",
      "input file does not exist", None)
@@ -479,6 +591,10 @@ case("good.vxs", "raycast --size 0x8 -o OUT FILE", 64, "--size",
 here = "."
 with open("good.vxs", "wb") as f:     # GOOD: a valid volume stream
     f.write(stream(volm(body=bytes([0, 10, 20, 30, 40, 50, 60, 70]))))
+with open("good-tlef.vxs", "wb") as f:  # the TLEF cases' valid original
+    f.write(GOOD_TLEF)
+with open("stale-tlef.vxs", "wb") as f:  # valid, but not its mesh's (CRC)
+    f.write(mesh_tlef(mesh_crc32="00000000"))
 names = set()
 with open("cases", "w") as cf:
     cf.write("# generated by make.sh: file<TAB>command<TAB>code<TAB>phrase\n")
