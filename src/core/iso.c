@@ -299,6 +299,9 @@ vx_iso_trace(const vx_iso_tracer *tr, const double o[3], const double d[3],
 	if (tr->flat || tr->m == NULL)
 		return vx_macro_traverse_flat(tr->m, tr->g, o, d, tmin, tmax,
 		    iso, x.niso, visit, &x, st ? &st->trav : NULL);
+	if (tr->mask != NULL)
+		return vx_macro_traverse_masked(tr->m, tr->g, tr->mask, o, d,
+		    tmin, tmax, iso, x.niso, visit, &x, st ? &st->trav : NULL);
 	return vx_macro_traverse(tr->m, tr->g, o, d, tmin, tmax, iso, x.niso,
 	    visit, &x, st ? &st->trav : NULL);
 }

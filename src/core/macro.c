@@ -3,6 +3,7 @@
 #include "vx_macro.h"
 
 #include <float.h>
+#include <stdatomic.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -665,8 +666,8 @@ leaf_load(const vx_grid *g, const int64_t on[3], const int64_t of[3],
 static int
 leaves(const ray *r, const vx_grid *g, int64_t c[3], const int64_t lim[3],
     double tn[3], double *tp, int *ep, double tb, const float *vals,
-    int nvals, vx_visit_fn fn, void *ctx, vx_trav_stats *s, int *axp,
-    double *texitp)
+    int nvals, const uint64_t *bits, int64_t li, const int64_t dl[3],
+    vx_visit_fn fn, void *ctx, vx_trav_stats *s, int *axp, double *texitp)
 {
 	const int64_t *off[3] = { g->lay.off[0], g->lay.off[1], g->lay.off[2] };
 	const int *up = r->up;
@@ -698,21 +699,27 @@ leaves(const ray *r, const vx_grid *g, int64_t c[3], const int64_t lim[3],
 		double t0 = tn[0], t1 = tn[1], t2 = tn[2];
 		int in;
 
-		leaf_load(g, on, of, qi, qf, &imn, &imx, &lo, &hi);
 		ax = t1 < t0;
 		texit = ax ? t1 : t0;
 		if (t2 < texit) {
 			ax = 2;
 			texit = t2;
 		}
-		if (ithr)
-			in = imn <= fl && imx >= ce;
+		/* with a mask, a clear bit is this very test's answer: the
+		 * samples are loaded only for a leaf to visit */
+		if (bits != NULL && !(bits[li >> 6] >> (li & 63) & 1))
+			in = 0;
 		else {
-			if (!isf) {
-				lo = (float)imn;
-				hi = (float)imx;
+			leaf_load(g, on, of, qi, qf, &imn, &imx, &lo, &hi);
+			if (ithr)
+				in = imn <= fl && imx >= ce;
+			else {
+				if (!isf) {
+					lo = (float)imn;
+					hi = (float)imx;
+				}
+				in = brackets(lo, hi, vals, nvals);
 			}
-			in = brackets(lo, hi, vals, nvals);
 		}
 		if (in) {
 			for (i = 0; i < 8; i++)
@@ -744,6 +751,7 @@ leaves(const ray *r, const vx_grid *g, int64_t c[3], const int64_t lim[3],
 		on[ax] = of[ax];
 		of[ax] = off[ax][p];
 		tn[ax] = tcross(r, ax, p);
+		li += dl[ax];
 		t = texit;
 		e = ax;
 	}
@@ -754,14 +762,142 @@ leaves(const ray *r, const vx_grid *g, int64_t c[3], const int64_t lim[3],
 	return 0;
 }
 
+/* ---- cell masks ----
+ * A level-1 macrocell's samples are read once each, a row of samples along
+ * x at a time, into two bit masks per value v: below (bit x set when sample
+ * x is finite and <= v) and above (finite and >= v).  A leaf brackets v by
+ * the walk's test (lo <= v <= hi, lo and hi the least and greatest finite
+ * corner) exactly when one of its 8 corners is below and one above: integer
+ * samples are exact in float, and the walk's integer test (min <= floor(v),
+ * max >= ceil(v)) says the same; NaN v brackets nothing either way.  A
+ * leaf row's corners are samples x and x + 1 of four sample rows (two in
+ * each of two planes), so its bits are (B | B >> 1) OR-ed over the four
+ * rows, the same for A, then B & A.  Rows of up to VX_CELLMASK_MAXROW
+ * leaves (one word).
+ *
+ * Blocks are built lazily, by the first walk that enters one: its state
+ * goes 0 (not built) -> 1 (being built, by the thread that won the
+ * compare-and-swap) -> 2 (built, bits published with release order).  A
+ * walk that finds a block being built by another thread tests samples
+ * there instead: the same decisions, so the result never depends on which
+ * thread built what. */
+
+#define MASK_ROWS(T, BELOW, ABOVE)                                       \
+	do {                                                             \
+		const T *dd = (const T *)g->data;                        \
+		for (y = 0; y < ns[1]; y++) {                            \
+			const T *row = dd + g->lay.off[1][lo[1] + y] +   \
+			    g->lay.off[2][lo[2] + z];                    \
+			const int64_t *o = ox + lo[0];                   \
+			uint64_t bb = 0, aa = 0;                         \
+			for (x = 0; x < ns[0]; x++) {                    \
+				T v = row[o[x]];                         \
+				bb |= (uint64_t)(BELOW) << x;            \
+				aa |= (uint64_t)(ABOVE) << x;            \
+			}                                                \
+			pb[cur][y] = bb | bb >> 1;                       \
+			pa[cur][y] = aa | aa >> 1;                       \
+		}                                                        \
+	} while (0)
+
+/* or_bits: OR the low n bits of v into bit array out at bit position p */
+static inline void
+or_bits(uint64_t *out, int64_t p, uint64_t v, int n)
+{
+	int sh = (int)(p & 63);
+
+	v &= n >= 64 ? ~(uint64_t)0 : ((uint64_t)1 << n) - 1;
+	out[p >> 6] |= v << sh;
+	if (sh + n > 64)
+		out[(p >> 6) + 1] |= v >> (64 - sh);
+}
+
+/* mask_block: the bits of level-1 macrocell c (linear index) into out
+ * (zeroed) */
+static void
+mask_block(const vx_macro *m, const vx_grid *g, int64_t c,
+    const float *vals, int nvals, uint64_t *out)
+{
+	uint64_t pb[2][VX_MACRO_MAXSIZE + 1], pa[2][VX_MACRO_MAXSIZE + 1];
+	const int64_t *ox = g->lay.off[0];
+	const int64_t *w = m->width[1];
+	int64_t b[3], lo[3], nl[3], ns[3], x, y, z;
+	int a, j, cur;
+
+	b[0] = c % m->dims[1][0];
+	b[1] = c / m->dims[1][0] % m->dims[1][1];
+	b[2] = c / m->dims[1][0] / m->dims[1][1];
+	for (a = 0; a < 3; a++) {
+		lo[a] = b[a] * w[a];
+		nl[a] = m->dims[0][a] - lo[a] < w[a] ? m->dims[0][a] - lo[a] :
+		    w[a];
+		ns[a] = nl[a] + 1;
+	}
+	for (j = 0; j < nvals; j++) {
+		float val = vals[j];
+		/* integers: v <= val is v <= floor(val), v >= val is
+		 * v >= ceil(val) (val clamped far outside the 16-bit range) */
+		double cv = val < -0x1p40f ? -0x1p40 : val > 0x1p40f ? 0x1p40 :
+		    (double)val;
+		int64_t fl = (int64_t)floor(cv), ce = (int64_t)ceil(cv);
+
+		if (val != val)
+			continue;    /* NaN brackets nothing */
+		for (z = 0; z < ns[2]; z++) {
+			cur = (int)(z & 1);
+			switch (g->type) {
+			case VX_U8: MASK_ROWS(uint8_t, v <= fl, v >= ce); break;
+			case VX_U16: MASK_ROWS(uint16_t, v <= fl, v >= ce); break;
+			case VX_I16: MASK_ROWS(int16_t, v <= fl, v >= ce); break;
+			case VX_F32:
+				MASK_ROWS(float, fabsf(v) <= FLT_MAX && v <= val,
+				    fabsf(v) <= FLT_MAX && v >= val);
+				break;
+			default: return;
+			}
+			if (z == 0)
+				continue;
+			for (y = 0; y < nl[1]; y++) {
+				uint64_t bb = pb[0][y] | pb[0][y + 1] |
+				    pb[1][y] | pb[1][y + 1];
+				uint64_t aa = pa[0][y] | pa[0][y + 1] |
+				    pa[1][y] | pa[1][y + 1];
+
+				or_bits(out, w[0] * (y + w[1] * (z - 1)),
+				    bb & aa, (int)nl[0]);
+			}
+		}
+	}
+}
+
+/* mask_get: the bits of level-1 macrocell b, built now if no one has; NULL
+ * when b has none (it does not bracket) or another thread is building them */
+static const uint64_t *
+mask_get(vx_cellmask *k, const vx_macro *m, const vx_grid *g, int64_t b)
+{
+	unsigned char st, want = 0;
+
+	if (k->slot[b] < 0)
+		return NULL;
+	st = atomic_load_explicit(&k->state[b], memory_order_acquire);
+	if (st == 2)
+		return k->bits + k->slot[b];
+	if (st == 1 || !atomic_compare_exchange_strong_explicit(&k->state[b],
+	    &want, 1, memory_order_acquire, memory_order_acquire))
+		return want == 2 ? k->bits + k->slot[b] : NULL;
+	mask_block(m, g, b, k->vals, k->nvals, k->bits + k->slot[b]);
+	atomic_store_explicit(&k->state[b], 2, memory_order_release);
+	return k->bits + k->slot[b];
+}
+
 /* walk: the traversal behind both public entry points.  top is the level
  * whose DDA starts the walk (0: flat).  n: leaf dims.  g: the volume whose
  * cells are the leaves, or NULL; mm0: stored leaf ranges or NULL. */
 static int
 walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
-    const float *mm0, const double o[3], const double d[3], double tmin,
-    double tmax, const float *vals, int nvals, vx_visit_fn fn, void *ctx,
-    vx_trav_stats *st)
+    const float *mm0, vx_cellmask *mk, const double o[3],
+    const double d[3], double tmin, double tmax, const float *vals,
+    int nvals, vx_visit_fn fn, void *ctx, vx_trav_stats *st)
 {
 	int64_t c[VX_MACRO_MAXLEV + 1][3];     /* current cell per level */
 	int64_t lim[VX_MACRO_MAXLEV + 1][3];   /* first index past its
@@ -843,8 +979,27 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 
 	for (;;) {
 		if (l == 0 && g != NULL) {
+			const uint64_t *bits = NULL;
+			int64_t li = 0, dl[3] = { 0, 0, 0 };
+
+			if (mk != NULL && top >= 1) {
+				/* the parent's bits; leaf index from its corner */
+				const int64_t *w = m->width[1];
+				int64_t b = c[1][0] + m->dims[1][0] * (c[1][1] +
+				    m->dims[1][1] * c[1][2]);
+
+				if ((bits = mask_get(mk, m, g, b)) != NULL) {
+					li = (c[0][0] - c[1][0] * w[0]) + w[0] *
+					    ((c[0][1] - c[1][1] * w[1]) + w[1] *
+					    (c[0][2] - c[1][2] * w[2]));
+					dl[0] = r.s[0];
+					dl[1] = r.s[1] * w[0];
+					dl[2] = r.s[2] * w[0] * w[1];
+				}
+			}
 			if ((rc = leaves(&r, g, c[0], lim[0], tn[0], &t, &e, tb,
-			    vals, nvals, fn, ctx, &s, &ax, &texit)) != 0)
+			    vals, nvals, bits, li, dl, fn, ctx, &s, &ax,
+			    &texit)) != 0)
 				goto done;
 		} else if (l == 0) {
 			float lo, hi;
@@ -965,8 +1120,31 @@ vx_macro_traverse(const vx_macro *m, const vx_grid *g, const double o[3],
 {
 	if (g != NULL && !fits(m, g))
 		return -1;
-	return walk(m, m->nlev, m->dims[0], g, g ? NULL : m->mm[0], o, d,
-	    tmin, tmax, vals, nvals, fn, ctx, st);
+	return walk(m, m->nlev, m->dims[0], g, g ? NULL : m->mm[0], NULL, o,
+	    d, tmin, tmax, vals, nvals, fn, ctx, st);
+}
+
+/* mask_fits: k was built over m for exactly these values */
+static int
+mask_fits(vx_cellmask *k, const vx_macro *m, const float *vals,
+    int nvals)
+{
+	return k != NULL && k->ready && k->m == m && m->nlev >= 1 &&
+	    k->nvals == nvals && memcmp(k->vals, vals,
+	    (size_t)nvals * sizeof *vals) == 0;
+}
+
+int
+vx_macro_traverse_masked(const vx_macro *m, const vx_grid *g,
+    vx_cellmask *k, const double o[3], const double d[3], double tmin,
+    double tmax, const float *vals, int nvals, vx_visit_fn fn, void *ctx,
+    vx_trav_stats *st)
+{
+	if (g == NULL || !fits(m, g))
+		return -1;
+	return walk(m, m->nlev, m->dims[0], g, NULL,
+	    mask_fits(k, m, vals, nvals) ? k : NULL, o, d, tmin, tmax, vals,
+	    nvals, fn, ctx, st);
 }
 
 int
@@ -984,13 +1162,107 @@ vx_macro_traverse_flat(const vx_macro *m, const vx_grid *g,
 			n[a] = g->dims[a] > 1 ? g->dims[a] - 1 : 0;
 		if (n[0] == 0 || n[1] == 0 || n[2] == 0)
 			n[0] = n[1] = n[2] = 0;
-		return walk(NULL, 0, n, g, NULL, o, d, tmin, tmax, vals, nvals,
-		    fn, ctx, st);
+		return walk(NULL, 0, n, g, NULL, NULL, o, d, tmin, tmax, vals,
+		    nvals, fn, ctx, st);
 	}
 	if (g != NULL && !fits(m, g))
 		return -1;
-	return walk(m, 0, m->dims[0], g, g ? NULL : m->mm[0], o, d, tmin,
-	    tmax, vals, nvals, fn, ctx, st);
+	return walk(m, 0, m->dims[0], g, g ? NULL : m->mm[0], NULL, o, d,
+	    tmin, tmax, vals, nvals, fn, ctx, st);
+}
+
+/* ---- cell masks: building ---- */
+
+void
+vx_cellmask_init(vx_cellmask *k)
+{
+	memset(k, 0, sizeof *k);
+}
+
+void
+vx_cellmask_free(vx_cellmask *k)
+{
+	if (k == NULL)
+		return;
+	free(k->slot);
+	free((void *)k->state);
+	free(k->bits);
+	vx_cellmask_init(k);
+}
+
+size_t
+vx_cellmask_bytes(const vx_cellmask *k)
+{
+	if (k == NULL || !k->ready)
+		return 0;
+	return (size_t)k->nblock * (sizeof *k->slot + 1) +
+	    (size_t)(k->nset * k->words) * sizeof *k->bits;
+}
+
+int64_t
+vx_cellmask_built(const vx_cellmask *k)
+{
+	int64_t i, n = 0;
+
+	if (k == NULL || !k->ready)
+		return 0;
+	for (i = 0; i < k->nblock; i++)
+		n += atomic_load_explicit(&k->state[i],
+		    memory_order_relaxed) == 2;
+	return n;
+}
+
+int
+vx_cellmask_build(vx_cellmask *k, const vx_macro *m, const vx_grid *g,
+    const float *vals, int nvals, int lazy, int nthreads, vx_err *e)
+{
+	int64_t nb, i, nset = 0, words;
+	size_t bytes;
+
+	vx_cellmask_init(k);
+	if (m == NULL || g == NULL || m->nlev < 1 || m->explicit_leaves ||
+	    nvals < 1 || nvals > VX_CELLMASK_MAXV || !fits(m, g) ||
+	    g->data == NULL || m->width[1][0] > VX_CELLMASK_MAXROW ||
+	    m->width[1][1] > VX_MACRO_MAXSIZE)
+		return 0;
+	nb = (int64_t)ncells(m, 1);
+	words = (m->width[1][0] * m->width[1][1] * m->width[1][2] + 63) / 64;
+	k->slot = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *k->slot);
+	k->state = calloc((size_t)(nb > 0 ? nb : 1), 1);
+	if (k->slot == NULL || k->state == NULL) {
+		vx_cellmask_free(k);
+		return vx_err_set(e, VX_ENOMEM, "cell mask: out of memory");
+	}
+	for (i = 0; i < nb; i++)
+		k->slot[i] = brackets(m->mm[1][2 * i], m->mm[1][2 * i + 1],
+		    vals, nvals) ? nset++ * words : -1;
+	/* calloc: pages of blocks never entered are never touched */
+	if (vx_mul_size(&bytes, (size_t)(nset > 0 ? nset : 1) *
+	    (size_t)words, sizeof *k->bits) != 0 ||
+	    (k->bits = calloc(1, bytes)) == NULL) {
+		vx_cellmask_free(k);
+		return vx_err_set(e, VX_ENOMEM, "cell mask: out of memory "
+		    "(%lld macrocells)", (long long)nset);
+	}
+	k->m = m;
+	memcpy(k->vals, vals, (size_t)nvals * sizeof *vals);
+	k->nvals = nvals;
+	k->nblock = nb;
+	k->nset = nset;
+	k->words = words;
+	k->ready = 1;
+	if (!lazy) {
+		int nt = threads(nthreads);
+
+		(void)nt;
+#ifdef _OPENMP
+#pragma omp parallel for num_threads(nt) schedule(dynamic, 16)
+#endif
+		for (i = 0; i < nb; i++)
+			if (k->slot[i] >= 0)
+				(void)mask_get(k, m, g, i);
+	}
+	return 0;
 }
 
 /* ---- the MCEL chunk ---- */

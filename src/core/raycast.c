@@ -477,6 +477,24 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 			return rc;
 		snprintf(normal->name, sizeof normal->name, "normal");
 	}
+	/* the cell mask for the isovalues drawn (volumes, hierarchical) */
+	vx_cellmask mask;
+	vx_cellmask_init(&mask);
+	clock_gettime(CLOCK_MONOTONIC, &t0);
+	if (S.mesh == NULL && !S.tr.flat && S.tr.m != NULL &&
+	    !o->no_cellmask) {
+		if ((rc = vx_cellmask_build(&mask, S.tr.m, S.g, S.iso, S.niso,
+		    1, o->nthreads, e)) != 0)
+			return rc;
+		if (mask.ready)
+			S.tr.mask = &mask;
+	}
+	clock_gettime(CLOCK_MONOTONIC, &t1);
+	st->mask_seconds = (double)(t1.tv_sec - t0.tv_sec) +
+	    1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+	st->mask_bytes = vx_cellmask_bytes(&mask);
+	st->mask_blocks = (uint64_t)mask.nblock;
+	st->mask_set = (uint64_t)mask.nset;
 	tile = o->tile > 0 ? o->tile : 16;
 	ntx = (cam->w + tile - 1) / tile;
 	nty = (cam->h + tile - 1) / tile;
@@ -488,14 +506,15 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 #endif
 	rc_local *loc = aligned_alloc(_Alignof(rc_local),
 	    (size_t)nthr * sizeof *loc);
-	if (loc == NULL)
+	if (loc == NULL) {
+		vx_cellmask_free(&mask);
 		return vx_err_set(e, VX_ENOMEM, "raycast: out of memory");
+	}
 	memset(loc, 0, (size_t)nthr * sizeof *loc);
 	for (k = 0; k < nthr; k++) {
 		loc[k].st.timing = o->timing;
 		loc[k].tst.timing = o->timing;
 	}
-	clock_gettime(CLOCK_MONOTONIC, &t0);
 #ifdef _OPENMP
 #pragma omp parallel for num_threads(nthr) schedule(dynamic, 1)
 #endif
@@ -547,6 +566,8 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	for (k = 0; k < nthr; k++)
 		add_local(st, &loc[k], cyc);
 	free(loc);
+	st->mask_built = (uint64_t)vx_cellmask_built(&mask);
+	vx_cellmask_free(&mask);
 	st->seconds = (double)(t1.tv_sec - t0.tv_sec) +
 	    1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
 	if (o->timing && cyc[0] > 0) {

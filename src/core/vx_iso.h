@@ -29,6 +29,9 @@ typedef struct vx_iso_tracer {
 	const vx_macro *m;       /* NULL or flat: walk every cell */
 	int flat;                /* 1: ignore the hierarchy (benchmarks, tests) */
 	int solver;              /* vx_cell_solver */
+	vx_cellmask *mask;       /* NULL, or m's cell mask for the isovalues
+	                            traced (vx_macro.h): the same hits,
+	                            fewer samples read */
 } vx_iso_tracer;
 
 typedef struct vx_iso_hit {

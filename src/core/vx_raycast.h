@@ -35,6 +35,9 @@ typedef struct vx_raycast_opts {
 	                            size, (box volume / tets)^(1/3); default
 	                            1e-3) */
 	int timing;              /* 1: measure the share of time per phase */
+	int no_cellmask;         /* 1: no cell mask (vx_macro.h): the walk
+	                            reads every stepped leaf's samples (same
+	                            picture, for measuring the mask) */
 } vx_raycast_opts;
 
 typedef struct vx_raycast_stats {
@@ -50,7 +53,15 @@ typedef struct vx_raycast_stats {
 	uint64_t nonfinite;              /* cells skipped for NaN/Inf corners */
 	uint64_t shaded;                 /* surface points shaded */
 	uint64_t covered;                /* pixels with a hit */
-	double seconds;                  /* wall time of the render */
+	double seconds;                  /* wall time of the render (the
+	                                    cell mask's build included) */
+	double mask_seconds;             /* wall time to prepare the cell
+	                                    mask (its bits are built lazily,
+	                                    during the render) */
+	uint64_t mask_bytes;             /* its memory, 0: none */
+	uint64_t mask_blocks, mask_set, mask_built;   /* level-1 macrocells,
+	                                    those bracketing (masked), and
+	                                    those whose bits rays needed */
 	double share_traverse, share_isect, share_shade;   /* when timing */
 } vx_raycast_stats;
 

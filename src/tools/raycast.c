@@ -22,13 +22,13 @@ static const char usage[] =
     "        [--ortho] [--fov DEG] [--light SPEC] [--lights none]\n"
     "        [--effects WORDS] [--background R,G,B] [--set LINE]\n"
     "        [--name NAME] [--solver exact|neubauer|linear] [--flat]\n"
-    "        [--aa N] [-j N] [--stats] [--explain] [-n]\n"
+    "        [--no-cellmask] [--aa N] [-j N] [--stats] [--explain] [-n]\n"
     "        [--hdr] [--bits 8|16] [--exposure STOPS] [--depth FILE.pfm]\n"
     "        [--normals FILE.pfm] [-o OUT] [STREAM|-]";
 
 typedef struct opts {
 	const char *in, *out, *scene, *name, *depth, *normals;
-	int hdr, bits, stats, explain, dry, flat, aa, solver;
+	int hdr, bits, stats, explain, dry, flat, aa, solver, nomask;
 	long threads;
 	double exposure;
 	int ortho;
@@ -51,7 +51,8 @@ parse(opts *o, int argc, char **argv)
 {
 	enum { O_SCENE = 256, O_ISO, O_SIZE, O_VIEW, O_ORTHO, O_FOV, O_LIGHT,
 	    O_LIGHTS, O_EFFECTS, O_BG, O_SET, O_NAME, O_SOLVER, O_FLAT, O_AA,
-	    O_STATS, O_EXPLAIN, O_HDR, O_BITS, O_EXPOSURE, O_DEPTH, O_NORMALS };
+	    O_STATS, O_EXPLAIN, O_HDR, O_BITS, O_EXPOSURE, O_DEPTH, O_NORMALS,
+	    O_NOMASK };
 	static const struct option lo[] = {
 		{ "scene", 1, 0, O_SCENE }, { "iso", 1, 0, O_ISO },
 		{ "size", 1, 0, O_SIZE }, { "view", 1, 0, O_VIEW },
@@ -60,6 +61,7 @@ parse(opts *o, int argc, char **argv)
 		{ "effects", 1, 0, O_EFFECTS }, { "background", 1, 0, O_BG },
 		{ "set", 1, 0, O_SET }, { "name", 1, 0, O_NAME },
 		{ "solver", 1, 0, O_SOLVER }, { "flat", 0, 0, O_FLAT },
+		{ "no-cellmask", 0, 0, O_NOMASK },
 		{ "aa", 1, 0, O_AA }, { "stats", 0, 0, O_STATS },
 		{ "explain", 0, 0, O_EXPLAIN }, { "dry-run", 0, 0, 'n' },
 		{ "hdr", 0, 0, O_HDR }, { "bits", 1, 0, O_BITS },
@@ -102,6 +104,7 @@ parse(opts *o, int argc, char **argv)
 				    optarg);
 			break;
 		case O_FLAT: o->flat = 1; break;
+		case O_NOMASK: o->nomask = 1; break;
 		case O_AA: o->aa = (int)tool_parse_long("--aa", optarg, 1, 16); break;
 		case O_STATS: o->stats = 1; break;
 		case O_EXPLAIN: o->explain = 1; break;
@@ -167,6 +170,13 @@ print_stats(const vx_raycast_stats *st, const vx_macro *m, int w, int h,
 		    (double)st->cells / rays, (unsigned long long)st->roots,
 		    (unsigned long long)st->hits, (unsigned long long)st->shaded,
 		    (unsigned long long)st->nonfinite);
+	if (!st->mesh && st->mask_bytes > 0)
+		fprintf(stderr, "raycast: cell mask: %llu of %llu level-1 "
+		    "macrocells bracket, %llu of them entered and masked; "
+		    "%.1f KiB\n", (unsigned long long)st->mask_set,
+		    (unsigned long long)st->mask_blocks,
+		    (unsigned long long)st->mask_built,
+		    (double)st->mask_bytes / 1024);
 	if (m != NULL) {
 		fprintf(stderr, "raycast: macrocells examined:");
 		for (l = m->nlev; l >= 1; l--)
@@ -258,7 +268,11 @@ main(int argc, char **argv)
 			    o.aa > 1 ? "s" : "", plan.rays_per_pixel *
 			    s.camera.w * s.camera.h * o.aa * o.aa,
 			    vx_cell_solver_name(o.solver), o.flat ? "flat" :
-			    "hierarchical", nthr, nthr == 1 ? "" : "s");
+			    o.nomask ? "hierarchical (no cell mask)" :
+			    "hierarchical with a cell mask (a bit per cell "
+			    "of the macrocells bracketing the isovalues, "
+			    "built before the rays)", nthr,
+			    nthr == 1 ? "" : "s");
 		free(buf);
 	}
 	if (plan.nsurface_on == 0)
@@ -341,6 +355,7 @@ main(int argc, char **argv)
 	ro.flat = o.flat;
 	ro.aa = o.aa;
 	ro.timing = o.stats;
+	ro.no_cellmask = o.nomask;
 	vx_image_init(&color);
 	vx_image_init(&depth);
 	vx_image_init(&normal);

@@ -41,6 +41,20 @@ if [ -x "$VX_BIN/brick" ] && [ -x "$VX_BIN/macrocell" ]; then
 	raycast --iso 0.3,0.6 --set "surface iso 0.6 opacity 0.4" --size 80x60 --view 30,20 \
 	    --light "directional direction 1 1 -1" -j 2 "$T/sphb.vx" > "$T/c.png"
 	check_eq "bricked + stored macrocells = linear, pixel for pixel" "$(px pngsame "$T/a.png" "$T/c.png")" same
+	# the cell mask changes nothing (oracle: the same render without it,
+	# and the flat one above); --stats says how much of it rays used
+	raycast --iso 0.3,0.6 --set "surface iso 0.6 opacity 0.4" --size 80x60 --view 30,20 \
+	    --light "directional direction 1 1 -1" -j 2 --no-cellmask --depth "$T/dn.pfm" \
+	    "$T/sphb.vx" > "$T/d.png"
+	raycast --iso 0.3,0.6 --set "surface iso 0.6 opacity 0.4" --size 80x60 --view 30,20 \
+	    --light "directional direction 1 1 -1" -j 2 --depth "$T/dm.pfm" --stats \
+	    "$T/sphb.vx" > "$T/e.png" 2> "$T/e.err"
+	check_eq "--no-cellmask: the same picture" "$(px pngsame "$T/d.png" "$T/e.png")" same
+	check "cell mask: the same depths" cmp -s "$T/dn.pfm" "$T/dm.pfm"
+	check_eq "cell mask: the same picture as the flat walk" "$(px pngsame "$T/a.png" "$T/e.png")" same
+	check "--stats reports the cell mask" grep -q "^raycast: cell mask: [1-9][0-9]* of [0-9]* level-1 macrocells bracket, [1-9][0-9]* of them entered" "$T/e.err"
+	check "--explain names the cell mask" sh -c "raycast --iso 0.5 -n '$T/sphb.vx' 2>&1 | grep -q 'with a cell mask'"
+	check "--no-cellmask --explain says it is off" sh -c "raycast --iso 0.5 -n --no-cellmask '$T/sphb.vx' 2>&1 | grep -q 'no cell mask'"
 else
 	skip "bricked = linear" "brick or macrocell not built"
 fi

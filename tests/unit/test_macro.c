@@ -737,6 +737,234 @@ hierarchy_equals_filtered_flat(void **state)
 	assert_true(culled > rays / 3);
 }
 
+/* ---- cell masks ---- */
+
+/* Every bit of a cell mask against the brute-force bracket test of its leaf
+ * (oracle: the leaf's corner range from vx_grid_get, as in
+ * hierarchy_equals_filtered_flat); bits only in bracketing level-1
+ * macrocells; lazy bits (built by walks) equal eager ones.  Hard cases:
+ * integer isovalues equal to samples, NaN and Inf samples, a NaN isovalue,
+ * isovalues beyond the type's range, rows of up to 63 leaves (bits that
+ * straddle 64-bit words), partial macrocells at the grid's far faces. */
+static void
+cellmask_bits_brute_force(void **state)
+{
+	static const vx_type types[] = { VX_U8, VX_I16, VX_U16, VX_F32 };
+	uint64_t s = 7;
+
+	(void)state;
+	for (int k = 0; k < 48; k++) {
+		int64_t dims[3];
+		int sz[2][3];
+		float vals[4];
+		int nv = 1 + irand(&s, 3);
+		vx_grid g;
+		vx_macro m;
+		vx_cellmask em, lm;
+		vx_err e = { 0, "" };
+
+		for (int a = 0; a < 3; a++) {
+			dims[a] = 2 + irand(&s, a == 0 ? 80 : 12);
+			sz[0][a] = 1 + irand(&s, a == 0 ? 63 : 6);
+			sz[1][a] = 1 + irand(&s, 3);
+		}
+		rand_grid(&g, dims, types[k % 4], k % 8 < 4 ? NULL :
+		    "bricked 4x2x2 2x2x2", hash64(100 + k), types[k % 4] ==
+		    VX_F32);
+		assert_int_equal(vx_macro_build(&m, &g, 1 + irand(&s, 2), sz, 2,
+		    &e), 0);
+		for (int q = 0; q < nv; q++)
+			vals[q] = irand(&s, 2) ? (float)irand(&s, 200) :
+			    (float)(urand(&s) * 220 - 10);
+		if (k % 11 == 5)
+			vals[nv - 1] = NAN;
+		if (k % 13 == 6)
+			vals[0] = k % 2 ? 1e30f : -1e30f;
+		assert_int_equal(vx_cellmask_build(&em, &m, &g, vals, nv, 0, 2,
+		    &e), 0);
+		assert_int_equal(vx_cellmask_build(&lm, &m, &g, vals, nv, 1, 1,
+		    &e), 0);
+		assert_true(em.ready && lm.ready);
+		assert_int_equal(vx_cellmask_built(&lm), 0);
+		int64_t nb[3] = { m.dims[1][0], m.dims[1][1], m.dims[1][2] };
+		int64_t w[3] = { m.width[1][0], m.width[1][1], m.width[1][2] };
+		int64_t set = 0;
+		for (int64_t b = 0; b < nb[0] * nb[1] * nb[2]; b++) {
+			int64_t bx = b % nb[0], by = b / nb[0] % nb[1];
+			int64_t bz = b / nb[0] / nb[1];
+			float blo = m.mm[1][2 * b], bhi = m.mm[1][2 * b + 1];
+			int br = 0;
+
+			for (int q = 0; q < nv; q++)
+				br |= blo <= vals[q] && vals[q] <= bhi;
+			assert_int_equal(em.slot[b] >= 0, br);
+			if (!br)
+				continue;
+			set++;
+			for (int64_t z = 0; z < w[2]; z++)
+				for (int64_t y = 0; y < w[1]; y++)
+					for (int64_t x = 0; x < w[0]; x++) {
+						int64_t X = bx * w[0] + x;
+						int64_t Y = by * w[1] + y;
+						int64_t Z = bz * w[2] + z;
+						int64_t i = x + w[0] * (y + w[1] * z);
+						int bit = (int)(em.bits[em.slot[b] +
+						    (i >> 6)] >> (i & 63) & 1);
+						int want = 0;
+						float lo, hi;
+
+						if (X < m.dims[0][0] && Y <
+						    m.dims[0][1] && Z < m.dims[0][2]) {
+							leaf_range(&g, X, Y, Z, &lo,
+							    &hi);
+							for (int q = 0; q < nv; q++)
+								want |= lo <= vals[q] &&
+								    vals[q] <= hi;
+						}
+						assert_int_equal(bit, want);
+					}
+		}
+		assert_int_equal(em.nset, set);
+		/* walks build the lazy mask's blocks as they enter them */
+		for (int j = 0; j < 60; j++) {
+			double o[3], d[3];
+			rec r;
+
+			for (int a = 0; a < 3; a++) {
+				o[a] = rand_coord(&s, dims[a] - 1);
+				d[a] = rand_dir(&s);
+			}
+			rec_init(&r, m.dims[0]);
+			assert_int_equal(vx_macro_traverse_masked(&m, &g, &lm, o,
+			    d, 0, INFINITY, vals, nv, collect, &r, NULL), 0);
+			free(r.v);
+		}
+		for (int64_t b = 0; b < nb[0] * nb[1] * nb[2]; b++)
+			if (lm.slot[b] >= 0 && lm.state[b] == 2)
+				assert_memory_equal(lm.bits + lm.slot[b],
+				    em.bits + em.slot[b],
+				    (size_t)em.words * sizeof *em.bits);
+		vx_cellmask_free(&em);
+		vx_cellmask_free(&lm);
+		vx_macro_free(&m);
+		vx_grid_free(&g);
+	}
+}
+
+/* The masked walk makes the plain walk's visits, bit for bit (oracle: the
+ * plain hierarchical walk, itself checked against the filtered flat walk
+ * above), over random grids of every type, layouts, hierarchies, values
+ * and rays (through macrocell edges and corners too), with lazy and eager
+ * masks, 2 threads walking one lazy mask at once; and a mask that does not
+ * apply (level-1 rows over VX_CELLMASK_MAXROW, no levels, other values)
+ * leaves the walk plain. */
+static void
+cellmask_equals_plain_walk(void **state)
+{
+	static const vx_type types[] = { VX_U8, VX_I16, VX_F32 };
+	uint64_t s = 1234;
+	int64_t masked = 0;
+
+	(void)state;
+	for (int k = 0; k < 36; k++) {
+		int64_t dims[3];
+		int sz[3][3], nlev = k % 6 == 0 ? 0 : 1 + irand(&s, 3);
+		float vals[3];
+		int nv = 1 + irand(&s, 3);
+		vx_grid g, gb;
+		vx_macro m;
+		vx_cellmask em, lm;
+		vx_err e = { 0, "" };
+
+		for (int a = 0; a < 3; a++)
+			dims[a] = 2 + irand(&s, 30);
+		for (int l = 0; l < 3; l++)
+			for (int a = 0; a < 3; a++)
+				sz[l][a] = 1 + irand(&s, 6);
+		if (k % 9 == 4)
+			sz[0][0] = 64;   /* rows too long: no mask */
+		rand_grid(&g, dims, types[k % 3], NULL, hash64(500 + k),
+		    types[k % 3] == VX_F32);
+		assert_int_equal(vx_grid_relayout(&gb, &g, "bricked 2x4x2 2x2x2",
+		    &e), 0);
+		assert_int_equal(vx_macro_build(&m, &g, nlev, sz, 2, &e), 0);
+		for (int q = 0; q < nv; q++)
+			vals[q] = irand(&s, 3) ? (float)irand(&s, 200) :
+			    (float)(urand(&s) * 220 - 10);
+		assert_int_equal(vx_cellmask_build(&em, &m, &g, vals, nv, 0, 1,
+		    &e), 0);
+		assert_int_equal(vx_cellmask_build(&lm, &m, &gb, vals, nv, 1, 1,
+		    &e), 0);
+		assert_int_equal(em.ready, nlev >= 1 && sz[0][0] <= 63);
+#ifdef _OPENMP
+#pragma omp parallel for num_threads(2) schedule(dynamic, 1)
+#endif
+		for (int j = 0; j < 80; j++) {
+			uint64_t r = hash64(((uint64_t)k << 20) + (uint64_t)j);
+			double o[3], d[3];
+			rec h, hm, hl, hx;
+			vx_trav_stats a, b;
+			float other = vals[0] + 1;
+			int ok = 1;
+
+			for (int x = 0; x < 3; x++) {
+				o[x] = rand_coord(&r, dims[x] - 1);
+				d[x] = rand_dir(&r);
+			}
+			if (j % 2 && nlev >= 1)
+				for (int x = 0; x < 3; x++) {
+					o[x] = (double)(sz[0][x] * irand(&r, 4));
+					d[x] = irand(&r, 4) ? (irand(&r, 2) ? 1 :
+					    -1) * (double)sz[0][x] : 0;
+				}
+			rec_init(&h, m.dims[0]);
+			rec_init(&hm, m.dims[0]);
+			rec_init(&hl, m.dims[0]);
+			rec_init(&hx, m.dims[0]);
+			memset(&a, 0, sizeof a);
+			memset(&b, 0, sizeof b);
+			ok &= vx_macro_traverse(&m, &g, o, d, 0, INFINITY, vals,
+			    nv, collect, &h, &a) == 0;
+			ok &= vx_macro_traverse_masked(&m, &g, &em, o, d, 0,
+			    INFINITY, vals, nv, collect, &hm, &b) == 0;
+			ok &= vx_macro_traverse_masked(&m, &gb, &lm, o, d, 0,
+			    INFINITY, vals, nv, collect, &hl, NULL) == 0;
+			/* other values than the mask's: the plain walk */
+			ok &= vx_macro_traverse_masked(&m, &g, &em, o, d, 0,
+			    INFINITY, &other, 1, collect, &hx, NULL) == 0;
+			ok &= hm.n == h.n && hl.n == h.n;
+			ok &= a.leaves == b.leaves && a.culled == b.culled;
+			for (int l = 0; l <= VX_MACRO_MAXLEV; l++)
+				ok &= a.macro[l] == b.macro[l];
+			for (int i = 0; ok && i < h.n; i++)
+				ok &= same_visit(&hm.v[i], &h.v[i]) &&
+				    same_visit(&hl.v[i], &h.v[i]) &&
+				    memcmp(hm.v[i].c, h.v[i].c,
+				    sizeof h.v[i].c) == 0 &&
+				    memcmp(hl.v[i].c, h.v[i].c,
+				    sizeof h.v[i].c) == 0;
+			hx.n = 0;
+			ok &= vx_macro_traverse(&m, &g, o, d, 0, INFINITY,
+			    &other, 1, collect, &hx, NULL) == 0;
+			if (!ok)
+				fprintf(stderr, "# grid %d ray %d: masked walk "
+				    "differs\n", k, j);
+			assert_true(ok);
+			free(h.v);
+			free(hm.v);
+			free(hl.v);
+			free(hx.v);
+		}
+		masked += vx_cellmask_built(&lm);
+		vx_cellmask_free(&em);
+		vx_cellmask_free(&lm);
+		vx_macro_free(&m);
+		vx_grid_free(&g);
+		vx_grid_free(&gb);
+	}
+	assert_true(masked > 100);   /* the walks did use lazy bits */
+}
+
 /* The visitor's nonzero value stops the walk and is returned. */
 static int
 stop_at_third(void *ctx, const vx_leaf_visit *v)
@@ -1081,6 +1309,8 @@ main(void)
 		cmocka_unit_test(build_matches_brute_force),
 		cmocka_unit_test(nonfinite_policy),
 		cmocka_unit_test(hierarchy_equals_filtered_flat),
+		cmocka_unit_test(cellmask_bits_brute_force),
+		cmocka_unit_test(cellmask_equals_plain_walk),
 		cmocka_unit_test(visitor_stops),
 		cmocka_unit_test(explicit_leaves),
 		cmocka_unit_test(default_sizes_overhead),
