@@ -129,31 +129,16 @@ vx_cell_face_value(const float c[8], int axis, int side, double u, double v)
 {
 	/* in-face axes: the other two, in increasing order */
 	static const int ua[3] = { 1, 0, 0 }, va[3] = { 2, 2, 1 };
-	int base, bu, bv;
-	double c00, c10, c01, c11, lo, hi, r;
+	int base;
 
 	if (axis < 0 || axis > 2)
 		return NAN;
 	base = (side ? 1 : 0) << axis;
-	bu = 1 << ua[axis];
-	bv = 1 << va[axis];
-	c00 = c[base];
-	c10 = c[base | bu];
-	c01 = c[base | bv];
-	c11 = c[base | bu | bv];
-	/* clamps written so that NaN passes through */
-	u = u < 0 ? 0 : u > 1 ? 1 : u;
-	v = v < 0 ? 0 : v > 1 ? 1 : v;
-	if (!isfinite(c00 + c10 + c01 + c11))   /* Inf - Inf is NaN too */
+	/* Inf - Inf is NaN too */
+	if (!isfinite((double)c[base] + c[base | 1 << ua[axis]] +
+	    c[base | 1 << va[axis]] + c[base | 1 << ua[axis] | 1 << va[axis]]))
 		return NAN;
-	r = lerp(lerp(c00, c10, u), lerp(c01, c11, u), v);
-	lo = c00 < c10 ? c00 : c10;
-	hi = c00 < c10 ? c10 : c00;
-	lo = c01 < lo ? c01 : lo;
-	hi = c01 > hi ? c01 : hi;
-	lo = c11 < lo ? c11 : lo;
-	hi = c11 > hi ? c11 : hi;
-	return r < lo ? lo : r > hi ? hi : r;   /* NaN u or v stays NaN */
+	return vx_cell_face_value_fin(c, axis, side ? 1 : 0, u, v);
 }
 
 /* Critical points of the cubic strictly inside (t0, t1), ascending: the
@@ -214,21 +199,18 @@ crit_points(const double k[4], double t0, double t1, double r[2], int ext[2])
 
 /* Normalize k (and f0, f1) by a power of two when their magnitude could
  * overflow or underflow the squares taken below.  Exact, so it changes no
- * result that was computable without it. */
-static void
+ * result that was computable without it.  k is finite (both callers check):
+ * then "no |k_i| >= 2^400 and not all <= 2^-400" is the fast path below. */
+static inline void
 normalize(double k[4], double *f0, double *f1)
 {
-	int e, i, big = 0, small = 1;
+	double m0 = fabs(k[0]), m1 = fabs(k[1]), m2 = fabs(k[2]), m3 = fabs(k[3]);
+	double m = m0 > m1 ? m0 : m1;
+	int e, i;
 
-	for (i = 0; i < 4; i++) {
-		double x = fabs(k[i]);
-		big |= x >= 0x1p400;
-		small &= x <= 0x1p-400;
-	}
-	if (!big && !small)
-		return;
-	double m = fmax(fmax(fabs(k[0]), fabs(k[1])), fmax(fabs(k[2]), fabs(k[3])));
-	if (m == 0)
+	m = m2 > m ? m2 : m;
+	m = m3 > m ? m3 : m;
+	if ((m < 0x1p400 && m > 0x1p-400) || m == 0)
 		return;
 	e = ilogb(m);
 	for (i = 0; i < 4; i++)
@@ -537,10 +519,13 @@ vx_cell_normal(const float c[8], const double p[3], const double d[3],
 	int i;
 
 	for (i = 1; i < 8; i++) {
-		lo = fmin(lo, c[i]);
-		hi = fmax(hi, c[i]);
+		double x = c[i];
+
+		/* fmin/fmax without the calls: a NaN is skipped unless all are */
+		lo = x < lo || lo != lo ? x : lo;
+		hi = x > hi || hi != hi ? x : hi;
 	}
-	thresh = 0x1p-40 * (hi - lo);   /* fmin/fmax skip NaN; unit() checks */
+	thresh = 0x1p-40 * (hi - lo);   /* NaN skipped; unit() checks */
 	if (isfinite(thresh)) {
 		vx_cell_gradient(c, p, g);
 		if (unit(g, 1, thresh, g)) {

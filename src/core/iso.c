@@ -49,7 +49,7 @@ face_field(const vx_leaf_visit *v, const double *o, const double *d,
 	double u = (o[b] + t * d[b]) - (double)v->i[b];
 	double w = (o[c] + t * d[c]) - (double)v->i[c];
 
-	return vx_cell_face_value(v->c, axis, side, u, w);
+	return vx_cell_face_value_fin(v->c, axis, side, u, w);   /* finite8 */
 }
 
 static double

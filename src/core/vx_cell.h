@@ -107,6 +107,33 @@ double vx_cell_poly_eval(const double k[4], double t);
 double vx_cell_face_value(const float c[8], int axis, int side, double u,
     double v);
 
+/* vx_cell_face_value_fin: vx_cell_face_value inlined for renderers' inner
+ * loops, for axis 0..2, side 0 or 1 and a face whose four corners are
+ * finite (e.g. vx_cell_finite(c)); vx_cell_face_value is this after its
+ * checks, so the two give the same bits. */
+static inline double
+vx_cell_face_value_fin(const float c[8], int axis, int side, double u,
+    double v)
+{
+	int base = side << axis, bu = axis == 0 ? 2 : 1, bv = axis == 2 ? 2 : 4;
+	double c00 = c[base], c10 = c[base | bu], c01 = c[base | bv];
+	double c11 = c[base | bu | bv], e0, e1, r, lo, hi;
+
+	/* clamps written so that NaN passes through */
+	u = u < 0 ? 0 : u > 1 ? 1 : u;
+	v = v < 0 ? 0 : v > 1 ? 1 : v;
+	e0 = c00 + (c10 - c00) * u;
+	e1 = c01 + (c11 - c01) * u;
+	r = e0 + (e1 - e0) * v;
+	lo = c00 < c10 ? c00 : c10;
+	hi = c00 < c10 ? c10 : c00;
+	lo = c01 < lo ? c01 : lo;
+	hi = c01 > hi ? c01 : hi;
+	lo = c11 < lo ? c11 : lo;
+	hi = c11 > hi ? c11 : hi;
+	return r < lo ? lo : r > hi ? hi : r;   /* NaN u or v stays NaN */
+}
+
 /* vx_cell_first_root: the first t in [t0, t1] where f (coefficients k)
  * changes sign or touches zero.  f0 and f1 are the caller's values at t0 and
  * t1 (face values minus iso, so neighbouring cells agree on the sign at
