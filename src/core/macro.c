@@ -507,7 +507,7 @@ static inline int64_t
 find_cell(const ray *r, int l, int a, int64_t k0, int64_t k1, double t,
     int post)
 {
-	double q = (r->o[a] + t * r->d[a]) * r->iw[l][a], tc;
+	double td = t * r->d[a], x = r->o[a] + td, q = x * r->iw[l][a], tc;
 	int64_t k;
 
 	/* the guess, clamped into [k0, k1 - 1] (NaN goes to k0) */
@@ -517,6 +517,24 @@ find_cell(const ray *r, int l, int a, int64_t k0, int64_t k1, double t,
 		k = k1 - 1;
 	else
 		k = (int64_t)q;
+	/* Most guesses are far inside their cell: if x lies inside the
+	 * guess's slab by more than mg, the tests below keep k, whatever the
+	 * rounding.  Proof: a plane p's crossing time T = (p - o) / d is
+	 * computed with an error under 4 ulp(|p| + |o|) / |d|, x = o + t d
+	 * under 3 ulp(|o| + |t d|), while |x - p| > mg = 2^-40 (|o| + |t d|
+	 * + |hi|) puts T at least (mg - that) / |d| from t, 2^11 times more:
+	 * the computed crossing is on the same side of t as the true one,
+	 * and never equal to it (so post does not matter).  Rays whose
+	 * crossing times are divided (d near under- or overflow) and
+	 * non-finite x take the tests. */
+	if (!r->div[a]) {
+		double lo = (double)plane_lo(r, l, a, k);
+		double hi = (double)plane_hi(r, l, a, k);
+		double mg = 0x1p-40 * (fabs(r->o[a]) + fabs(td) + hi);
+
+		if ((k == k0 || x - lo > mg) && (k == k1 - 1 || hi - x > mg))
+			return k;
+	}
 #define ENTERED(p) (tc = tcross(r, a, (p)), post ? tc <= t : tc < t)
 	if (r->s[a] > 0) {
 		/* entered(k): k's entry face, its lower plane, crossed by t */
