@@ -111,7 +111,7 @@ sphere_no_holes(void **state)
 	int nlev = vx_macro_default_sizes(VX_F32, 2, sizes);
 	assert_int_equal(vx_macro_build(&m, &g, nlev, (const int (*)[3])sizes,
 	    1, &e), 0);
-	vx_iso_tracer tr = { &g, &m, 0, VX_CELL_EXACT };
+	vx_iso_tracer tr = { &g, &m, 0, VX_CELL_EXACT, NULL };
 	for (int k = 0; k < 4000; k++) {
 		double o[3], d[3], q[3], len = 0;
 		collect col;
@@ -184,7 +184,7 @@ sphere_face_crossings(void **state)
 
 	(void)state;
 	make_sphere(&g, n, NULL);
-	vx_iso_tracer tr = { &g, NULL, 1, VX_CELL_EXACT };
+	vx_iso_tracer tr = { &g, NULL, 1, VX_CELL_EXACT, NULL };
 	for (int k = 0; k < 6000; k++) {
 		int64_t j = 2 + (int64_t)(15 * hash01(21, k));
 		int64_t l = 2 + (int64_t)(15 * hash01(22, k));
@@ -252,9 +252,9 @@ same_hits(const collect *a, const collect *b)
 	return 1;
 }
 
-/* Hierarchical = flat = bricked, bit for bit, on random volumes with
- * several isovalues (oracle: the flat walk over a linear layout, which
- * involves no hierarchy and no bricking). */
+/* Hierarchical = flat = bricked = with a cell mask, bit for bit, on random
+ * volumes with several isovalues (oracle: the flat walk over a linear
+ * layout, which involves no hierarchy, no bricking and no mask). */
 static void
 hierarchy_flat_bricked_identical(void **state)
 {
@@ -272,13 +272,20 @@ hierarchy_flat_bricked_identical(void **state)
 		    (const int (*)[3])sizes, 1, &e), 0);
 		assert_int_equal(vx_macro_build(&mb, &b, 2,
 		    (const int (*)[3])sizes, 2, &e), 0);
-		vx_iso_tracer th = { &g, &m, 0, VX_CELL_EXACT };
-		vx_iso_tracer tf = { &g, &m, 1, VX_CELL_EXACT };
-		vx_iso_tracer tb = { &b, &mb, 0, VX_CELL_EXACT };
+		vx_iso_tracer th = { &g, &m, 0, VX_CELL_EXACT, NULL };
+		vx_iso_tracer tf = { &g, &m, 1, VX_CELL_EXACT, NULL };
+		vx_iso_tracer tb = { &b, &mb, 0, VX_CELL_EXACT, NULL };
 		float iso[3] = { 0.2f, 0.5f, 0.93f };
+		/* cell masks (lazy, bricked) for the three isovalue lists */
+		vx_cellmask mk[3];
+		for (int q = 0; q < 3; q++) {
+			assert_int_equal(vx_cellmask_build(&mk[q], &mb, &b, iso,
+			    q + 1, 1, 1, &e), 0);
+			assert_true(mk[q].ready);
+		}
 		for (int k = 0; k < 500; k++) {
 			double o[3], d[3];
-			collect ch, cf, cb;
+			collect ch, cf, cb, cm;
 
 			for (int a = 0; a < 3; a++) {
 				o[a] = -5 + 25 * hash01(seed * 100 + 1, 3 * k + a);
@@ -290,10 +297,19 @@ hierarchy_flat_bricked_identical(void **state)
 			trace_all(&th, o, d, iso, ni, &ch);
 			trace_all(&tf, o, d, iso, ni, &cf);
 			trace_all(&tb, o, d, iso, ni, &cb);
-			if (!same_hits(&ch, &cf) || !same_hits(&ch, &cb))
+			vx_iso_tracer tm = tb;
+			tm.mask = &mk[ni - 1];
+			trace_all(&tm, o, d, iso, ni, &cm);
+			if (!same_hits(&ch, &cf) || !same_hits(&ch, &cb) ||
+			    !same_hits(&ch, &cm))
 				fail_msg("seed %llu ray %d: %d hierarchical, %d flat, "
-				    "%d bricked hits", (unsigned long long)seed, k,
-				    ch.n, cf.n, cb.n);
+				    "%d bricked, %d masked hits",
+				    (unsigned long long)seed, k, ch.n, cf.n, cb.n,
+				    cm.n);
+		}
+		for (int q = 0; q < 3; q++) {
+			assert_true(vx_cellmask_built(&mk[q]) > 0);
+			vx_cellmask_free(&mk[q]);
 		}
 		vx_macro_free(&m);
 		vx_macro_free(&mb);
@@ -319,7 +335,7 @@ double_root_volume(void **state)
 	assert_int_equal(vx_grid_alloc(&g, dims, VX_F32, NULL, &e), 0);
 	vx_grid_set(&g, 1, 1, 1, 27);
 	vx_grid_range(&g);
-	vx_iso_tracer tr = { &g, NULL, 1, VX_CELL_EXACT };
+	vx_iso_tracer tr = { &g, NULL, 1, VX_CELL_EXACT, NULL };
 	float iso4 = 4, iso1 = 1, iso5 = 5;
 	trace_all(&tr, o, d, &iso4, 1, &c);
 	assert_int_equal(c.n, 1);
@@ -350,7 +366,7 @@ nonfinite_voxels(void **state)
 	vx_grid_set(&g, 9, 3, 9, -INFINITY);
 	vx_grid_range(&g);
 	assert_true(isfinite(g.vmin) && isfinite(g.vmax));
-	vx_iso_tracer tr = { &g, NULL, 1, VX_CELL_EXACT };
+	vx_iso_tracer tr = { &g, NULL, 1, VX_CELL_EXACT, NULL };
 	for (int k = 0; k < 400; k++) {
 		double o[3] = { -10, 0, 0 }, d[3] = { 1, 0, 0 };
 		collect c;
@@ -386,8 +402,8 @@ scale_invariance(void **state)
 				for (int x = 0; x < 9; x++)
 					vx_grid_set(&s, x, y, z, vx_grid_get(&g, x, y, z) * f);
 		vx_grid_range(&s);
-		vx_iso_tracer t1 = { &g, NULL, 1, VX_CELL_EXACT };
-		vx_iso_tracer t2 = { &s, NULL, 1, VX_CELL_EXACT };
+		vx_iso_tracer t1 = { &g, NULL, 1, VX_CELL_EXACT, NULL };
+		vx_iso_tracer t2 = { &s, NULL, 1, VX_CELL_EXACT, NULL };
 		float i1 = 0.5f, i2 = (float)(0.5 * f);
 		for (int k = 0; k < 200; k++) {
 			double o[3], d[3];
