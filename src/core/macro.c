@@ -780,6 +780,77 @@ leaves(const ray *r, const vx_grid *g, int64_t c[3], const int64_t lim[3],
 	return 0;
 }
 
+/* ray_start: the ray's set-up for a walk from level top over n leaves:
+ * r filled in, the segment [*ta, *tb] clipped to the grid, the start leaf
+ * (the one the ray is in just after *ta) and its entry axis *e (-1: *ta is
+ * on no face of it).  Returns 0 when nothing is to be walked (the ray
+ * misses, is not finite, or the root range brackets none of the values). */
+static int
+ray_start(ray *r, const vx_macro *m, int top, const int64_t n[3],
+    const double o[3], const double d[3], const float *vals, int nvals,
+    double *tap, double *tbp, int64_t leaf[3], int *e)
+{
+	double ta = *tap, tb = *tbp;
+	int a, l;
+
+	if (n[0] <= 0 || n[1] <= 0 || n[2] <= 0 || !(ta <= tb))
+		return 0;
+	for (a = 0; a < 3; a++) {
+		double ad = fabs(d[a]);
+
+		if (!isfinite(o[a]) || !isfinite(d[a]))
+			return 0;
+		r->o[a] = o[a];
+		r->d[a] = d[a];
+		r->s[a] = d[a] > 0 ? 1 : d[a] < 0 ? -1 : 0;
+		r->up[a] = r->s[a] >= 0;
+		r->div[a] = !(ad >= 0x1p-1000 && ad <= 0x1p1000);
+		r->inv[a] = r->s[a] ? 1.0 / d[a] : 0.0;
+		r->fixed[a] = 0;
+		r->n[a] = n[a];
+		if (r->s[a] == 0) {
+			if (!(o[a] >= 0 && o[a] <= (double)n[a]))
+				return 0;
+			r->fixed[a] = (int64_t)floor(o[a]);
+			if (r->fixed[a] > n[a] - 1)
+				r->fixed[a] = n[a] - 1;
+		} else {
+			double t0 = tcross(r, a, r->s[a] > 0 ? 0 : n[a]);
+			double t1 = tcross(r, a, r->s[a] > 0 ? n[a] : 0);
+
+			if (t0 > ta)
+				ta = t0;
+			if (t1 < tb)
+				tb = t1;
+		}
+	}
+	if (!(ta <= tb))
+		return 0;
+	if (top > 0 && nvals > 0 && !brackets(m->root[0], m->root[1], vals,
+	    nvals))
+		return 0;
+	r->flip = (!r->up[0]) | (!r->up[1]) << 1 | (!r->up[2]) << 2;
+	for (l = 0; l <= top; l++)
+		for (a = 0; a < 3; a++) {
+			r->w[l][a] = l ? m->width[l][a] : 1;
+			r->iw[l][a] = l ? 1.0 / (double)m->width[l][a] : 1.0;
+		}
+	/* the start leaf (post-crossing at ta) */
+	*e = -1;
+	for (a = 0; a < 3; a++) {
+		if (r->s[a] == 0) {
+			leaf[a] = r->fixed[a];
+			continue;
+		}
+		leaf[a] = find_cell(r, 0, a, 0, n[a], ta, 1);
+		if (tcross(r, a, r->s[a] > 0 ? leaf[a] : leaf[a] + 1) == ta)
+			*e = a;
+	}
+	*tap = ta;
+	*tbp = tb;
+	return 1;
+}
+
 /* ---- cell masks ----
  * A level-1 macrocell's samples are read once each, a row of samples along
  * x at a time, into two bit masks per value v: below (bit x set when sample
@@ -908,6 +979,27 @@ mask_get(vx_cellmask *k, const vx_macro *m, const vx_grid *g, int64_t b)
 	return k->bits + k->slot[b];
 }
 
+/* leaf_bits: the mask bits of level-1 cell c1 (NULL: none), the index li
+ * of leaf c0 in them and the index steps dl per axis in walking order */
+static inline const uint64_t *
+leaf_bits(vx_cellmask *mk, const vx_macro *m, const vx_grid *g,
+    const ray *r, const int64_t c1[3], const int64_t c0[3], int64_t *li,
+    int64_t dl[3])
+{
+	const int64_t *w = m->width[1];
+	int64_t b = c1[0] + m->dims[1][0] * (c1[1] + m->dims[1][1] * c1[2]);
+	const uint64_t *bits = mask_get(mk, m, g, b);
+
+	if (bits != NULL) {
+		*li = (c0[0] - c1[0] * w[0]) + w[0] * ((c0[1] - c1[1] * w[1]) +
+		    w[1] * (c0[2] - c1[2] * w[2]));
+		dl[0] = r->s[0];
+		dl[1] = r->s[1] * w[0];
+		dl[2] = r->s[2] * w[0] * w[1];
+	}
+	return bits;
+}
+
 /* walk: the traversal behind both public entry points.  top is the level
  * whose DDA starts the walk (0: flat).  n: leaf dims.  g: the volume whose
  * cells are the leaves, or NULL; mm0: stored leaf ranges or NULL. */
@@ -930,60 +1022,8 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 
 	memset(&s, 0, sizeof s);
 	s.rays = 1;
-	if (n[0] <= 0 || n[1] <= 0 || n[2] <= 0 || !(ta <= tb))
+	if (!ray_start(&r, m, top, n, o, d, vals, nvals, &ta, &tb, leaf, &e))
 		goto done;
-	for (a = 0; a < 3; a++) {
-		double ad = fabs(d[a]);
-
-		if (!isfinite(o[a]) || !isfinite(d[a]))
-			goto done;
-		r.o[a] = o[a];
-		r.d[a] = d[a];
-		r.s[a] = d[a] > 0 ? 1 : d[a] < 0 ? -1 : 0;
-		r.up[a] = r.s[a] >= 0;
-		r.div[a] = !(ad >= 0x1p-1000 && ad <= 0x1p1000);
-		r.inv[a] = r.s[a] ? 1.0 / d[a] : 0.0;
-		r.fixed[a] = 0;
-		r.n[a] = n[a];
-		if (r.s[a] == 0) {
-			if (!(o[a] >= 0 && o[a] <= (double)n[a]))
-				goto done;
-			r.fixed[a] = (int64_t)floor(o[a]);
-			if (r.fixed[a] > n[a] - 1)
-				r.fixed[a] = n[a] - 1;
-		} else {
-			double t0 = tcross(&r, a, r.s[a] > 0 ? 0 : n[a]);
-			double t1 = tcross(&r, a, r.s[a] > 0 ? n[a] : 0);
-
-			if (t0 > ta)
-				ta = t0;
-			if (t1 < tb)
-				tb = t1;
-		}
-	}
-	if (!(ta <= tb))
-		goto done;
-	if (top > 0 && nvals > 0 && !brackets(m->root[0], m->root[1], vals,
-	    nvals))
-		goto done;
-	r.flip = (!r.up[0]) | (!r.up[1]) << 1 | (!r.up[2]) << 2;
-	for (l = 0; l <= top; l++)
-		for (a = 0; a < 3; a++) {
-			r.w[l][a] = l ? m->width[l][a] : 1;
-			r.iw[l][a] = l ? 1.0 / (double)m->width[l][a] : 1.0;
-		}
-
-	/* the start leaf and its ancestors (post-crossing at ta) */
-	e = -1;
-	for (a = 0; a < 3; a++) {
-		if (r.s[a] == 0) {
-			leaf[a] = r.fixed[a];
-			continue;
-		}
-		leaf[a] = find_cell(&r, 0, a, 0, n[a], ta, 1);
-		if (tcross(&r, a, r.s[a] > 0 ? leaf[a] : leaf[a] + 1) == ta)
-			e = a;
-	}
 	for (l = 0; l <= top; l++)
 		for (a = 0; a < 3; a++)
 			c[l][a] = leaf[a] / r.w[l][a];
@@ -1000,21 +1040,8 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 			const uint64_t *bits = NULL;
 			int64_t li = 0, dl[3] = { 0, 0, 0 };
 
-			if (mk != NULL && top >= 1) {
-				/* the parent's bits; leaf index from its corner */
-				const int64_t *w = m->width[1];
-				int64_t b = c[1][0] + m->dims[1][0] * (c[1][1] +
-				    m->dims[1][1] * c[1][2]);
-
-				if ((bits = mask_get(mk, m, g, b)) != NULL) {
-					li = (c[0][0] - c[1][0] * w[0]) + w[0] *
-					    ((c[0][1] - c[1][1] * w[1]) + w[1] *
-					    (c[0][2] - c[1][2] * w[2]));
-					dl[0] = r.s[0];
-					dl[1] = r.s[1] * w[0];
-					dl[2] = r.s[2] * w[0] * w[1];
-				}
-			}
+			if (mk != NULL && top >= 1)
+				bits = leaf_bits(mk, m, g, &r, c[1], c[0], &li, dl);
 			if ((rc = leaves(&r, g, c[0], lim[0], tn[0], &t, &e, tb,
 			    vals, nvals, bits, li, dl, fn, ctx, &s, &ax,
 			    &texit)) != 0)
@@ -1160,10 +1187,12 @@ vx_macro_traverse_masked(const vx_macro *m, const vx_grid *g,
 {
 	if (g == NULL || !fits(m, g))
 		return -1;
-	return walk(m, m->nlev, m->dims[0], g, NULL,
-	    mask_fits(k, m, vals, nvals) ? k : NULL, o, d, tmin, tmax, vals,
-	    nvals, fn, ctx, st);
+	if (!mask_fits(k, m, vals, nvals))
+		k = NULL;
+	return walk(m, m->nlev, m->dims[0], g, NULL, k, o, d, tmin, tmax,
+	    vals, nvals, fn, ctx, st);
 }
+
 
 int
 vx_macro_traverse_flat(const vx_macro *m, const vx_grid *g,
