@@ -9,7 +9,7 @@
  * ranges, not surfaces).  Output: "key value" lines on stdout.
  *
  *   isobench --scene FILE [--set LINE]... [--iso V[,V...]] [--view NAME]
- *            [--size WxH] [-j N] [--flat] [-n FRAMES] [--warm N]
+ *            [--size WxH] [-j N] [--flat] [--no-cellmask] [-n FRAMES] [--warm N]
  *            [--latency V[,V...]] [--pfm OUT.pfm] [--stats]
  *            [--sizes AxBxC[,DxExF...]] STREAM
  *
@@ -17,7 +17,9 @@
  * bench scenes are white: r = g = b), flattened over black, as the Embree
  * peer writes its frame.  --stats times the phases (traversal,
  * intersection, shading: Parker's Table 1) in one extra frame; timed frames
- * never run with the phase clocks on.  --sizes builds the macrocells here
+ * never run with the phase clocks on.  --no-cellmask renders without the
+ * cell mask (raycast(1) --no-cellmask; every frame builds its own mask
+ * otherwise, lazily, as raycast does: its cost is in the frame time).  --sizes builds the macrocells here
  * with those level sizes (macrocell(1) --sizes) instead of using the
  * stream's, and prints the build time.
  *
@@ -165,6 +167,10 @@ main(int argc, char **argv)
 			b.ro.flat = 1;
 			continue;
 		}
+		if (strcmp(a, "--no-cellmask") == 0) {
+			b.ro.no_cellmask = 1;
+			continue;
+		}
 		if (strcmp(a, "--stats") == 0) {
 			stats = 1;
 			continue;
@@ -261,6 +267,12 @@ main(int argc, char **argv)
 	printf("frame_ms_min %.3f\n", 1e3 * wall[0]);
 	printf("frame_ms_max %.3f\n", 1e3 * wall[nframes - 1]);
 	printf("frame_cpu_ms %.3f\n", 1e3 * median(cpu, nframes));
+	printf("cellmask %s\nmask_bytes %llu\nmask_blocks %llu\nmask_set %llu\n"
+	    "mask_built %llu\n", rs.mask_bytes ? "on" : "off",
+	    (unsigned long long)rs.mask_bytes,
+	    (unsigned long long)rs.mask_blocks,
+	    (unsigned long long)rs.mask_set,
+	    (unsigned long long)rs.mask_built);
 	printf("rays %llu\ncells %llu\nroots %llu\nhits %llu\ncovered %llu\n",
 	    (unsigned long long)rs.primary, (unsigned long long)rs.cells,
 	    (unsigned long long)rs.roots, (unsigned long long)rs.hits,

@@ -158,7 +158,12 @@ class Bench:
                     if j == "1":
                         extra += ["--stats", "--pfm", self.w(name, iso, "voxlux.pfm")]
                     v = self.vox(name, iso, extra)
+                    nm = self.vox(name, iso, ["-j", j, "-n", F, "--warm", "1",
+                                              "--no-cellmask"])
                     rows["%s:%s" % (name, iso)]["j" + j].append(dict(
+                        nomask_ms=nm["frame_ms"], nomask_cpu_ms=nm["frame_cpu_ms"],
+                        mask_kib=v["mask_bytes"] / 1024.0, mask_set=v["mask_set"],
+                        mask_built=v["mask_built"], mask_blocks=v["mask_blocks"],
                         embree_ms=e["render_ms"], embree_cpu_ms=e["render_cpu_ms"],
                         vox_ms=v["frame_ms"],
                         vox_cpu_ms=v["frame_cpu_ms"], shares=[v.get("share_traverse"),
@@ -178,6 +183,14 @@ class Bench:
               "CPU time per frame at 2 threads / at 1 (1.0: no parallel overhead).", "",
               "| case | voxlux T1 ms | T2 ms | speedup | efficiency | CPU growth | Embree speedup | Embree efficiency |",
               "| --- | --- | --- | --- | --- | --- | --- | --- |"]
+        tm = ["### The cell mask: frames with and without it", "",
+              "voxlux's frame with the cell mask (the default; its lazy build is in the "
+              "frame) and with `--no-cellmask`, the same rounds; saving = 1 - with / "
+              "without, the median of the per-round CPU-time ratios.  Memory: the mask's "
+              "bits and tables; macrocells: bracketing level-1 macrocells, and of them "
+              "those rays entered (whose bits were built).", "",
+              "| case | threads | with mask ms (CPU) | without ms (CPU) | saving (CPU) | memory KiB | macrocells bracketing / entered / all |",
+              "| --- | --- | --- | --- | --- | --- | --- |"]
         t1 = ["### Table 1: where voxlux's frame time goes (1 thread, phase clocks on)", "",
               "| case | traversal | intersection | shading | cells visited / ray | roots / ray | covered |",
               "| --- | --- | --- | --- | --- | --- | --- |"]
@@ -190,6 +203,14 @@ class Bench:
                     key, j[1:], med([a["vox_ms"] for a in x]), med([a["embree_ms"] for a in x]),
                     ratio, med([a["vox_cpu_ms"] for a in x]), med([a["embree_cpu_ms"] for a in x]),
                     cratio))
+            for j in ("j1", "j2"):
+                x = js[j]
+                tm.append("| %s | %s | %.1f (%.1f) | %.1f (%.1f) | %.0f%% | %.0f | %d / %d / %d |" % (
+                    key, j[1:], med([a["vox_ms"] for a in x]), med([a["vox_cpu_ms"] for a in x]),
+                    med([a["nomask_ms"] for a in x]), med([a["nomask_cpu_ms"] for a in x]),
+                    100 * (1 - med([a["vox_cpu_ms"] / a["nomask_cpu_ms"] for a in x])),
+                    x[-1]["mask_kib"], x[-1]["mask_set"], x[-1]["mask_built"],
+                    x[-1]["mask_blocks"]))
             v1 = med([a["vox_ms"] for a in js["j1"]])
             v2 = med([a["vox_ms"] for a in js["j2"]])
             c1 = med([a["vox_cpu_ms"] for a in js["j1"]])
@@ -203,7 +224,7 @@ class Bench:
             t1.append("| %s | %.0f%% | %.0f%% | %.0f%% | %.2f | %.2f | %.1f%% |" % (
                 key, 100 * sh[0], 100 * sh[1], 100 * sh[2], x["cells"] / 262144.0,
                 x["roots"] / 262144.0, 100 * x["covered"] / 262144.0))
-        self.save("frames", rows, "\n".join(md + [""] + t2 + [""] + t1) + "\n")
+        self.save("frames", rows, "\n".join(md + [""] + t2 + [""] + tm + [""] + t1) + "\n")
 
     # ---- (b) a new isovalue ----
     def latency(self):
