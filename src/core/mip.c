@@ -7,8 +7,10 @@
  * one's arithmetic operation for operation (crossing times, segment ends,
  * the cubic and its maximum, the comparisons) and so gives the same bits
  * and the same counts, measured 1.35 to 1.55 times faster on the ch2 and
- * Visible Human heads (examples/bench/RESULTS-mip.md).  test_mip checks
- * the two against each other ray by ray. */
+ * Visible Human heads (examples/bench/RESULTS-mip.md).  Rays along an
+ * axis (the axis-aligned orthographic views) with integer samples get
+ * their own cell walk, cells_axis_t, with the same decisions again.
+ * test_mip checks the specialized walks against the plain one ray by ray. */
 #include "vx_mip.h"
 
 #include <math.h>
@@ -206,6 +208,8 @@ typedef struct mip_ctx {
 	double best, tbest;
 	int found;
 	int prune;            /* 1: skip cells that cannot beat best */
+	int axis;             /* 0..2: d is zero but along this axis (and the
+	                         ray is tame: cells_axis_t); -1: any other */
 	vx_mip_stats *st;
 } mip_ctx;
 
@@ -664,6 +668,252 @@ cells_walk_t(mip_ctx *x, double ta, double tb, const int64_t clo[3],
 	}
 }
 
+/* solve_cell: the specialized walks' solve(): the exact maximum of the
+ * cell at c with corners v on [t, t1], folded into (best, tbest, found). */
+MIP_INLINE void
+solve_cell(const float v[8], const int64_t c[3], const double o[3],
+    const double d[3], double t, double t1, double *best, double *tbest,
+    int *found)
+{
+	double ol[3], k[4], tm, fm, tt;
+
+	for (int i = 0; i < 3; i++)
+		ol[i] = (o[i] + t * d[i]) - (double)c[i];
+	poly0(v, ol, d, k);
+	if (max0(k, t1 - t, &tm, &fm)) {
+		tt = t + tm;
+		if (!*found || fm > *best || (fm == *best && tt < *tbest)) {
+			*best = fm;
+			*tbest = tt;
+			*found = 1;
+		}
+	}
+}
+
+/* face_bound: for a cell (corners v) and a ray along axis A at in-face
+ * position (fu, fv) (the other two axes, lower first), an upper bound on
+ * what max0() can give on any part of the ray's segment in the cell:
+ * along an axis the trilinear field is linear between the two faces'
+ * bilinear values, so its maximum is the larger of them; the margin,
+ * 2^-20 of their magnitude (plus 2^-20), is far above what rounding does
+ * to the cubic's coefficients and their evaluation when |o[A]| <= 2^24 and
+ * 2^-24 <= |d[A]| <= 2^24 (the segment's ends are then off the faces by
+ * at most about 2^-26 of a cell). */
+MIP_INLINE double
+face_bound(const float v[8], int A, double fu, double fv)
+{
+	/* corner index bits: x 1, y 2, z 4; U, V the other axes */
+	static const int bu[3] = { 2, 1, 1 }, bv[3] = { 4, 4, 2 };
+	const int iu = bu[A], iv = bv[A], ia = 1 << A;
+	double f[2];
+
+	for (int h = 0; h < 2; h++) {
+		int b = h ? ia : 0;
+		double a0 = v[b], a1 = v[b + iu], a2 = v[b + iv];
+		double a3 = v[b + iu + iv];
+
+		f[h] = (a0 + (a1 - a0) * fu) * (1 - fv) +
+		    (a2 + (a3 - a2) * fu) * fv;
+	}
+	double m = f[0] > f[1] ? f[0] : f[1];
+	return m + (fabs(f[0]) + fabs(f[1]) + 1) * 0x1p-20;
+}
+
+/* axis_solve: cells_axis_t's solve of cell k (corners v): its segment
+ * as walk() would have it (see there), then solve_cell(). */
+MIP_INLINE void
+axis_solve(const float v[8], int64_t c[3], int64_t k, int64_t kstart,
+    int64_t kend, int A, double ta, double tb, const double o[3],
+    const double d[3], const int step[3], const int64_t n[3], double *best,
+    double *tbest, int *found)
+{
+	static const int64_t one[3] = { 1, 1, 1 };
+	double t0 = ta, t1;
+
+	if (k != kstart) {
+		double tp = exit_t(o, d, step, one, n, A, k - step[A]);
+
+		if (tp > ta)
+			t0 = tp;
+	}
+	t1 = exit_t(o, d, step, one, n, A, k);
+	if (k == kend && !(t1 < tb))
+		t1 = tb;
+	c[A] = k;
+	solve_cell(v, c, o, d, t0, t1, best, tbest, found);
+}
+
+/* cells_axis_t: cells_walk_t for an integer sample type and a ray along
+ * axis A only (the other two components of d are zero: the axis-aligned
+ * orthographic views): the same cells, decisions and bits with less work
+ * per cell.  Such a walk stays in one column of cells, c0, c0 + s, ...,
+ * kend along A.  walk() divides once per cell for its exit time exit_t(k),
+ * but only a cell that is solved needs its segment; the rest of walk()'s
+ * bookkeeping is decided once per walk with the same exact divisions
+ * (exit_t is monotone along the walk: one division of increasing plane
+ * offsets):
+ *   - walk() stops after the first cell whose exit is not before tb, or
+ *     at the end of clo..chi: kend;
+ *   - a cell whose exit is before ta (only at the start, by rounding) is
+ *     not visited (walk()'s t1 >= t): the walk starts at kstart;
+ *   - a visited cell's segment is [t0, t1]: t0 is ta for the first one,
+ *     else the previous cell's exit when that is later than ta (walk()'s
+ *     running t); t1 is its exit, min(exit, tb) for the last one.
+ * A cell's corner maximum is the larger of its two faces' maxima, so a
+ * step reads the 4 samples of the face it leaves by, and the test against
+ * the best value is an integer comparison with floor(best). */
+MIP_INLINE void
+cells_axis_t(mip_ctx *x, double ta, double tb, const int64_t clo[3],
+    const int64_t chi[3], const vx_type ty)
+{
+	static const int64_t one[3] = { 1, 1, 1 };
+	const vx_grid *g = x->g;
+	const int64_t *n = x->m->dims[0], *off[3] = { g->lay.off[0],
+	    g->lay.off[1], g->lay.off[2] };
+	const double o[3] = { x->o[0], x->o[1], x->o[2] };
+	const double d[3] = { x->d[0], x->d[1], x->d[2] };
+	const int A = x->axis, U = A == 0 ? 1 : 0, V = A == 2 ? 1 : 2;
+	int64_t c[3], kb, kend, kstart, k, du, dv, buv, dd[3];
+	double tn[3], tq[3], best = x->best, tbest = x->tbest;
+	int step[3], s, found = x->found, lead, tameb;
+	double fu, fv;
+	long thr;            /* a cell is solved iff its corner max > thr */
+	uint64_t solved = 0, skipped = 0;
+
+	walk_start(o, d, ta, one, n, clo, chi, c, step, tn, tq);
+	s = step[A];
+	kb = s > 0 ? chi[A] : clo[A];
+	/* kend: the first cell from c[A] on whose exit is not before tb,
+	 * or kb; a guess (within a cell), then exact steps */
+	{
+		double lo = (double)clo[A] - 2, hi = (double)chi[A] + 2;
+		double pe = o[A] + tb * d[A];
+
+		pe = pe < lo ? lo : pe > hi ? hi : pe;
+		if (s > 0) {
+			kend = (int64_t)ceil(pe) - 1;
+			kend = kend < c[A] ? c[A] : kend > kb ? kb : kend;
+			while (kend < kb && exit_t(o, d, step, one, n, A, kend) < tb)
+				kend++;
+			while (kend > c[A] &&
+			    !(exit_t(o, d, step, one, n, A, kend - 1) < tb))
+				kend--;
+		} else {
+			kend = (int64_t)floor(pe);
+			kend = kend > c[A] ? c[A] : kend < kb ? kb : kend;
+			while (kend > kb && exit_t(o, d, step, one, n, A, kend) < tb)
+				kend--;
+			while (kend < c[A] &&
+			    !(exit_t(o, d, step, one, n, A, kend + 1) < tb))
+				kend++;
+		}
+	}
+	/* kstart: the first cell whose exit is not before ta */
+	kstart = c[A];
+	while (exit_t(o, d, step, one, n, A, kstart) < ta) {
+		if (kstart == kend)
+			return;
+		kstart += s;
+	}
+	c[A] = kstart;
+	buv = off[U][c[U]] + off[V][c[V]];
+	du = off[U][c[U] + 1] - off[U][c[U]];
+	dv = off[V][c[V] + 1] - off[V][c[V]];
+	dd[U] = du;
+	dd[V] = dv;
+	lead = s > 0;        /* the face a step leaves by: plane k + lead */
+	fu = o[U] - (double)c[U];
+	fv = o[V] - (double)c[V];
+	tameb = fabs(o[A]) <= 0x1p24 && fabs(d[A]) >= 0x1p-24 &&
+	    fabs(d[A]) <= 0x1p24;
+#define THR() (found ? (best >= 0x1p40 ? 1L << 40 : (long)floor(best)) : \
+    -(1L << 40))
+	thr = THR();
+	/* FACE: the maximum of the 4 samples of the column's face at plane
+	 * k; AXIS_LOOP: the walk for sample type T */
+#define FACE(T, k, out)                                                   \
+	do {                                                              \
+		const T *p_ = data_ + buv + off[A][k];                    \
+		T a_ = p_[du] > p_[0] ? p_[du] : p_[0];                   \
+		T b_ = p_[du + dv] > p_[dv] ? p_[du + dv] : p_[dv];       \
+		out = (long)(b_ > a_ ? b_ : a_);                          \
+	} while (0)
+#define AXIS_LOOP(T)                                                      \
+	do {                                                              \
+		const T *data_ = (const T *)g->data;                      \
+		long fc, fn, cm;                                          \
+		FACE(T, kstart + 1 - lead, fc);                           \
+		for (k = kstart;; k += s) {                               \
+			FACE(T, k + lead, fn);                            \
+			cm = fn > fc ? fn : fc;                           \
+			fc = fn;                                          \
+			if (cm <= thr) {                                  \
+				skipped++;                                \
+			} else {                                          \
+				const T *p = data_ + buv + off[A][k];     \
+				int64_t dx, dy, dz;                       \
+				float v[8];                               \
+				dd[A] = off[A][k + 1] - off[A][k];        \
+				dx = dd[0]; dy = dd[1]; dz = dd[2];       \
+				v[0] = (float)p[0];                       \
+				v[1] = (float)p[dx];                      \
+				v[2] = (float)p[dy];                      \
+				v[3] = (float)p[dx + dy];                 \
+				v[4] = (float)p[dz];                      \
+				v[5] = (float)p[dx + dz];                 \
+				v[6] = (float)p[dy + dz];                 \
+				v[7] = (float)p[dx + dy + dz];            \
+				solved++;                                 \
+				if (!(tameb && found &&                   \
+				    face_bound(v, A, fu, fv) < best)) {   \
+					axis_solve(v, c, k, kstart, kend, \
+					    A, ta, tb, o, d, step, n,     \
+					    &best, &tbest, &found);       \
+					thr = THR();                      \
+				}                                         \
+			}                                                 \
+			if (k == kend)                                    \
+				break;                                    \
+		}                                                         \
+	} while (0)
+	switch (ty) {
+	case VX_U8: AXIS_LOOP(uint8_t); break;
+	case VX_U16: AXIS_LOOP(uint16_t); break;
+	default: AXIS_LOOP(int16_t); break;
+	}
+#undef AXIS_LOOP
+#undef FACE
+#undef THR
+	x->best = best;
+	x->tbest = tbest;
+	x->found = found;
+	if (x->st) {
+		x->st->cells += solved;
+		x->st->cells_skipped += skipped;
+	}
+}
+
+static void
+axis_u8(mip_ctx *x, double ta, double tb, const int64_t clo[3],
+    const int64_t chi[3])
+{
+	cells_axis_t(x, ta, tb, clo, chi, VX_U8);
+}
+
+static void
+axis_u16(mip_ctx *x, double ta, double tb, const int64_t clo[3],
+    const int64_t chi[3])
+{
+	cells_axis_t(x, ta, tb, clo, chi, VX_U16);
+}
+
+static void
+axis_i16(mip_ctx *x, double ta, double tb, const int64_t clo[3],
+    const int64_t chi[3])
+{
+	cells_axis_t(x, ta, tb, clo, chi, VX_I16);
+}
+
 static void
 cells_u8(mip_ctx *x, double ta, double tb, const int64_t clo[3],
     const int64_t chi[3])
@@ -697,12 +947,41 @@ static void
 cells(mip_ctx *x, double ta, double tb, const int64_t clo[3],
     const int64_t chi[3])
 {
+	if (x->axis >= 0) {
+		switch (x->g->type) {
+		case VX_U8: axis_u8(x, ta, tb, clo, chi); return;
+		case VX_U16: axis_u16(x, ta, tb, clo, chi); return;
+		case VX_I16: axis_i16(x, ta, tb, clo, chi); return;
+		default: break;
+		}
+	}
 	switch (x->g->type) {
 	case VX_U8: cells_u8(x, ta, tb, clo, chi); break;
 	case VX_U16: cells_u16(x, ta, tb, clo, chi); break;
 	case VX_I16: cells_i16(x, ta, tb, clo, chi); break;
 	default: cells_f32(x, ta, tb, clo, chi); break;
 	}
+}
+
+/* tame_axis: the axis a ray runs along when the other two components of
+ * d are zero and its numbers are tame (|o[a]| <= 2^60, 2^-60 <= |d[a]| <=
+ * 2^60, ta and tb finite: every exit time is finite), else -1. */
+static int
+tame_axis(const double o[3], const double d[3], double ta, double tb)
+{
+	int a, A = -1;
+
+	for (a = 0; a < 3; a++) {
+		if (d[a] == 0)
+			continue;
+		if (A >= 0)
+			return -1;
+		A = a;
+	}
+	if (A < 0 || !(fabs(o[A]) <= 0x1p60) || !(fabs(d[A]) >= 0x1p-60) ||
+	    !(fabs(d[A]) <= 0x1p60) || !isfinite(ta) || !isfinite(tb))
+		return -1;
+	return A;
 }
 
 /* children: the index range of level-(l-1) cells inside level-l cell c. */
@@ -744,6 +1023,7 @@ vx_mip_ray(const vx_grid *g, const vx_macro *m, vx_mip_work *w,
 	x.h.cap = w->cap;
 	x.lb = -INFINITY;
 	x.prune = 1;
+	x.axis = tame_axis(o, d, ta, tb);
 	x.st = st;
 	if (use_last_t) {
 		/* a trilinear sample: a lower bound on the maximum, relaxed by

@@ -36,7 +36,10 @@ typedef struct vx_mip_stats {
 	uint64_t rays;
 	uint64_t pushes, pops;       /* priority-queue operations */
 	uint64_t macro_opened;       /* macrocells split or walked */
-	uint64_t cells;              /* data cells whose maximum was solved */
+	uint64_t cells;              /* data cells not pruned by their corners:
+	                                their maximum was solved (or, on a
+	                                ray along an axis, bounded below the
+	                                best value by their face values) */
 	uint64_t cells_skipped;      /* data cells pruned by their corners */
 	uint64_t bound_pruned;       /* pushes avoided by the last-t bound */
 	uint64_t max_queue;          /* largest queue length seen */

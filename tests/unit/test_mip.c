@@ -330,6 +330,36 @@ randomized(void **state)
 		    refined_bad, refined);
 }
 
+/* make_typed: a volume of type t whose integer samples take few distinct
+ * values (so that equal maxima, i.e. ties, are common) and whose f32
+ * samples include NaN and Inf. */
+static void
+make_typed(vx_grid *g, const int64_t dims[3], vx_type t, const char *layout,
+    uint64_t seed)
+{
+	vx_err e = { 0, "" };
+	uint64_t i = 0;
+
+	assert_int_equal(vx_grid_alloc(g, dims, t, layout, &e), 0);
+	for (int64_t z = 0; z < dims[2]; z++)
+		for (int64_t y = 0; y < dims[1]; y++)
+			for (int64_t x = 0; x < dims[0]; x++, i++) {
+				double h = hash01(seed, i), v;
+
+				switch (t) {
+				case VX_U8: v = 17 * floor(h * 16); break;
+				case VX_U16: v = 4000 * floor(h * 9); break;
+				case VX_I16: v = 1000 * floor(h * 9) - 4000; break;
+				default:
+					v = h < 0.01 ? NAN : h > 0.995 ? INFINITY :
+					    100 * h - 50;
+					break;
+				}
+				vx_grid_set(g, x, y, z, v);
+			}
+	vx_grid_range(g);
+}
+
 /* The specialized walks (fused, typed, the default) against the plain walk
  * (walk() with a visitor per cell, w.plain = 1): every ray gives the same
  * hit, the same value and t bit for bit, and the same queue and cell
@@ -357,27 +387,9 @@ fast_equals_plain(void **state)
 		vx_grid g;
 		vx_macro m;
 		vx_mip_work wf, wp;
-		uint64_t i = 0, seed = 100 * ti + 10 * li + si + 1;
+		uint64_t seed = 100 * ti + 10 * li + si + 1;
 
-		assert_int_equal(vx_grid_alloc(&g, dims, types[ti], layouts[li],
-		    &e), 0);
-		for (int64_t z = 0; z < dims[2]; z++)
-			for (int64_t y = 0; y < dims[1]; y++)
-				for (int64_t x = 0; x < dims[0]; x++, i++) {
-					double h = hash01(seed, i), v;
-
-					switch (types[ti]) {
-					case VX_U8: v = 17 * floor(h * 16); break;
-					case VX_U16: v = 4000 * floor(h * 9); break;
-					case VX_I16: v = 1000 * floor(h * 9) - 4000; break;
-					default:
-						v = h < 0.01 ? NAN : h > 0.995 ? INFINITY :
-						    100 * h - 50;
-						break;
-					}
-					vx_grid_set(&g, x, y, z, v);
-				}
-		vx_grid_range(&g);
+		make_typed(&g, dims, types[ti], layouts[li], seed);
 		if (shapes[si][0] == 0)
 			vx_macro_init(&m);
 		else
@@ -444,6 +456,118 @@ fast_equals_plain(void **state)
 	assert_int_equal(rays, 4 * 3 * 5 * 240);
 }
 
+/* Rays along an axis (the axis-aligned views' own walk, cells_axis_t)
+ * against the plain walk, as above, with what that walk decides once per
+ * ray: the start and end cell from tmin and tmax cut anywhere (inside a
+ * cell, exactly on a sample plane, before the box, empty), origins on
+ * sample planes, lattice lines and the box's faces, directions of several
+ * lengths and both signs, -0.0 components, and the default hierarchies of
+ * macrocell (oracle: the plain walk). */
+static void
+axis_rays_equal_plain(void **state)
+{
+	static const vx_type types[] = { VX_U8, VX_U16, VX_I16, VX_F32 };
+	static const char *const layouts[] = { NULL, "bricked 4x4x4" };
+	static const int shapes[][2] = { { 0, 1 }, { 1, 3 }, { 2, 2 },
+	    { 2, 4 } };
+	static const double lens[] = { 1, 0.37, 3, 1.0 / 1024, 40 };
+	int64_t dims[3] = { 13, 10, 15 };
+	vx_err e = { 0, "" };
+	int rays = 0;
+
+	(void)state;
+	for (size_t ti = 0; ti < sizeof types / sizeof *types; ti++)
+	for (size_t li = 0; li < sizeof layouts / sizeof *layouts; li++)
+	for (size_t si = 0; si < sizeof shapes / sizeof *shapes; si++) {
+		vx_grid g;
+		vx_macro m;
+		vx_mip_work wf, wp;
+		uint64_t seed = 1000 + 100 * ti + 10 * li + si;
+
+		make_typed(&g, dims, types[ti], layouts[li], seed);
+		if (shapes[si][0] == 0)
+			vx_macro_init(&m);
+		else
+			build(&m, &g, shapes[si][0], shapes[si][1]);
+		assert_int_equal(vx_mip_work_init(&wf, &m, &e), 0);
+		assert_int_equal(vx_mip_work_init(&wp, &m, &e), 0);
+		wp.plain = 1;
+		for (int k = 0; k < 300; k++, rays++) {
+			int A = k % 3, U = A == 0 ? 1 : 0, V = A == 2 ? 1 : 2;
+			double o[3], d[3] = { 0, 0, 0 }, vf, tf, vp, tp;
+			double len = lens[k / 3 % 5], tmin = 0, tmax = INFINITY;
+			double h = hash01(seed, 10 * k);
+			vx_mip_stats sf, sp;
+
+			d[A] = (k / 15 % 2 ? -1 : 1) * len;
+			if (k % 4 == 1)
+				d[U] = -0.0;
+			o[A] = d[A] > 0 ? -2.5 : (double)dims[A] + 1.5;
+			if (k % 9 == 4)            /* starting on a sample plane */
+				o[A] = floor(h * (double)dims[A]);
+			o[U] = (double)(dims[U] - 1) * hash01(seed, 10 * k + 1);
+			o[V] = (double)(dims[V] - 1) * hash01(seed, 10 * k + 2);
+			switch (k / 2 % 5) {
+			case 1:                  /* on a lattice line */
+				o[U] = floor(o[U]);
+				o[V] = floor(o[V]);
+				break;
+			case 2:                  /* on the box's faces */
+				o[U] = 0;
+				o[V] = (double)(dims[V] - 1);
+				break;
+			case 3:                  /* outside the box */
+				o[U] = -0.25;
+				break;
+			default:
+				break;
+			}
+			switch (k / 7 % 6) {
+			case 1:                  /* cut inside cells */
+				tmin = (2 + 10 * hash01(seed, 10 * k + 3)) / len;
+				tmax = tmin + 8 * hash01(seed, 10 * k + 4) / len;
+				break;
+			case 2:                  /* cut on sample planes */
+				tmin = (fabs(o[A] - floor(o[A])) + 4) / len;
+				tmax = tmin + 5 / len;
+				break;
+			case 3:                  /* an empty segment */
+				tmin = 5 / len;
+				tmax = 4 / len;
+				break;
+			case 4:                  /* a single point */
+				tmin = tmax = (3.5 + fabs(o[A] - floor(o[A]))) /
+				    len;
+				break;
+			default:
+				break;
+			}
+			memset(&sf, 0, sizeof sf);
+			memset(&sp, 0, sizeof sp);
+			int hf = vx_mip_ray(&g, &m, &wf, o, d, tmin, tmax, k % 2,
+			    &vf, &tf, &sf);
+			int hp = vx_mip_ray(&g, &m, &wp, o, d, tmin, tmax, k % 2,
+			    &vp, &tp, &sp);
+			if (hf != hp || memcmp(&vf, &vp, sizeof vf) != 0 ||
+			    memcmp(&tf, &tp, sizeof tf) != 0 ||
+			    memcmp(&sf, &sp, sizeof sf) != 0)
+				fail_msg("type %d layout %zu shape %zu ray %d: fast %d "
+				    "%.17g %.17g (%llu cells %llu skipped), plain %d "
+				    "%.17g %.17g (%llu cells %llu skipped)",
+				    (int)types[ti], li, si, k, hf, vf, tf,
+				    (unsigned long long)sf.cells,
+				    (unsigned long long)sf.cells_skipped, hp, vp, tp,
+				    (unsigned long long)sp.cells,
+				    (unsigned long long)sp.cells_skipped);
+		}
+		vx_mip_work_free(&wf);
+		vx_mip_work_free(&wp);
+		vx_macro_free(&m);
+		vx_grid_free(&g);
+	}
+	assert_int_equal(rays, 4 * 2 * 4 * 300);
+}
+
 int
 main(void)
 {
@@ -453,6 +577,7 @@ main(void)
 		cmocka_unit_test(nonfinite),
 		cmocka_unit_test(randomized),
 		cmocka_unit_test(fast_equals_plain),
+		cmocka_unit_test(axis_rays_equal_plain),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
