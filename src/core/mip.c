@@ -1,16 +1,17 @@
 /* mip.c: exact maximum-intensity projection with a priority queue of
  * macrocells (see vx_mip.h).
  *
- * Two implementations of the same decisions: the plain one (walk() with a
- * visitor per cell: emit_macro, emit_cell/solve) and, by default, the
+ * Three implementations of the same answer: the plain one (walk() with a
+ * visitor per cell: emit_macro, emit_cell/solve); by default the
  * specialized one (macro_walk, cells_walk_t), which repeats the plain
  * one's arithmetic operation for operation (crossing times, segment ends,
  * the cubic and its maximum, the comparisons) and so gives the same bits
  * and the same counts, measured 1.35 to 1.55 times faster on the ch2 and
- * Visible Human heads (examples/bench/RESULTS-mip.md).  Rays along an
- * axis (the axis-aligned orthographic views) with integer samples get
- * their own cell walk, cells_axis_t, with the same decisions again.
- * test_mip checks the specialized walks against the plain one ray by ray. */
+ * Visible Human heads; and for rays along an axis through integer samples
+ * the column walk (column_t), which needs no queue (the rule of vx_mip.h
+ * makes the order free) and solves about one cell per ray
+ * (examples/bench/RESULTS-mip.md).  test_mip checks them against each
+ * other and against the exhaustive walk ray by ray. */
 #include "vx_mip.h"
 
 #include <math.h>
@@ -209,26 +210,61 @@ typedef struct mip_ctx {
 	int found;
 	int prune;            /* 1: skip cells that cannot beat best */
 	int axis;             /* 0..2: d is zero but along this axis (and the
-	                         ray is tame: cells_axis_t); -1: any other */
+	                         ray is tame: tame_axis); -1: any other */
 	vx_mip_stats *st;
 } mip_ctx;
+
+#if defined(__GNUC__)
+#define MIP_INLINE static inline __attribute__((always_inline))
+#else
+#define MIP_INLINE static inline
+#endif
+
+/* beats: whether a cell or macrocell whose values are at most hi and
+ * whose segment starts at t0 can still change the result (best, tbest)
+ * under the rule "the largest value; among equal values the smallest t":
+ * when nothing is found yet, when hi is larger, or when hi is equal and
+ * t0 earlier. */
+MIP_INLINE int
+beats(int found, double hi, double t0, double best, double tbest)
+{
+	return !found || hi > best || (hi == best && t0 < tbest);
+}
+
+/* clamp_fold: fold a cell's maximum fm at tt, clamped into its corners'
+ * range [lo, hi] (the trilinear field never leaves it; the computed cubic
+ * can, by rounding), into (best, tbest, found) under beats()'s rule. */
+MIP_INLINE void
+clamp_fold(double fm, double tt, double lo, double hi, double *best,
+    double *tbest, int *found)
+{
+	fm = fm > hi ? hi : fm < lo ? lo : fm;
+	if (!*found || fm > *best || (fm == *best && tt < *tbest)) {
+		*best = fm;
+		*tbest = tt;
+		*found = 1;
+	}
+}
 
 /* solve: the exact maximum of data cell c on [t0, t1]. */
 static void
 solve(mip_ctx *x, const int64_t c[3], double t0, double t1)
 {
-	float v[8], cmax;
-	double ol[3], k[4], tm, fm, t;
+	float v[8], cmax, cmin;
+	double ol[3], k[4], tm, fm;
 	int i;
 
 	vx_grid_cell(x->g, c[0], c[1], c[2], v);
 	if (!vx_cell_finite(v))
 		return;
-	cmax = v[0];
-	for (i = 1; i < 8; i++)
+	cmax = cmin = v[0];
+	for (i = 1; i < 8; i++) {
 		if (v[i] > cmax)
 			cmax = v[i];
-	if (x->prune && x->found && !((double)cmax > x->best)) {
+		if (v[i] < cmin)
+			cmin = v[i];
+	}
+	if (x->prune && !beats(x->found, cmax, t0, x->best, x->tbest)) {
 		if (x->st)
 			x->st->cells_skipped++;
 		return;
@@ -240,12 +276,7 @@ solve(mip_ctx *x, const int64_t c[3], double t0, double t1)
 		x->st->cells++;
 	if (!vx_cell_max(k, 0, t1 - t0, &tm, &fm))
 		return;
-	t = t0 + tm;
-	if (!x->found || fm > x->best || (fm == x->best && t < x->tbest)) {
-		x->best = fm;
-		x->tbest = t;
-		x->found = 1;
-	}
+	clamp_fold(fm, t0 + tm, cmin, cmax, &x->best, &x->tbest, &x->found);
 }
 
 static void
@@ -253,12 +284,6 @@ emit_cell(void *ctx, const int64_t c[3], double t0, double t1)
 {
 	solve(ctx, c, t0, t1);
 }
-
-#if defined(__GNUC__)
-#define MIP_INLINE static inline __attribute__((always_inline))
-#else
-#define MIP_INLINE static inline
-#endif
 
 /* poly0: vx_cell_poly(c, o, d, 0, k), the same operations in the same
  * order (test_mip checks the bits). */
@@ -374,6 +399,28 @@ max0(const double k[4], double t1, double *tm, double *fm)
 	return 1;
 }
 
+/* solve_cell: solve() for the specialized walks: the exact maximum of the
+ * cell at c with (finite) corners v on [t, t1], clamped and folded into
+ * (best, tbest, found). */
+MIP_INLINE void
+solve_cell(const float v[8], const int64_t c[3], const double o[3],
+    const double d[3], double t, double t1, double *best, double *tbest,
+    int *found)
+{
+	double ol[3], k[4], tm, fm;
+	float lo = v[0], hi = v[0];
+
+	for (int i = 1; i < 8; i++) {
+		lo = v[i] < lo ? v[i] : lo;
+		hi = v[i] > hi ? v[i] : hi;
+	}
+	for (int i = 0; i < 3; i++)
+		ol[i] = (o[i] + t * d[i]) - (double)c[i];
+	poly0(v, ol, d, k);
+	if (max0(k, t1 - t, &tm, &fm))
+		clamp_fold(fm, t + tm, lo, hi, best, tbest, found);
+}
+
 /* emit_macro: walk()'s visitor for level-x->level macrocells (the plain
  * path): push the cell unless the last-t bound or the best value rules it
  * out. */
@@ -392,7 +439,7 @@ emit_macro(void *ctx, const int64_t c[3], double t0, double t1)
 			x->st->bound_pruned++;
 		return;
 	}
-	if (x->found && !((double)hi > x->best))
+	if (!beats(x->found, hi, t0, x->best, x->tbest))
 		return;
 	q.key = hi;
 	q.level = x->level;
@@ -474,6 +521,7 @@ macro_walk(mip_ctx *x, int l, double ta, double tb, const int64_t clo[3],
 	const float *mm = m->mm[l];
 	int64_t c[3], stride[3], idx;
 	double tn[3], tq[3], t = ta, lb = x->lb, best = x->best;
+	double tbest = x->tbest;
 	int a, step[3], found = x->found;
 	uint64_t pushes = 0, pruned = 0, maxq = 0;
 	long guard;
@@ -495,7 +543,7 @@ macro_walk(mip_ctx *x, int l, double ta, double tb, const int64_t clo[3],
 				/* empty: no finite sample */
 			} else if ((double)hi < lb) {
 				pruned++;
-			} else if (found && !((double)hi > best)) {
+			} else if (!beats(found, hi, t, best, tbest)) {
 				/* cannot beat the best value */
 			} else if (x->h.n < x->h.cap) {
 				qent q;
@@ -583,7 +631,7 @@ cells_walk_t(mip_ctx *x, double ta, double tb, const int64_t clo[3],
 		T m45 = w5 > w4 ? w5 : w4, m67 = w7 > w6 ? w7 : w6;        \
 		T ma = m23 > m01 ? m23 : m01, mb = m67 > m45 ? m67 : m45;  \
 		cmax = (float)(mb > ma ? mb : ma);                         \
-		if (found && !((double)cmax > best))                       \
+		if (!beats(found, cmax, t, best, tbest))                   \
 			break;                                             \
 		v[0] = (float)w0; v[1] = (float)w1; v[2] = (float)w2;      \
 		v[3] = (float)w3; v[4] = (float)w4; v[5] = (float)w5;      \
@@ -617,24 +665,12 @@ cells_walk_t(mip_ctx *x, double ta, double tb, const int64_t clo[3],
 #undef FETCH
 			if (!fin) {
 				/* no value from this cell */
-			} else if (found && !((double)cmax > best)) {
+			} else if (!beats(found, cmax, t, best, tbest)) {
 				skipped++;
 			} else {
-				double ol[3], k[4], tm, fm, tt;
-
-				for (i = 0; i < 3; i++)
-					ol[i] = (o[i] + t * d[i]) - (double)c[i];
-				poly0(v, ol, d, k);
+				solve_cell(v, c, o, d, t, t1, &best, &tbest,
+				    &found);
 				solved++;
-				if (max0(k, t1 - t, &tm, &fm)) {
-					tt = t + tm;
-					if (!found || fm > best ||
-					    (fm == best && tt < tbest)) {
-						best = fm;
-						tbest = tt;
-						found = 1;
-					}
-				}
 			}
 		}
 		if (!(ta1 < tb))
@@ -668,252 +704,274 @@ cells_walk_t(mip_ctx *x, double ta, double tb, const int64_t clo[3],
 	}
 }
 
-/* solve_cell: the specialized walks' solve(): the exact maximum of the
- * cell at c with corners v on [t, t1], folded into (best, tbest, found). */
-MIP_INLINE void
-solve_cell(const float v[8], const int64_t c[3], const double o[3],
-    const double d[3], double t, double t1, double *best, double *tbest,
-    int *found)
-{
-	double ol[3], k[4], tm, fm, tt;
+/* ---- rays along an axis: the column walk ----
+ *
+ * A ray along axis A only (the other components of d zero: the
+ * axis-aligned orthographic views) stays in one column of data cells, and
+ * the trilinear field on it is linear between the sample planes it
+ * crosses: on each plane it is the bilinear "face value" of the column's 4
+ * samples there, with weights fixed for the whole ray.  Because the result
+ * does not depend on the order in which cells are looked at (beats()),
+ * such a ray needs no queue:
+ *   1. a lower bound M of the result: the face values of the planes
+ *      crossed inside the segment (and the last-t bound), the column's
+ *      level-1 macrocells in order, leaving out those whose maximum is
+ *      below M;
+ *   2. the exact maximum (solve_cell) of each cell whose face values can
+ *      come within E of M, and only of those.
+ * E bounds, generously, how far a cell's computed maximum (the cubic at
+ * the segment's ends, which lie within 2^-30 of a cell of the planes when
+ * |o[A]| <= 2^20 and 2^-20 <= |d[A]| <= 2^20) can be from the computed
+ * face values: 2^-20 of the type's largest magnitude (plus 2^-20).  A cell
+ * left out has a maximum below M - E <= the result, so it could not have
+ * won.  The cells, their segments and their solves are those of walk(), so
+ * the result is the queue's, bit for bit (test_mip). */
 
-	for (int i = 0; i < 3; i++)
-		ol[i] = (o[i] + t * d[i]) - (double)c[i];
-	poly0(v, ol, d, k);
-	if (max0(k, t1 - t, &tm, &fm)) {
-		tt = t + tm;
-		if (!*found || fm > *best || (fm == *best && tt < *tbest)) {
-			*best = fm;
-			*tbest = tt;
-			*found = 1;
-		}
-	}
-}
-
-/* face_bound: for a cell (corners v) and a ray along axis A at in-face
- * position (fu, fv) (the other two axes, lower first), an upper bound on
- * what max0() can give on any part of the ray's segment in the cell:
- * along an axis the trilinear field is linear between the two faces'
- * bilinear values, so its maximum is the larger of them; the margin,
- * 2^-20 of their magnitude (plus 2^-20), is far above what rounding does
- * to the cubic's coefficients and their evaluation when |o[A]| <= 2^24 and
- * 2^-24 <= |d[A]| <= 2^24 (the segment's ends are then off the faces by
- * at most about 2^-26 of a cell). */
-MIP_INLINE double
-face_bound(const float v[8], int A, double fu, double fv)
-{
-	/* corner index bits: x 1, y 2, z 4; U, V the other axes */
-	static const int bu[3] = { 2, 1, 1 }, bv[3] = { 4, 4, 2 };
-	const int iu = bu[A], iv = bv[A], ia = 1 << A;
-	double f[2];
-
-	for (int h = 0; h < 2; h++) {
-		int b = h ? ia : 0;
-		double a0 = v[b], a1 = v[b + iu], a2 = v[b + iv];
-		double a3 = v[b + iu + iv];
-
-		f[h] = (a0 + (a1 - a0) * fu) * (1 - fv) +
-		    (a2 + (a3 - a2) * fu) * fv;
-	}
-	double m = f[0] > f[1] ? f[0] : f[1];
-	return m + (fabs(f[0]) + fabs(f[1]) + 1) * 0x1p-20;
-}
-
-/* axis_solve: cells_axis_t's solve of cell k (corners v): its segment
- * as walk() would have it (see there), then solve_cell(). */
-MIP_INLINE void
-axis_solve(const float v[8], int64_t c[3], int64_t k, int64_t kstart,
-    int64_t kend, int A, double ta, double tb, const double o[3],
-    const double d[3], const int step[3], const int64_t n[3], double *best,
-    double *tbest, int *found)
+/* axis_span: the cells walk() visits for a ray along axis A over clo..chi
+ * on [ta, tb] (walk_start's first cell c): kstart, kstart + s, ..., kend
+ * (s = step[A]).  exit_t() is monotone along the walk (one division of
+ * increasing plane offsets), so walk()'s bookkeeping comes down to:
+ *   - walk() stops after the first cell whose exit is not before tb, or at
+ *     the end of clo..chi: kend;
+ *   - a cell whose exit is before ta (only at the start, by rounding) is
+ *     not visited (walk()'s t1 >= t): kstart;
+ *   - a visited cell's segment is [t0, t1] (axis_seg).
+ * Returns 0 when no cell is visited. */
+MIP_INLINE int
+axis_span(const double o[3], const double d[3], double ta, double tb,
+    const int64_t n[3], const int64_t clo[3], const int64_t chi[3], int A,
+    int64_t c[3], int step[3], int64_t *kstart, int64_t *kend)
 {
 	static const int64_t one[3] = { 1, 1, 1 };
-	double t0 = ta, t1;
+	double tn[3], tq[3], lo = (double)clo[A] - 2, hi = (double)chi[A] + 2;
+	double pe = o[A] + tb * d[A];
+	int64_t kb, ke, k;
 
+	walk_start(o, d, ta, one, n, clo, chi, c, step, tn, tq);
+	kb = step[A] > 0 ? chi[A] : clo[A];
+	/* a guess (within a cell), then exact steps */
+	pe = pe < lo ? lo : pe > hi ? hi : pe;
+	if (step[A] > 0) {
+		ke = (int64_t)ceil(pe) - 1;
+		ke = ke < c[A] ? c[A] : ke > kb ? kb : ke;
+		while (ke < kb && exit_t(o, d, step, one, n, A, ke) < tb)
+			ke++;
+		while (ke > c[A] && !(exit_t(o, d, step, one, n, A, ke - 1) < tb))
+			ke--;
+	} else {
+		ke = (int64_t)floor(pe);
+		ke = ke > c[A] ? c[A] : ke < kb ? kb : ke;
+		while (ke > kb && exit_t(o, d, step, one, n, A, ke) < tb)
+			ke--;
+		while (ke < c[A] && !(exit_t(o, d, step, one, n, A, ke + 1) < tb))
+			ke++;
+	}
+	for (k = c[A]; exit_t(o, d, step, one, n, A, k) < ta; k += step[A])
+		if (k == ke)
+			return 0;
+	*kstart = k;
+	*kend = ke;
+	return 1;
+}
+
+/* axis_seg: walk()'s segment [*t0, *t1] of cell k of axis_span's walk:
+ * t0 is ta for the first cell, else the previous cell's exit when that is
+ * later than ta (walk()'s running t); t1 is the cell's exit, and
+ * min(exit, tb) for the last cell. */
+MIP_INLINE void
+axis_seg(const double o[3], const double d[3], const int step[3],
+    const int64_t n[3], int A, int64_t k, int64_t kstart, int64_t kend,
+    double ta, double tb, double *t0, double *t1)
+{
+	static const int64_t one[3] = { 1, 1, 1 };
+
+	*t0 = ta;
 	if (k != kstart) {
 		double tp = exit_t(o, d, step, one, n, A, k - step[A]);
 
 		if (tp > ta)
-			t0 = tp;
+			*t0 = tp;
 	}
-	t1 = exit_t(o, d, step, one, n, A, k);
-	if (k == kend && !(t1 < tb))
-		t1 = tb;
-	c[A] = k;
-	solve_cell(v, c, o, d, t0, t1, best, tbest, found);
+	*t1 = exit_t(o, d, step, one, n, A, k);
+	if (k == kend && !(*t1 < tb))
+		*t1 = tb;
 }
 
-/* cells_axis_t: cells_walk_t for an integer sample type and a ray along
- * axis A only (the other two components of d are zero: the axis-aligned
- * orthographic views): the same cells, decisions and bits with less work
- * per cell.  Such a walk stays in one column of cells, c0, c0 + s, ...,
- * kend along A.  walk() divides once per cell for its exit time exit_t(k),
- * but only a cell that is solved needs its segment; the rest of walk()'s
- * bookkeeping is decided once per walk with the same exact divisions
- * (exit_t is monotone along the walk: one division of increasing plane
- * offsets):
- *   - walk() stops after the first cell whose exit is not before tb, or
- *     at the end of clo..chi: kend;
- *   - a cell whose exit is before ta (only at the start, by rounding) is
- *     not visited (walk()'s t1 >= t): the walk starts at kstart;
- *   - a visited cell's segment is [t0, t1]: t0 is ta for the first one,
- *     else the previous cell's exit when that is later than ta (walk()'s
- *     running t); t1 is its exit, min(exit, tb) for the last one.
- * A cell's corner maximum is the larger of its two faces' maxima, so a
- * step reads the 4 samples of the face it leaves by, and the test against
- * the best value is an integer comparison with floor(best). */
-MIP_INLINE void
-cells_axis_t(mip_ctx *x, double ta, double tb, const int64_t clo[3],
-    const int64_t chi[3], const vx_type ty)
+/* sample: sample i of an integer-typed volume's data. */
+MIP_INLINE double
+sample(const void *data, vx_type ty, int64_t i)
 {
-	static const int64_t one[3] = { 1, 1, 1 };
-	const vx_grid *g = x->g;
-	const int64_t *n = x->m->dims[0], *off[3] = { g->lay.off[0],
-	    g->lay.off[1], g->lay.off[2] };
-	const double o[3] = { x->o[0], x->o[1], x->o[2] };
-	const double d[3] = { x->d[0], x->d[1], x->d[2] };
-	const int A = x->axis, U = A == 0 ? 1 : 0, V = A == 2 ? 1 : 2;
-	int64_t c[3], kb, kend, kstart, k, du, dv, buv, dd[3];
-	double tn[3], tq[3], best = x->best, tbest = x->tbest;
-	int step[3], s, found = x->found, lead, tameb;
-	double fu, fv;
-	long thr;            /* a cell is solved iff its corner max > thr */
-	uint64_t solved = 0, skipped = 0;
+	switch (ty) {
+	case VX_U8: return ((const uint8_t *)data)[i];
+	case VX_U16: return ((const uint16_t *)data)[i];
+	default: return ((const int16_t *)data)[i];
+	}
+}
 
-	walk_start(o, d, ta, one, n, clo, chi, c, step, tn, tq);
+/* column_t: the maximum on a ray along axis A (tame_axis) through an
+ * integer-typed volume, [ta, tb] clipped, lb a lower bound of the result
+ * (or -Inf); see above.  Returns found and sets *best, *tbest. */
+MIP_INLINE int
+column_t(const vx_grid *g, const vx_macro *m, const double o[3],
+    const double d[3], double ta, double tb, double lb, int A, double *bestp,
+    double *tbestp, vx_mip_stats *st, const vx_type ty)
+{
+	static const int64_t zero[3] = { 0, 0, 0 };
+	const int64_t *n = m->dims[0];
+	const int64_t *off[3] = { g->lay.off[0], g->lay.off[1], g->lay.off[2] };
+	const int U = A == 0 ? 1 : 0, V = A == 2 ? 1 : 2;
+	const double E = ((ty == VX_U8 ? 255.0 : 65535.0) + 1) * 0x1p-20;
+	const void *data = g->data;
+	int64_t chi[3] = { n[0] - 1, n[1] - 1, n[2] - 1 }, c[3], ks, ke, k, j;
+	int64_t wA, mi0 = 0, mstride = 0, buv, du, dv, kp;
+	const float *mm = NULL;
+	double fu, fv, M = lb, best = -INFINITY, tbest = INFINITY, thr;
+	int step[3], s, found = 0, pass;
+	uint64_t solved = 0, skipped = 0, opened = 0;
+
+	if (!axis_span(o, d, ta, tb, n, zero, chi, A, c, step, &ks, &ke))
+		return 0;
 	s = step[A];
-	kb = s > 0 ? chi[A] : clo[A];
-	/* kend: the first cell from c[A] on whose exit is not before tb,
-	 * or kb; a guess (within a cell), then exact steps */
-	{
-		double lo = (double)clo[A] - 2, hi = (double)chi[A] + 2;
-		double pe = o[A] + tb * d[A];
-
-		pe = pe < lo ? lo : pe > hi ? hi : pe;
-		if (s > 0) {
-			kend = (int64_t)ceil(pe) - 1;
-			kend = kend < c[A] ? c[A] : kend > kb ? kb : kend;
-			while (kend < kb && exit_t(o, d, step, one, n, A, kend) < tb)
-				kend++;
-			while (kend > c[A] &&
-			    !(exit_t(o, d, step, one, n, A, kend - 1) < tb))
-				kend--;
-		} else {
-			kend = (int64_t)floor(pe);
-			kend = kend > c[A] ? c[A] : kend < kb ? kb : kend;
-			while (kend > kb && exit_t(o, d, step, one, n, A, kend) < tb)
-				kend--;
-			while (kend < c[A] &&
-			    !(exit_t(o, d, step, one, n, A, kend + 1) < tb))
-				kend++;
-		}
-	}
-	/* kstart: the first cell whose exit is not before ta */
-	kstart = c[A];
-	while (exit_t(o, d, step, one, n, A, kstart) < ta) {
-		if (kstart == kend)
-			return;
-		kstart += s;
-	}
-	c[A] = kstart;
+	fu = o[U] - (double)c[U];
+	fv = o[V] - (double)c[V];
 	buv = off[U][c[U]] + off[V][c[V]];
 	du = off[U][c[U] + 1] - off[U][c[U]];
 	dv = off[V][c[V] + 1] - off[V][c[V]];
-	dd[U] = du;
-	dd[V] = dv;
-	lead = s > 0;        /* the face a step leaves by: plane k + lead */
-	fu = o[U] - (double)c[U];
-	fv = o[V] - (double)c[V];
-	tameb = fabs(o[A]) <= 0x1p24 && fabs(d[A]) >= 0x1p-24 &&
-	    fabs(d[A]) <= 0x1p24;
-#define THR() (found ? (best >= 0x1p40 ? 1L << 40 : (long)floor(best)) : \
-    -(1L << 40))
-	thr = THR();
-	/* FACE: the maximum of the 4 samples of the column's face at plane
-	 * k; AXIS_LOOP: the walk for sample type T */
-#define FACE(T, k, out)                                                   \
-	do {                                                              \
-		const T *p_ = data_ + buv + off[A][k];                    \
-		T a_ = p_[du] > p_[0] ? p_[du] : p_[0];                   \
-		T b_ = p_[du + dv] > p_[dv] ? p_[du + dv] : p_[dv];       \
-		out = (long)(b_ > a_ ? b_ : a_);                          \
-	} while (0)
-#define AXIS_LOOP(T)                                                      \
-	do {                                                              \
-		const T *data_ = (const T *)g->data;                      \
-		long fc, fn, cm;                                          \
-		FACE(T, kstart + 1 - lead, fc);                           \
-		for (k = kstart;; k += s) {                               \
-			FACE(T, k + lead, fn);                            \
-			cm = fn > fc ? fn : fc;                           \
-			fc = fn;                                          \
-			if (cm <= thr) {                                  \
-				skipped++;                                \
-			} else {                                          \
-				const T *p = data_ + buv + off[A][k];     \
-				int64_t dx, dy, dz;                       \
-				float v[8];                               \
-				dd[A] = off[A][k + 1] - off[A][k];        \
-				dx = dd[0]; dy = dd[1]; dz = dd[2];       \
-				v[0] = (float)p[0];                       \
-				v[1] = (float)p[dx];                      \
-				v[2] = (float)p[dy];                      \
-				v[3] = (float)p[dx + dy];                 \
-				v[4] = (float)p[dz];                      \
-				v[5] = (float)p[dx + dz];                 \
-				v[6] = (float)p[dy + dz];                 \
-				v[7] = (float)p[dx + dy + dz];            \
-				solved++;                                 \
-				if (!(tameb && found &&                   \
-				    face_bound(v, A, fu, fv) < best)) {   \
-					axis_solve(v, c, k, kstart, kend, \
-					    A, ta, tb, o, d, step, n,     \
-					    &best, &tbest, &found);       \
-					thr = THR();                      \
-				}                                         \
-			}                                                 \
-			if (k == kend)                                    \
-				break;                                    \
-		}                                                         \
-	} while (0)
-	switch (ty) {
-	case VX_U8: AXIS_LOOP(uint8_t); break;
-	case VX_U16: AXIS_LOOP(uint16_t); break;
-	default: AXIS_LOOP(int16_t); break;
+	/* the column's level-1 macrocells: chunks of wA cells along A */
+	wA = n[A] + 1;
+	if (m->nlev >= 1) {
+		int64_t sd[3] = { 1, m->dims[1][0], m->dims[1][0] * m->dims[1][1] };
+
+		wA = m->width[1][A];
+		mm = m->mm[1];
+		mi0 = sd[U] * (c[U] / m->width[1][U]) +
+		    sd[V] * (c[V] / m->width[1][V]);
+		mstride = sd[A];
 	}
-#undef AXIS_LOOP
+#define FACE(p)                                                           \
+	(kp = buv + off[A][p],                                            \
+	    (sample(data, ty, kp) + (sample(data, ty, kp + du) -          \
+	    sample(data, ty, kp)) * fu) * (1 - fv) +                      \
+	    (sample(data, ty, kp + dv) + (sample(data, ty, kp + du + dv) -\
+	    sample(data, ty, kp + dv)) * fu) * fv)
+	/* pass 0: the lower bound M (a chunk whose maximum is not above M
+	 * cannot raise it); pass 1: the solves, in the walk's order, so that
+	 * a cell or chunk whose maximum is not above the best value so far
+	 * cannot beat it (its t is later: beats()) */
+	for (pass = 0; pass < 2; pass++) {
+		thr = M - E;
+		for (j = ks / wA;; j += s) {
+			int64_t k0 = s > 0 ? (j * wA > ks ? j * wA : ks) :
+			    (j * wA + wA - 1 < ks ? j * wA + wA - 1 : ks);
+			int64_t k1 = s > 0 ? (j * wA + wA - 1 < ke ? j * wA + wA - 1 :
+			    ke) : (j * wA > ke ? j * wA : ke);
+			double hi = mm ? (double)mm[2 * (mi0 + mstride * j) + 1] :
+			    INFINITY;
+
+			if (pass == 0) {
+				if (!(hi > M))
+					goto next_chunk;
+				opened++;
+				/* the planes the ray crosses inside [ta, tb] */
+				for (k = k0; k != ke; k += s) {
+					double f = FACE(k + (s > 0));
+
+					M = f > M ? f : M;
+					if (k == k1)
+						break;
+				}
+				goto next_chunk;
+			}
+			if (hi < thr || (found && !(hi > best))) {
+				goto next_chunk;
+			}
+			for (k = k0;; k += s) {
+				double f0 = FACE(k), f1 = FACE(k + 1), cmax;
+				double ub = (f0 > f1 ? f0 : f1) + E;
+
+				if (ub < thr || (found && ub < best)) {
+					skipped++;
+					goto next_cell;
+				}
+				{
+					const int64_t p = buv + off[A][k];
+					const int64_t dk = off[A][k + 1] - off[A][k];
+					int64_t dd[3], dx, dy, dz;
+					double t0, t1;
+					float v[8];
+
+					dd[U] = du;
+					dd[V] = dv;
+					dd[A] = dk;
+					dx = dd[0];
+					dy = dd[1];
+					dz = dd[2];
+					v[0] = (float)sample(data, ty, p);
+					v[1] = (float)sample(data, ty, p + dx);
+					v[2] = (float)sample(data, ty, p + dy);
+					v[3] = (float)sample(data, ty, p + dx + dy);
+					v[4] = (float)sample(data, ty, p + dz);
+					v[5] = (float)sample(data, ty, p + dx + dz);
+					v[6] = (float)sample(data, ty, p + dy + dz);
+					v[7] = (float)sample(data, ty,
+					    p + dx + dy + dz);
+					cmax = v[0];
+					for (int i = 1; i < 8; i++)
+						cmax = v[i] > cmax ? v[i] : cmax;
+					if (found && !(cmax > best)) {
+						skipped++;
+						goto next_cell;
+					}
+					axis_seg(o, d, step, n, A, k, ks, ke, ta, tb, &t0,
+					    &t1);
+					c[A] = k;
+					solve_cell(v, c, o, d, t0, t1, &best, &tbest,
+					    &found);
+					solved++;
+				}
+			next_cell:
+				if (k == k1)
+					break;
+			}
+		next_chunk:
+			if (k1 == ke)
+				break;
+		}
+	}
 #undef FACE
-#undef THR
-	x->best = best;
-	x->tbest = tbest;
-	x->found = found;
-	if (x->st) {
-		x->st->cells += solved;
-		x->st->cells_skipped += skipped;
+	if (st) {
+		st->cells += solved;
+		st->cells_skipped += skipped;
+		st->macro_opened += opened;
 	}
+	*bestp = best;
+	*tbestp = tbest;
+	return found;
 }
 
-static void
-axis_u8(mip_ctx *x, double ta, double tb, const int64_t clo[3],
-    const int64_t chi[3])
+static int
+column_u8(const vx_grid *g, const vx_macro *m, const double o[3],
+    const double d[3], double ta, double tb, double lb, int A, double *best,
+    double *tbest, vx_mip_stats *st)
 {
-	cells_axis_t(x, ta, tb, clo, chi, VX_U8);
+	return column_t(g, m, o, d, ta, tb, lb, A, best, tbest, st, VX_U8);
 }
 
-static void
-axis_u16(mip_ctx *x, double ta, double tb, const int64_t clo[3],
-    const int64_t chi[3])
+static int
+column_u16(const vx_grid *g, const vx_macro *m, const double o[3],
+    const double d[3], double ta, double tb, double lb, int A, double *best,
+    double *tbest, vx_mip_stats *st)
 {
-	cells_axis_t(x, ta, tb, clo, chi, VX_U16);
+	return column_t(g, m, o, d, ta, tb, lb, A, best, tbest, st, VX_U16);
 }
 
-static void
-axis_i16(mip_ctx *x, double ta, double tb, const int64_t clo[3],
-    const int64_t chi[3])
+static int
+column_i16(const vx_grid *g, const vx_macro *m, const double o[3],
+    const double d[3], double ta, double tb, double lb, int A, double *best,
+    double *tbest, vx_mip_stats *st)
 {
-	cells_axis_t(x, ta, tb, clo, chi, VX_I16);
+	return column_t(g, m, o, d, ta, tb, lb, A, best, tbest, st, VX_I16);
 }
-
 static void
 cells_u8(mip_ctx *x, double ta, double tb, const int64_t clo[3],
     const int64_t chi[3])
@@ -947,14 +1005,6 @@ static void
 cells(mip_ctx *x, double ta, double tb, const int64_t clo[3],
     const int64_t chi[3])
 {
-	if (x->axis >= 0) {
-		switch (x->g->type) {
-		case VX_U8: axis_u8(x, ta, tb, clo, chi); return;
-		case VX_U16: axis_u16(x, ta, tb, clo, chi); return;
-		case VX_I16: axis_i16(x, ta, tb, clo, chi); return;
-		default: break;
-		}
-	}
 	switch (x->g->type) {
 	case VX_U8: cells_u8(x, ta, tb, clo, chi); break;
 	case VX_U16: cells_u16(x, ta, tb, clo, chi); break;
@@ -964,8 +1014,8 @@ cells(mip_ctx *x, double ta, double tb, const int64_t clo[3],
 }
 
 /* tame_axis: the axis a ray runs along when the other two components of
- * d are zero and its numbers are tame (|o[a]| <= 2^60, 2^-60 <= |d[a]| <=
- * 2^60, ta and tb finite: every exit time is finite), else -1. */
+ * d are zero and its numbers are tame (|o[a]| <= 2^20, 2^-20 <= |d[a]| <=
+ * 2^20, ta and tb finite: the column walk's margin holds), else -1. */
 static int
 tame_axis(const double o[3], const double d[3], double ta, double tb)
 {
@@ -978,8 +1028,8 @@ tame_axis(const double o[3], const double d[3], double ta, double tb)
 			return -1;
 		A = a;
 	}
-	if (A < 0 || !(fabs(o[A]) <= 0x1p60) || !(fabs(d[A]) >= 0x1p-60) ||
-	    !(fabs(d[A]) <= 0x1p60) || !isfinite(ta) || !isfinite(tb))
+	if (A < 0 || !(fabs(o[A]) <= 0x1p20) || !(fabs(d[A]) >= 0x1p-20) ||
+	    !(fabs(d[A]) <= 0x1p20) || !isfinite(ta) || !isfinite(tb))
 		return -1;
 	return A;
 }
@@ -1049,7 +1099,16 @@ vx_mip_ray(const vx_grid *g, const vx_macro *m, vx_mip_work *w,
 			x.lb = s - fabs(s) * 1e-9 - 1e-300;
 		}
 	}
-	if (L == 0) {
+	if (!w->plain && x.axis >= 0 && (g->type == VX_U8 ||
+	    g->type == VX_U16 || g->type == VX_I16)) {
+		double lb = x.lb;
+
+		x.found = g->type == VX_U8 ? column_u8(g, m, o, d, ta, tb, lb,
+		    x.axis, &x.best, &x.tbest, st) : g->type == VX_U16 ?
+		    column_u16(g, m, o, d, ta, tb, lb, x.axis, &x.best, &x.tbest,
+		    st) : column_i16(g, m, o, d, ta, tb, lb, x.axis, &x.best,
+		    &x.tbest, st);
+	} else if (L == 0) {
 		int64_t hi[3] = { n[0] - 1, n[1] - 1, n[2] - 1 };
 
 		if (w->plain)
@@ -1069,7 +1128,8 @@ vx_mip_ray(const vx_grid *g, const vx_macro *m, vx_mip_work *w,
 			qent q;
 			int64_t lo[3], hi[3];
 
-			if (x.found && !((double)x.h.e[0].key > x.best))
+			if (!beats(x.found, x.h.e[0].key, x.h.e[0].t0, x.best,
+			    x.tbest))
 				break;
 			q = heap_pop(&x.h);
 			if (st) {

@@ -20,10 +20,18 @@
  * ignored (a cell with a non-finite corner contributes nothing): no NaN key
  * and no NaN result.
  *
- * Ties: among equal maxima the result is the first found in the queue's
- * order (smallest t within a walked macrocell), so the depth (not the
- * value) of a tie can depend on the hierarchy's shape; for one hierarchy
- * it is the same whatever the thread count, bound or layout. */
+ * The result is fixed by a rule, not by the order of the work: each cell
+ * on the ray gives the exact maximum of its cubic on its segment, clamped
+ * into the range of its 8 corners (the trilinear field never leaves it;
+ * rounding in the cubic could), with the smallest t where it is reached;
+ * the ray's result is the largest of these values and, among cells that
+ * reach it, the smallest t.  A cell or macrocell is skipped only when its
+ * maximum is below the best value, or equal to it with a segment starting
+ * no earlier than the best t, so value and depth are bit-identical
+ * whatever the order of the work: for any hierarchy, layout, thread count,
+ * last-t bound, for the queue and for the column walk (rays along an axis:
+ * the axis-aligned views, integer samples: no queue, see mip.c), and
+ * equal to vx_mip_ray_exhaustive's.  */
 #ifndef VX_MIP_H
 #define VX_MIP_H
 
@@ -36,11 +44,9 @@ typedef struct vx_mip_stats {
 	uint64_t rays;
 	uint64_t pushes, pops;       /* priority-queue operations */
 	uint64_t macro_opened;       /* macrocells split or walked */
-	uint64_t cells;              /* data cells not pruned by their corners:
-	                                their maximum was solved (or, on a
-	                                ray along an axis, bounded below the
-	                                best value by their face values) */
-	uint64_t cells_skipped;      /* data cells pruned by their corners */
+	uint64_t cells;              /* data cells whose maximum was solved */
+	uint64_t cells_skipped;      /* data cells pruned by their corners (or
+	                                their face values: column walk) */
 	uint64_t bound_pruned;       /* pushes avoided by the last-t bound */
 	uint64_t max_queue;          /* largest queue length seen */
 } vx_mip_stats;
@@ -66,16 +72,16 @@ void vx_mip_work_free(vx_mip_work *w);
 /* vx_mip_ray: the exact maximum of volume g along o + t d, t in
  * [tmin, tmax], with hierarchy m built over g (vx_macro_build).
  * use_last_t: 1 to use (and update) w->last_t as the lower bound.
- * Returns 1 and sets *vmax and *tmax (smallest t among cells that tie, in
- * queue order) if the ray meets a finite sample, else 0 (*vmax = -Inf,
- * *tmax = +Inf).  st may be NULL. */
+ * Returns 1 and sets *vmax and *tmax (the rule above) if the ray meets a
+ * finite sample, else 0 (*vmax = -Inf, *tmax = +Inf).  st may be NULL (a
+ * ray taking the column walk makes no queue pushes or pops). */
 int vx_mip_ray(const vx_grid *g, const vx_macro *m, vx_mip_work *w,
     const double o[3], const double d[3], double tmin, double tmax,
     int use_last_t, double *vmax, double *tmaxp, vx_mip_stats *st);
 
-/* vx_mip_ray_exhaustive: the same maximum by solving every cell along the
- * ray (no queue, no pruning): the reference the tests compare against.
- * Ties go to the smallest t. */
+/* vx_mip_ray_exhaustive: the same maximum and t by solving every cell
+ * along the ray (no queue, no pruning): the reference the tests compare
+ * against, bit for bit. */
 int vx_mip_ray_exhaustive(const vx_grid *g, const double o[3],
     const double d[3], double tmin, double tmax, double *vmax,
     double *tmaxp);
