@@ -10,6 +10,7 @@
  *
  *   isobench --scene FILE [--set LINE]... [--iso V[,V...]] [--view NAME]
  *            [--size WxH] [-j N] [--flat] [--no-cellmask] [-n FRAMES] [--warm N]
+ *            [--fresh-cellmask] [--ab-cellmask ROUNDS]
  *            [--latency V[,V...]] [--pfm OUT.pfm] [--stats]
  *            [--sizes AxBxC[,DxExF...]] STREAM
  *
@@ -19,7 +20,11 @@
  * intersection, shading: Parker's Table 1) in one extra frame; timed frames
  * never run with the phase clocks on.  --no-cellmask renders without the
  * cell mask (raycast(1) --no-cellmask; every frame builds its own mask
- * otherwise, lazily, as raycast does: its cost is in the frame time).  --sizes builds the macrocells here
+ * otherwise, lazily, as raycast does: its cost is in the frame time).
+ * --ab-cellmask R then renders R rounds of one frame with the mask and one
+ * without, alternating in this process, and prints both modes' median and
+ * fastest CPU times and the median of the per-round ratios: the steadiest
+ * measure of the mask's saving on a shared machine.  --sizes builds the macrocells here
  * with those level sizes (macrocell(1) --sizes) instead of using the
  * stream's, and prints the build time.
  *
@@ -81,6 +86,7 @@ typedef struct bench {
 	vx_macro m;
 	int have_m;
 	vx_raycast_opts ro;
+	vx_cellmask keep;        /* the cell mask kept between frames */
 	double lo[3], hi[3];
 } bench;
 
@@ -131,7 +137,7 @@ main(int argc, char **argv)
 {
 	const char *scene = NULL, *stream = NULL, *pfm = NULL, *latency = NULL;
 	const char *sizes = NULL;
-	int nframes = 5, warm = 1, stats = 0, i, status;
+	int nframes = 5, warm = 1, stats = 0, abr = 0, fresh = 0, i, status;
 	bench b;
 	vx_stream st;
 	vx_err e = { 0, "" };
@@ -169,6 +175,17 @@ main(int argc, char **argv)
 		}
 		if (strcmp(a, "--no-cellmask") == 0) {
 			b.ro.no_cellmask = 1;
+			continue;
+		}
+		if (strcmp(a, "--fresh-cellmask") == 0) {
+			fresh = 1;
+			continue;
+		}
+		if (strcmp(a, "--ab-cellmask") == 0 && v != NULL) {
+			abr = atoi(v);
+			if (abr < 1 || abr > MAXFRAMES)
+				die("--ab-cellmask: 1 to 1000 rounds", NULL);
+			i++;
 			continue;
 		}
 		if (strcmp(a, "--stats") == 0) {
@@ -250,6 +267,9 @@ main(int argc, char **argv)
 	printf("layout %s\n", b.g.lay.nlev ? "bricked" : "linear");
 	printf("traversal %s\n", b.ro.flat ? "flat" : "hierarchical");
 	vx_grid_box(&b.g, b.lo, b.hi);
+	vx_cellmask_init(&b.keep);
+	if (!fresh)
+		b.ro.mask_keep = &b.keep;
 
 	for (i = 0; i < warm; i++) {
 		render(&b, &color, &rs, &wall[0], &cpu[0]);
@@ -286,6 +306,34 @@ main(int argc, char **argv)
 		    "share_shade %.4f\n", rs.share_traverse, rs.share_isect,
 		    rs.share_shade);
 	}
+	if (abr > 0) {
+		/* the mask's saving: kept, fresh and none, alternating */
+		static double cpu3[3][MAXFRAMES], rat[2][MAXFRAMES];
+		double w;
+		int keep = b.ro.no_cellmask;
+		vx_cellmask *kept = b.ro.mask_keep;
+
+		for (i = 0; i < abr; i++) {
+			for (int k = 0; k < 3; k++) {
+				b.ro.no_cellmask = k == 2;
+				b.ro.mask_keep = k == 0 ? &b.keep : NULL;
+				render(&b, &color, &rs, &w, &cpu3[k][i]);
+				vx_image_free(&color);
+			}
+			rat[0][i] = cpu3[0][i] / cpu3[2][i];
+			rat[1][i] = cpu3[1][i] / cpu3[2][i];
+		}
+		b.ro.no_cellmask = keep;
+		b.ro.mask_keep = kept;
+		printf("ab_rounds %d\nab_ratio_kept %.4f\nab_ratio_fresh %.4f\n",
+		    abr, median(rat[0], abr), median(rat[1], abr));
+		printf("ab_kept_cpu_ms %.3f\nab_fresh_cpu_ms %.3f\n"
+		    "ab_nomask_cpu_ms %.3f\n", 1e3 * median(cpu3[0], abr),
+		    1e3 * median(cpu3[1], abr), 1e3 * median(cpu3[2], abr));
+		printf("ab_kept_cpu_ms_min %.3f\nab_fresh_cpu_ms_min %.3f\n"
+		    "ab_nomask_cpu_ms_min %.3f\n", 1e3 * cpu3[0][0],
+		    1e3 * cpu3[1][0], 1e3 * cpu3[2][0]);
+	}
 	if (latency != NULL) {
 		/* an isovalue change: the new surface's first frame */
 		char *list = strdup(latency), *tok, *save = NULL;
@@ -304,6 +352,7 @@ main(int argc, char **argv)
 		}
 		free(list);
 	}
+	vx_cellmask_free(&b.keep);
 	vx_macro_free(&b.m);
 	vx_grid_free(&b.g);
 	return 0;

@@ -1169,10 +1169,9 @@ vx_macro_traverse(const vx_macro *m, const vx_grid *g, const double o[3],
 	    d, tmin, tmax, vals, nvals, fn, ctx, st);
 }
 
-/* mask_fits: k was built over m for exactly these values */
-static int
-mask_fits(vx_cellmask *k, const vx_macro *m, const float *vals,
-    int nvals)
+int
+vx_cellmask_matches(const vx_cellmask *k, const vx_macro *m,
+    const float *vals, int nvals)
 {
 	return k != NULL && k->ready && k->m == m && m->nlev >= 1 &&
 	    k->nvals == nvals && memcmp(k->vals, vals,
@@ -1187,7 +1186,7 @@ vx_macro_traverse_masked(const vx_macro *m, const vx_grid *g,
 {
 	if (g == NULL || !fits(m, g))
 		return -1;
-	if (!mask_fits(k, m, vals, nvals))
+	if (!vx_cellmask_matches(k, m, vals, nvals))
 		k = NULL;
 	return walk(m, m->nlev, m->dims[0], g, NULL, k, o, d, tmin, tmax,
 	    vals, nvals, fn, ctx, st);

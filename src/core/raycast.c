@@ -478,23 +478,27 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 		snprintf(normal->name, sizeof normal->name, "normal");
 	}
 	/* the cell mask for the isovalues drawn (volumes, hierarchical) */
-	vx_cellmask mask;
-	vx_cellmask_init(&mask);
+	vx_cellmask own, *mask = o->mask_keep != NULL ? o->mask_keep : &own;
+	if (mask == &own)
+		vx_cellmask_init(&own);
 	clock_gettime(CLOCK_MONOTONIC, &t0);
 	if (S.mesh == NULL && !S.tr.flat && S.tr.m != NULL &&
 	    !o->no_cellmask) {
-		if ((rc = vx_cellmask_build(&mask, S.tr.m, S.g, S.iso, S.niso,
-		    1, o->nthreads, e)) != 0)
-			return rc;
-		if (mask.ready)
-			S.tr.mask = &mask;
+		if (!vx_cellmask_matches(mask, S.tr.m, S.iso, S.niso)) {
+			vx_cellmask_free(mask);
+			if ((rc = vx_cellmask_build(mask, S.tr.m, S.g, S.iso,
+			    S.niso, 1, o->nthreads, e)) != 0)
+				return rc;
+		}
+		if (mask->ready)
+			S.tr.mask = mask;
 	}
 	clock_gettime(CLOCK_MONOTONIC, &t1);
 	st->mask_seconds = (double)(t1.tv_sec - t0.tv_sec) +
 	    1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
-	st->mask_bytes = vx_cellmask_bytes(&mask);
-	st->mask_blocks = (uint64_t)mask.nblock;
-	st->mask_set = (uint64_t)mask.nset;
+	st->mask_bytes = S.tr.mask ? vx_cellmask_bytes(mask) : 0;
+	st->mask_blocks = S.tr.mask ? (uint64_t)mask->nblock : 0;
+	st->mask_set = S.tr.mask ? (uint64_t)mask->nset : 0;
 	tile = o->tile > 0 ? o->tile : 16;
 	ntx = (cam->w + tile - 1) / tile;
 	nty = (cam->h + tile - 1) / tile;
@@ -507,7 +511,8 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	rc_local *loc = aligned_alloc(_Alignof(rc_local),
 	    (size_t)nthr * sizeof *loc);
 	if (loc == NULL) {
-		vx_cellmask_free(&mask);
+		if (mask == &own)
+			vx_cellmask_free(&own);
 		return vx_err_set(e, VX_ENOMEM, "raycast: out of memory");
 	}
 	memset(loc, 0, (size_t)nthr * sizeof *loc);
@@ -566,8 +571,9 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	for (k = 0; k < nthr; k++)
 		add_local(st, &loc[k], cyc);
 	free(loc);
-	st->mask_built = (uint64_t)vx_cellmask_built(&mask);
-	vx_cellmask_free(&mask);
+	st->mask_built = S.tr.mask ? (uint64_t)vx_cellmask_built(mask) : 0;
+	if (mask == &own)
+		vx_cellmask_free(&own);
 	st->seconds = (double)(t1.tv_sec - t0.tv_sec) +
 	    1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
 	if (o->timing && cyc[0] > 0) {

@@ -262,6 +262,11 @@ int vx_cellmask_build(vx_cellmask *k, const vx_macro *m, const vx_grid *g,
 size_t vx_cellmask_bytes(const vx_cellmask *k);
 int64_t vx_cellmask_built(const vx_cellmask *k);
 
+/* vx_cellmask_matches: 1 if k is ready and was built over m for exactly
+ * vals[0..nvals) (bit for bit). */
+int vx_cellmask_matches(const vx_cellmask *k, const vx_macro *m,
+    const float *vals, int nvals);
+
 /* vx_macro_traverse_masked: vx_macro_traverse deciding leaves by mask k
  * (NULL or not ready, or built for other values or another hierarchy: the
  * plain walk).  Same visits, bit for bit.  Reentrant like

@@ -38,6 +38,13 @@ typedef struct vx_raycast_opts {
 	int no_cellmask;         /* 1: no cell mask (vx_macro.h): the walk
 	                            reads every stepped leaf's samples (same
 	                            picture, for measuring the mask) */
+	vx_cellmask *mask_keep;  /* NULL (a mask per render), or a mask the
+	                            caller keeps between renders (made with
+	                            vx_cellmask_init, freed with
+	                            vx_cellmask_free): reused, with the bits
+	                            already built, while the hierarchy and the
+	                            isovalues stay the same; rebuilt when they
+	                            change */
 } vx_raycast_opts;
 
 typedef struct vx_raycast_stats {
