@@ -808,9 +808,25 @@ sample(const void *data, vx_type ty, int64_t i)
 	}
 }
 
+/* isample: sample i of an integer-typed volume's data. */
+MIP_INLINE int32_t
+isample(const void *data, vx_type ty, int64_t i)
+{
+	switch (ty) {
+	case VX_U8: return ((const uint8_t *)data)[i];
+	case VX_U16: return ((const uint16_t *)data)[i];
+	default: return ((const int16_t *)data)[i];
+	}
+}
+
 /* column_t: the maximum on a ray along axis A (tame_axis) through an
  * integer-typed volume, [ta, tb] clipped, lb a lower bound of the result
- * (or -Inf); see above.  Returns found and sets *best, *tbest. */
+ * (or -Inf); see above.  Returns 1 (found) or 0 and sets *best, *tbest;
+ * returns -1, having done nothing, when the column has more than
+ * COLUMN_MAXCHUNK level-1 macrocells or they are longer than COLUMN_MAXW
+ * cells (the caller takes the queue). */
+#define COLUMN_MAXCHUNK 256
+#define COLUMN_MAXW 64
 MIP_INLINE int
 column_t(const vx_grid *g, const vx_macro *m, const double o[3],
     const double d[3], double ta, double tb, double lb, int A, double *bestp,
@@ -822,11 +838,16 @@ column_t(const vx_grid *g, const vx_macro *m, const double o[3],
 	const int U = A == 0 ? 1 : 0, V = A == 2 ? 1 : 2;
 	const double E = ((ty == VX_U8 ? 255.0 : 65535.0) + 1) * 0x1p-20;
 	const void *data = g->data;
-	int64_t chi[3] = { n[0] - 1, n[1] - 1, n[2] - 1 }, c[3], ks, ke, k, j;
-	int64_t wA, mi0 = 0, mstride = 0, buv, du, dv, kp;
+	int64_t chi[3] = { n[0] - 1, n[1] - 1, n[2] - 1 }, c[3], ks, ke, k;
+	int64_t wA, mi0 = 0, mstride = 0, buv, du, dv, kp, j0, nch, nc, i, q;
+	int64_t ib, qq, np;
 	const float *mm = NULL;
-	double fu, fv, M = lb, best = -INFINITY, tbest = INFINITY, thr;
-	int step[3], s, found = 0, pass;
+	float chmax[COLUMN_MAXCHUNK];
+	int16_t order[COLUMN_MAXCHUNK];
+	int32_t pmax[COLUMN_MAXW + 1], cpm;
+	double pval[COLUMN_MAXW + 1];
+	double fu, fv, M = lb, best = -INFINITY, tbest = INFINITY;
+	int step[3], s, found = 0;
 	uint64_t solved = 0, skipped = 0, opened = 0;
 
 	if (!axis_span(o, d, ta, tb, n, zero, chi, A, c, step, &ks, &ke))
@@ -837,7 +858,8 @@ column_t(const vx_grid *g, const vx_macro *m, const double o[3],
 	buv = off[U][c[U]] + off[V][c[V]];
 	du = off[U][c[U] + 1] - off[U][c[U]];
 	dv = off[V][c[V] + 1] - off[V][c[V]];
-	/* the column's level-1 macrocells: chunks of wA cells along A */
+	/* the column's level-1 macrocells along the walk ("chunks" of wA
+	 * cells), ordered by decreasing maximum, then by the walk's order */
 	wA = n[A] + 1;
 	if (m->nlev >= 1) {
 		int64_t sd[3] = { 1, m->dims[1][0], m->dims[1][0] * m->dims[1][1] };
@@ -848,93 +870,146 @@ column_t(const vx_grid *g, const vx_macro *m, const double o[3],
 		    sd[V] * (c[V] / m->width[1][V]);
 		mstride = sd[A];
 	}
+	j0 = ks / wA;
+	nch = (ke / wA - j0) * s + 1;
+	if (nch > COLUMN_MAXCHUNK ||
+	    (wA > COLUMN_MAXW && (ke - ks) * s + 1 > COLUMN_MAXW))
+		return -1;
+	/* the chunks that can reach M - E (M: the last-t bound), and the
+	 * first with the largest maximum: that one goes first, to raise M */
+	for (i = 0, nc = 0, ib = -1; i < nch; i++) {
+		float h = mm ? mm[2 * (mi0 + mstride * (j0 + s * i)) + 1] :
+		    INFINITY;
+
+		if (!((double)h < M - E)) {
+			if (ib < 0 || h > chmax[ib])
+				ib = nc;
+			chmax[nc] = h;
+			order[nc++] = (int16_t)i;
+		}
+	}
 #define FACE(p)                                                           \
 	(kp = buv + off[A][p],                                            \
 	    (sample(data, ty, kp) + (sample(data, ty, kp + du) -          \
 	    sample(data, ty, kp)) * fu) * (1 - fv) +                      \
 	    (sample(data, ty, kp + dv) + (sample(data, ty, kp + du + dv) -\
 	    sample(data, ty, kp + dv)) * fu) * fv)
-	/* pass 0: the lower bound M (a chunk whose maximum is not above M
-	 * cannot raise it); pass 1: the solves, in the walk's order, so that
-	 * a cell or chunk whose maximum is not above the best value so far
-	 * cannot beat it (its t is later: beats()) */
-	for (pass = 0; pass < 2; pass++) {
-		thr = M - E;
-		for (j = ks / wA;; j += s) {
-			int64_t k0 = s > 0 ? (j * wA > ks ? j * wA : ks) :
-			    (j * wA + wA - 1 < ks ? j * wA + wA - 1 : ks);
-			int64_t k1 = s > 0 ? (j * wA + wA - 1 < ke ? j * wA + wA - 1 :
-			    ke) : (j * wA > ke ? j * wA : ke);
-			double hi = mm ? (double)mm[2 * (mi0 + mstride * j) + 1] :
-			    INFINITY;
+	/* Each chunk in that order: unless it cannot reach M - E or cannot
+	 * beat the best (beats()), the face values of its cells' planes raise
+	 * M (planes crossed inside [ta, tb] only), and each cell whose larger
+	 * face value can reach M - E and the best, and whose corner maximum
+	 * beats the best, is solved.  A cell left out cannot reach the
+	 * result or cannot change it. */
+	for (q = -1; q < nc; q++) {
+		int64_t j, k0, k1, ci = q < 0 ? ib : q;
+		double hi, f0, f1, t0, t1;
 
-			if (pass == 0) {
-				if (!(hi > M))
-					goto next_chunk;
-				opened++;
-				/* the planes the ray crosses inside [ta, tb] */
-				for (k = k0; k != ke; k += s) {
-					double f = FACE(k + (s > 0));
+		if (ci < 0 || (q >= 0 && q == ib))
+			continue;
+		hi = chmax[ci];
+		if (hi < M - E)
+			continue;
+		j = j0 + s * order[ci];
+		k0 = s > 0 ? (j * wA > ks ? j * wA : ks) :
+		    (j * wA + wA - 1 < ks ? j * wA + wA - 1 : ks);
+		k1 = s > 0 ? (j * wA + wA - 1 < ke ? j * wA + wA - 1 : ke) :
+		    (j * wA > ke ? j * wA : ke);
+		if (found && !(hi > best)) {
+			if (hi < best)
+				continue;
+			axis_seg(o, d, step, n, A, k0, ks, ke, ta, tb, &t0, &t1);
+			if (!(t0 < tbest))
+				continue;
+		}
+		opened++;
+		/* the planes k0 .. k1 + s (in the walk's order): each one's
+		 * largest sample, and its face value where that can raise M
+		 * (planes crossed inside [ta, tb] only) */
+		np = (k1 - k0) * s + 1;
+		cpm = INT32_MIN;
+		for (qq = 0; qq <= np; qq++) {
+			const int64_t b0 = buv + off[A][k0 + s * qq + (s < 0)];
+			int32_t a0 = isample(data, ty, b0);
+			int32_t a1 = isample(data, ty, b0 + du);
+			int32_t a2 = isample(data, ty, b0 + dv);
+			int32_t a3 = isample(data, ty, b0 + du + dv);
+			int32_t mx = a0 > a1 ? a0 : a1, my = a2 > a3 ? a2 : a3;
 
+			mx = mx > my ? mx : my;
+			pmax[qq] = mx;
+			cpm = mx > cpm ? mx : cpm;
+			pval[qq] = NAN;
+			if ((double)mx > M) {
+				double f = ((double)a0 + ((double)a1 - a0) * fu) *
+				    (1 - fv) + ((double)a2 + ((double)a3 - a2) * fu) *
+				    fv;
+
+				pval[qq] = f;
+				/* the first plane is crossed inside when the
+				 * chunk does not start the walk; the last when
+				 * it does not end it */
+				if ((qq > 0 || k0 != ks) && (qq < np || k1 != ke))
 					M = f > M ? f : M;
-					if (k == k1)
-						break;
-				}
-				goto next_chunk;
 			}
-			if (hi < thr || (found && !(hi > best))) {
-				goto next_chunk;
-			}
-			for (k = k0;; k += s) {
-				double f0 = FACE(k), f1 = FACE(k + 1), cmax;
-				double ub = (f0 > f1 ? f0 : f1) + E;
+		}
+		if ((double)cpm + E < M - E) {
+			/* no cell here can reach M - E */
+			skipped += (uint64_t)np;
+			continue;
+		}
+		/* the cells */
+		for (k = k0, qq = 0;; k += s, qq++) {
+			double ub, cmax;
+			float v[8];
 
-				if (ub < thr || (found && ub < best)) {
+			if ((double)(pmax[qq] > pmax[qq + 1] ? pmax[qq] :
+			    pmax[qq + 1]) + E < M - E) {
+				skipped++;
+				goto next_cell;
+			}
+			if (isnan(pval[qq]))
+				pval[qq] = FACE(k0 + s * qq + (s < 0));
+			if (isnan(pval[qq + 1]))
+				pval[qq + 1] = FACE(k0 + s * (qq + 1) + (s < 0));
+			f0 = pval[qq];
+			f1 = pval[qq + 1];
+			ub = (f0 > f1 ? f0 : f1) + E;
+			if (ub < M - E || (found && ub < best)) {
+				skipped++;
+			} else {
+				const int64_t p = buv + off[A][k];
+				int64_t dd[3], dx, dy, dz;
+
+				dd[U] = du;
+				dd[V] = dv;
+				dd[A] = off[A][k + 1] - off[A][k];
+				dx = dd[0];
+				dy = dd[1];
+				dz = dd[2];
+				v[0] = (float)sample(data, ty, p);
+				v[1] = (float)sample(data, ty, p + dx);
+				v[2] = (float)sample(data, ty, p + dy);
+				v[3] = (float)sample(data, ty, p + dx + dy);
+				v[4] = (float)sample(data, ty, p + dz);
+				v[5] = (float)sample(data, ty, p + dx + dz);
+				v[6] = (float)sample(data, ty, p + dy + dz);
+				v[7] = (float)sample(data, ty, p + dx + dy + dz);
+				cmax = v[0];
+				for (int h = 1; h < 8; h++)
+					cmax = v[h] > cmax ? v[h] : cmax;
+				axis_seg(o, d, step, n, A, k, ks, ke, ta, tb, &t0,
+				    &t1);
+				if (!beats(found, cmax, t0, best, tbest)) {
 					skipped++;
-					goto next_cell;
-				}
-				{
-					const int64_t p = buv + off[A][k];
-					const int64_t dk = off[A][k + 1] - off[A][k];
-					int64_t dd[3], dx, dy, dz;
-					double t0, t1;
-					float v[8];
-
-					dd[U] = du;
-					dd[V] = dv;
-					dd[A] = dk;
-					dx = dd[0];
-					dy = dd[1];
-					dz = dd[2];
-					v[0] = (float)sample(data, ty, p);
-					v[1] = (float)sample(data, ty, p + dx);
-					v[2] = (float)sample(data, ty, p + dy);
-					v[3] = (float)sample(data, ty, p + dx + dy);
-					v[4] = (float)sample(data, ty, p + dz);
-					v[5] = (float)sample(data, ty, p + dx + dz);
-					v[6] = (float)sample(data, ty, p + dy + dz);
-					v[7] = (float)sample(data, ty,
-					    p + dx + dy + dz);
-					cmax = v[0];
-					for (int i = 1; i < 8; i++)
-						cmax = v[i] > cmax ? v[i] : cmax;
-					if (found && !(cmax > best)) {
-						skipped++;
-						goto next_cell;
-					}
-					axis_seg(o, d, step, n, A, k, ks, ke, ta, tb, &t0,
-					    &t1);
+				} else {
 					c[A] = k;
 					solve_cell(v, c, o, d, t0, t1, &best, &tbest,
 					    &found);
 					solved++;
 				}
-			next_cell:
-				if (k == k1)
-					break;
 			}
-		next_chunk:
-			if (k1 == ke)
+		next_cell:
+			if (k == k1)
 				break;
 		}
 	}
@@ -1056,7 +1131,7 @@ vx_mip_ray(const vx_grid *g, const vx_macro *m, vx_mip_work *w,
 	int64_t one[3] = { 1, 1, 1 }, zero[3] = { 0, 0, 0 }, top[3];
 	double ta = tmin, tb = tmax;
 	mip_ctx x;
-	int a, L = m->nlev;
+	int a, L = m->nlev, col;
 
 	*vmax = -INFINITY;
 	*tmaxp = INFINITY;
@@ -1099,15 +1174,20 @@ vx_mip_ray(const vx_grid *g, const vx_macro *m, vx_mip_work *w,
 			x.lb = s - fabs(s) * 1e-9 - 1e-300;
 		}
 	}
+	col = -1;
 	if (!w->plain && x.axis >= 0 && (g->type == VX_U8 ||
 	    g->type == VX_U16 || g->type == VX_I16)) {
 		double lb = x.lb;
 
-		x.found = g->type == VX_U8 ? column_u8(g, m, o, d, ta, tb, lb,
+		col = g->type == VX_U8 ? column_u8(g, m, o, d, ta, tb, lb,
 		    x.axis, &x.best, &x.tbest, st) : g->type == VX_U16 ?
 		    column_u16(g, m, o, d, ta, tb, lb, x.axis, &x.best, &x.tbest,
 		    st) : column_i16(g, m, o, d, ta, tb, lb, x.axis, &x.best,
 		    &x.tbest, st);
+		x.found = col == 1;
+	}
+	if (col >= 0) {
+		/* done */
 	} else if (L == 0) {
 		int64_t hi[3] = { n[0] - 1, n[1] - 1, n[2] - 1 };
 
