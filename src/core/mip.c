@@ -90,6 +90,70 @@ heap_pop(heap *h)
 	return top;
 }
 
+/* The column walk's cache: for CC_WAYS columns of data cells (a column:
+ * the cells along axis A at one (U, V) cell position), the largest of the
+ * 4 samples on each sample plane of the column, and per level-1 macrocell
+ * along the column ("chunk") the largest of those, filled a chunk at a
+ * time when a ray first needs it.  These are exact maxima of samples, so
+ * they bound the column's face values as tightly as anything cheap can,
+ * far tighter than the chunk's macrocell (16 x 8 cells across); the rays
+ * of a tile (16x16 pixels, a row at a time) come back to the same columns.
+ * Direct-mapped on the column position. */
+#define CC_WAYS 32
+
+typedef struct ccent {
+	const void *data;           /* key: the volume's samples, */
+	const vx_macro *m;          /* the hierarchy, */
+	int A;                      /* the axis and */
+	int64_t cu, cv;             /* the column */
+	int32_t *pmax;              /* per plane along A */
+	int32_t *cmax;              /* per chunk */
+	uint8_t *known;             /* per chunk: pmax, cmax filled */
+} ccent;
+
+typedef struct colcache {
+	int64_t P, C;               /* planes, chunks at most (any axis) */
+	uint32_t looks, hits;       /* recent look-ups, of which hits */
+	ccent e[CC_WAYS];
+} colcache;
+
+/* cc_new: a cache for hierarchy m (level 1 needed), or NULL (then rays
+ * along an axis take the queue). */
+static colcache *
+cc_new(const vx_macro *m)
+{
+	int64_t P = 0, C = 0;
+	colcache *cc;
+	char *b;
+
+	if (m == NULL || m->nlev < 1)
+		return NULL;
+	for (int a = 0; a < 3; a++) {
+		if (m->dims[0][a] + 1 > P)
+			P = m->dims[0][a] + 1;
+		if (m->dims[1][a] > C)
+			C = m->dims[1][a];
+	}
+	if (P > 1 << 16 || C > 1 << 16)
+		return NULL;
+	C = (C + 7) / 8 * 8;        /* keeps the int32 arrays aligned */
+	cc = calloc(1, sizeof *cc + CC_WAYS * (size_t)(4 * P + 5 * C));
+	if (cc == NULL)
+		return NULL;
+	cc->P = P;
+	cc->C = C;
+	b = (char *)(cc + 1);
+	for (int i = 0; i < CC_WAYS; i++) {
+		cc->e[i].pmax = (int32_t *)(void *)b;
+		b += 4 * P;
+		cc->e[i].cmax = (int32_t *)(void *)b;
+		b += 4 * C;
+		cc->e[i].known = (uint8_t *)b;
+		b += C;
+	}
+	return cc;
+}
+
 int
 vx_mip_work_init(vx_mip_work *w, const vx_macro *m, vx_err *e)
 {
@@ -103,6 +167,7 @@ vx_mip_work_init(vx_mip_work *w, const vx_macro *m, vx_err *e)
 	if ((w->q = calloc(cap, sizeof(qent))) == NULL)
 		return vx_err_set(e, VX_ENOMEM, "mip: out of memory for the queue");
 	w->cap = cap;
+	w->cc = cc_new(m);
 	return 0;
 }
 
@@ -110,6 +175,7 @@ void
 vx_mip_work_free(vx_mip_work *w)
 {
 	free(w->q);
+	free(w->cc);
 	memset(w, 0, sizeof *w);
 }
 
@@ -828,9 +894,9 @@ isample(const void *data, vx_type ty, int64_t i)
 #define COLUMN_MAXCHUNK 256
 #define COLUMN_MAXW 64
 MIP_INLINE int
-column_t(const vx_grid *g, const vx_macro *m, const double o[3],
-    const double d[3], double ta, double tb, double lb, int A, double *bestp,
-    double *tbestp, vx_mip_stats *st, const vx_type ty)
+column_t(const vx_grid *g, const vx_macro *m, colcache *cc,
+    const double o[3], const double d[3], double ta, double tb, double lb,
+    int A, double *bestp, double *tbestp, vx_mip_stats *st, const vx_type ty)
 {
 	static const int64_t zero[3] = { 0, 0, 0 };
 	const int64_t *n = m->dims[0];
@@ -841,13 +907,14 @@ column_t(const vx_grid *g, const vx_macro *m, const double o[3],
 	int64_t chi[3] = { n[0] - 1, n[1] - 1, n[2] - 1 }, c[3], ks, ke, k;
 	int64_t wA, mi0 = 0, mstride = 0, buv, du, dv, kp, j0, nch, nc, i, q;
 	int64_t ib, qq, np;
+	ccent *ce;
 	const float *mm = NULL;
 	float chmax[COLUMN_MAXCHUNK];
 	int16_t order[COLUMN_MAXCHUNK];
 	int32_t pmax[COLUMN_MAXW + 1], cpm;
 	double pval[COLUMN_MAXW + 1];
 	double fu, fv, M = lb, best = -INFINITY, tbest = INFINITY;
-	int step[3], s, found = 0;
+	int step[3], s, found = 0, usec, hit;
 	uint64_t solved = 0, skipped = 0, opened = 0;
 
 	if (!axis_span(o, d, ta, tb, n, zero, chi, A, c, step, &ks, &ke))
@@ -858,6 +925,28 @@ column_t(const vx_grid *g, const vx_macro *m, const double o[3],
 	buv = off[U][c[U]] + off[V][c[V]];
 	du = off[U][c[U] + 1] - off[U][c[U]];
 	dv = off[V][c[V] + 1] - off[V][c[V]];
+	/* this column's cache entry */
+	ce = &cc->e[(c[U] + 8 * c[V] + 5 * A) & (CC_WAYS - 1)];
+	hit = ce->data == data && ce->m == m && ce->A == A &&
+	    ce->cu == c[U] && ce->cv == c[V];
+	/* the cache pays where rays come back to their columns (pixels
+	 * narrower than cells): used while at least half of the recent
+	 * rays found their column there, else samples are read directly */
+	cc->looks++;
+	cc->hits += (uint32_t)hit;
+	if (cc->looks >= 256) {
+		cc->looks /= 2;
+		cc->hits /= 2;
+	}
+	usec = 2 * cc->hits >= cc->looks;
+	if (!hit) {
+		ce->data = data;
+		ce->m = m;
+		ce->A = A;
+		ce->cu = c[U];
+		ce->cv = c[V];
+		memset(ce->known, 0, (size_t)m->dims[1][A]);
+	}
 	/* the column's level-1 macrocells along the walk ("chunks" of wA
 	 * cells), ordered by decreasing maximum, then by the walk's order */
 	wA = n[A] + 1;
@@ -914,6 +1003,32 @@ column_t(const vx_grid *g, const vx_macro *m, const double o[3],
 		    (j * wA + wA - 1 < ks ? j * wA + wA - 1 : ks);
 		k1 = s > 0 ? (j * wA + wA - 1 < ke ? j * wA + wA - 1 : ke) :
 		    (j * wA > ke ? j * wA : ke);
+		if (found && hi < best)
+			continue;
+		/* the column's own maximum over the chunk: the cache's */
+		if (usec && !ce->known[j]) {
+			int64_t p0 = j * wA, p1 = p0 + wA < n[A] ? p0 + wA : n[A];
+			int32_t cm = INT32_MIN;
+
+			for (int64_t pl = p0; pl <= p1; pl++) {
+				const int64_t b0 = buv + off[A][pl];
+				int32_t a0 = isample(data, ty, b0);
+				int32_t a1 = isample(data, ty, b0 + du);
+				int32_t a2 = isample(data, ty, b0 + dv);
+				int32_t a3 = isample(data, ty, b0 + du + dv);
+				int32_t mx = a0 > a1 ? a0 : a1, my = a2 > a3 ? a2 : a3;
+
+				mx = mx > my ? mx : my;
+				ce->pmax[pl] = mx;
+				cm = mx > cm ? mx : cm;
+			}
+			ce->cmax[j] = cm;
+			ce->known[j] = 1;
+		}
+		if (usec && (double)ce->cmax[j] < hi)
+			hi = ce->cmax[j];
+		if (hi < M - E)
+			continue;
 		if (found && !(hi > best)) {
 			if (hi < best)
 				continue;
@@ -928,21 +1043,28 @@ column_t(const vx_grid *g, const vx_macro *m, const double o[3],
 		np = (k1 - k0) * s + 1;
 		cpm = INT32_MIN;
 		for (qq = 0; qq <= np; qq++) {
-			const int64_t b0 = buv + off[A][k0 + s * qq + (s < 0)];
-			int32_t a0 = isample(data, ty, b0);
-			int32_t a1 = isample(data, ty, b0 + du);
-			int32_t a2 = isample(data, ty, b0 + dv);
-			int32_t a3 = isample(data, ty, b0 + du + dv);
-			int32_t mx = a0 > a1 ? a0 : a1, my = a2 > a3 ? a2 : a3;
+			const int64_t pl = k0 + s * qq + (s < 0);
+			int32_t mx;
 
-			mx = mx > my ? mx : my;
+			if (usec) {
+				mx = ce->pmax[pl];
+			} else {
+				const int64_t b0 = buv + off[A][pl];
+				int32_t a0 = isample(data, ty, b0);
+				int32_t a1 = isample(data, ty, b0 + du);
+				int32_t a2 = isample(data, ty, b0 + dv);
+				int32_t a3 = isample(data, ty, b0 + du + dv);
+				int32_t my = a2 > a3 ? a2 : a3;
+
+				mx = a0 > a1 ? a0 : a1;
+				mx = mx > my ? mx : my;
+			}
+
 			pmax[qq] = mx;
 			cpm = mx > cpm ? mx : cpm;
 			pval[qq] = NAN;
 			if ((double)mx > M) {
-				double f = ((double)a0 + ((double)a1 - a0) * fu) *
-				    (1 - fv) + ((double)a2 + ((double)a3 - a2) * fu) *
-				    fv;
+				double f = FACE(pl);
 
 				pval[qq] = f;
 				/* the first plane is crossed inside when the
@@ -1025,27 +1147,27 @@ column_t(const vx_grid *g, const vx_macro *m, const double o[3],
 }
 
 static int
-column_u8(const vx_grid *g, const vx_macro *m, const double o[3],
-    const double d[3], double ta, double tb, double lb, int A, double *best,
-    double *tbest, vx_mip_stats *st)
+column_u8(const vx_grid *g, const vx_macro *m, colcache *cc,
+    const double o[3], const double d[3], double ta, double tb, double lb,
+    int A, double *best, double *tbest, vx_mip_stats *st)
 {
-	return column_t(g, m, o, d, ta, tb, lb, A, best, tbest, st, VX_U8);
+	return column_t(g, m, cc, o, d, ta, tb, lb, A, best, tbest, st, VX_U8);
 }
 
 static int
-column_u16(const vx_grid *g, const vx_macro *m, const double o[3],
-    const double d[3], double ta, double tb, double lb, int A, double *best,
-    double *tbest, vx_mip_stats *st)
+column_u16(const vx_grid *g, const vx_macro *m, colcache *cc,
+    const double o[3], const double d[3], double ta, double tb, double lb,
+    int A, double *best, double *tbest, vx_mip_stats *st)
 {
-	return column_t(g, m, o, d, ta, tb, lb, A, best, tbest, st, VX_U16);
+	return column_t(g, m, cc, o, d, ta, tb, lb, A, best, tbest, st, VX_U16);
 }
 
 static int
-column_i16(const vx_grid *g, const vx_macro *m, const double o[3],
-    const double d[3], double ta, double tb, double lb, int A, double *best,
-    double *tbest, vx_mip_stats *st)
+column_i16(const vx_grid *g, const vx_macro *m, colcache *cc,
+    const double o[3], const double d[3], double ta, double tb, double lb,
+    int A, double *best, double *tbest, vx_mip_stats *st)
 {
-	return column_t(g, m, o, d, ta, tb, lb, A, best, tbest, st, VX_I16);
+	return column_t(g, m, cc, o, d, ta, tb, lb, A, best, tbest, st, VX_I16);
 }
 static void
 cells_u8(mip_ctx *x, double ta, double tb, const int64_t clo[3],
@@ -1175,15 +1297,17 @@ vx_mip_ray(const vx_grid *g, const vx_macro *m, vx_mip_work *w,
 		}
 	}
 	col = -1;
-	if (!w->plain && x.axis >= 0 && (g->type == VX_U8 ||
+	if (!w->plain && x.axis >= 0 && w->cc != NULL && (g->type == VX_U8 ||
 	    g->type == VX_U16 || g->type == VX_I16)) {
 		double lb = x.lb;
 
-		col = g->type == VX_U8 ? column_u8(g, m, o, d, ta, tb, lb,
+		colcache *cc = w->cc;
+
+		col = g->type == VX_U8 ? column_u8(g, m, cc, o, d, ta, tb, lb,
 		    x.axis, &x.best, &x.tbest, st) : g->type == VX_U16 ?
-		    column_u16(g, m, o, d, ta, tb, lb, x.axis, &x.best, &x.tbest,
-		    st) : column_i16(g, m, o, d, ta, tb, lb, x.axis, &x.best,
-		    &x.tbest, st);
+		    column_u16(g, m, cc, o, d, ta, tb, lb, x.axis, &x.best,
+		    &x.tbest, st) : column_i16(g, m, cc, o, d, ta, tb, lb, x.axis,
+		    &x.best, &x.tbest, st);
 		x.found = col == 1;
 	}
 	if (col >= 0) {

@@ -56,6 +56,8 @@ typedef struct vx_mip_work {
 	void *q;
 	size_t cap;
 	double last_t;               /* previous ray's t of the maximum, or NaN */
+	void *cc;                    /* private: the column walk's cache of
+	                                sample maxima per column (mip.c) */
 	int plain;                   /* 1: the plain walk, a generic cell walk
 	                                with a visitor per cell (the reference
 	                                the tests compare the specialized walks
@@ -64,8 +66,11 @@ typedef struct vx_mip_work {
 } vx_mip_work;
 
 /* vx_mip_work_init: size the queue for hierarchy m (its capacity bound is
- * derived from the level dims: no ray can need more).  Free with
- * vx_mip_work_free. */
+ * derived from the level dims: no ray can need more), and a cache of
+ * exact sample maxima for rays along an axis, kept from ray to ray and
+ * keyed by the volume's data pointer and the hierarchy: a workspace
+ * serves one volume and hierarchy; after changing samples in place, free
+ * and init it again.  Free with vx_mip_work_free. */
 int vx_mip_work_init(vx_mip_work *w, const vx_macro *m, vx_err *e);
 void vx_mip_work_free(vx_mip_work *w);
 

@@ -464,8 +464,9 @@ fast_equals_plain(void **state)
  * ray: the start and end cell from tmin and tmax cut anywhere (inside a
  * cell, exactly on a sample plane, before the box, empty), origins on
  * sample planes, lattice lines and the box's faces, directions of several
- * lengths and both signs, -0.0 components, and the default hierarchies of
- * macrocell (oracle: the plain walk). */
+ * lengths and both signs, -0.0 components, several rays in one column
+ * (the column walk's cache), and hierarchies of 0 to 2 levels (oracle: the
+ * plain walk). */
 static void
 axis_rays_equal_plain(void **state)
 {
@@ -493,7 +494,9 @@ axis_rays_equal_plain(void **state)
 		assert_int_equal(vx_mip_work_init(&wp, &m, &e), 0);
 		wp.plain = 1;
 		for (int k = 0; k < 300; k++, rays++) {
-			int A = k % 3, U = A == 0 ? 1 : 0, V = A == 2 ? 1 : 2;
+			/* 4 rays in a row share their axis and cell column (the
+			 * column walk's cache is then used and filled) */
+			int A = k / 4 % 3, U = A == 0 ? 1 : 0, V = A == 2 ? 1 : 2;
 			double o[3], d[3] = { 0, 0, 0 }, vf, tf, vp, tp;
 			double len = lens[k / 3 % 5], tmin = 0, tmax = INFINITY;
 			double h = hash01(seed, 10 * k);
@@ -505,8 +508,10 @@ axis_rays_equal_plain(void **state)
 			o[A] = d[A] > 0 ? -2.5 : (double)dims[A] + 1.5;
 			if (k % 9 == 4)            /* starting on a sample plane */
 				o[A] = floor(h * (double)dims[A]);
-			o[U] = (double)(dims[U] - 1) * hash01(seed, 10 * k + 1);
-			o[V] = (double)(dims[V] - 1) * hash01(seed, 10 * k + 2);
+			o[U] = floor((double)(dims[U] - 1) * hash01(seed, k / 4)) +
+			    hash01(seed, 10 * k + 1);
+			o[V] = floor((double)(dims[V] - 1) * hash01(seed + 1, k / 4)) +
+			    hash01(seed, 10 * k + 2);
 			switch (k / 2 % 5) {
 			case 1:                  /* on a lattice line */
 				o[U] = floor(o[U]);
