@@ -351,7 +351,8 @@ class Bench:
                     same = next((e["lastt_same"] for e in self.errors if e["data"] == d and e["view"] == v), "?")
                     L.append("| %s | %d | %.0f | %.0f | %.0f (%.0f%%) | %.0f | %.0f | %s, %s | %s |"
                              % (d, j, r_on["pushes"], r_off["pushes"], r_on["saved"],
-                                100 * (1 - r_on["pushes"] / r_off["pushes"]), r_on["pops"],
+                                100 * (1 - r_on["pushes"] / r_off["pushes"]) if r_off["pushes"] else 0,
+                                r_on["pops"],
                                 r_on["cells"], f(self.ratio(on, off), "%.2f"),
                                 f(self.ratio(on, off, "cpu_ms"), "%.2f"), same))
         L.append("\n### Peers' error against the exact maximum (data units)\n")
