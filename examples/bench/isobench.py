@@ -184,8 +184,9 @@ class Bench:
               "| case | voxlux T1 ms | T2 ms | speedup | efficiency | CPU growth | Embree speedup | Embree efficiency |",
               "| --- | --- | --- | --- | --- | --- | --- | --- |"]
         tm = ["### The cell mask: frames with and without it", "",
-              "voxlux's frame with the cell mask (the default; its lazy build is in the "
-              "frame) and with `--no-cellmask`, the same rounds; saving = 1 - with / "
+              "voxlux's frame with the cell mask (kept between the frames of one "
+              "isovalue, as Embree keeps its BVH; a new isovalue's first frame, table "
+              "(b), builds its own) and with `--no-cellmask`, the same rounds; saving = 1 - with / "
               "without, the median of the per-round CPU-time ratios.  Memory: the mask's "
               "bits and tables; macrocells: bracketing level-1 macrocells, and of them "
               "those rays entered (whose bits were built).", "",
