@@ -20,7 +20,8 @@ frames    (a) voxlux's frame against Embree's frame (same camera, 512x512),
           process per side rendering --frames frames after a warm-up: the
           median frame of the round.
 latency   (b) time to a new image after an isovalue change: voxlux renders
-          another isovalue, then the new one (nothing is rebuilt), against
+          another isovalue, then the new one (the hierarchy is reused; the
+          new isovalue's cell mask is built inside its frame), against
           VTK extraction + Embree BVH build + one Embree frame; also the
           whole raycast(1) process (reading the stream included).
 table3    (c) plain (linear layout, no hierarchy), bricking only (bricked,
@@ -264,7 +265,8 @@ class Bench:
                         r + 1, name, iso, j, float(lat[4]), 1e3 * cli, route), flush=True)
         md = ["### (b) A new isovalue: voxlux against extraction + BVH build + render", "",
               "Medians over %d interleaved rounds. voxlux: the first frame of the new "
-              "isovalue in a running process (the hierarchy is reused: nothing is rebuilt); "
+              "isovalue in a running process (the hierarchy is reused; the new isovalue's "
+              "cell mask is built during this frame, in its time); "
               "process: the whole `raycast` command (reading the stream, checking its "
               "macrocells, rendering, writing the PNG). Route: VTK flying edges `Update()` "
               "+ Embree `rtcCommitScene` + one frame (mesh I/O not counted). Ratio = the "
