@@ -1621,7 +1621,7 @@ vx_macro_from_stream(vx_macro *m, const vx_stream *s, const vx_grid *g,
 		*index = -1;
 	while ((i = vx_stream_find(s, VX_CHUNK_MACRO, (size_t)(i + 1))) >= 0) {
 		const unsigned char *body;
-		const char *v;
+		const char *v, *lv;
 		size_t bodylen;
 		vx_hdr h;
 		int mine;
@@ -1634,6 +1634,13 @@ vx_macro_from_stream(vx_macro *m, const vx_stream *s, const vx_grid *g,
 		}
 		v = vx_hdr_get(&h, "volume");
 		mine = v != NULL && strcmp(v, g->name) == 0;
+		lv = vx_hdr_get(&h, "leaves");
+		if (v == NULL && (lv == NULL || strcmp(lv, "explicit") != 0)) {
+			/* volume macrocells must name their volume */
+			vx_hdr_free(&h);
+			vx_err_set(e, VX_EDATA, "no 'volume' key");
+			return vx_err_push(e, "macrocells");
+		}
 		vx_hdr_free(&h);
 		if (!mine)
 			continue;

@@ -379,6 +379,12 @@ vx_tetleaf_from_stream(vx_tetleaf *lg, const vx_stream *s,
 		v = vx_hdr_get(&h, "mesh");
 		mine = v != NULL && strcmp(v, m->name) == 0;
 		vx_hdr_free(&h);
+		if (v == NULL) {
+			/* a required key: a critical chunk nobody can place */
+			vx_err_set(e, VX_EDATA, "leaf grid: no 'mesh' key");
+			return vx_err_push(e, "chunk TLEF at %llu",
+			    (unsigned long long)s->chunk[i].offset);
+		}
 		if (!mine)
 			continue;
 		if (index != NULL)

@@ -92,27 +92,55 @@ parse_args(opts *o, int argc, char **argv)
 		o->in = argv[optind];
 }
 
-/* find_mcel: index of the MCEL chunk that belongs to volume `name`, or -1
- * (a chunk whose header cannot be read belongs to nobody). */
+/* owner: the name a hierarchy chunk (MCEL: key "volume", TLEF: "mesh")
+ * belongs to, copied into buf; NULL for an MCEL over explicit leaves (it
+ * belongs to no volume).  A chunk that cannot be read or lacks its
+ * required key is bad input: one line and exit 65 (keeping it would leave
+ * a stream the renderers refuse; dropping it would lose data). */
+static const char *
+owner(const vx_stream *s, long i, const char *key, char *buf, size_t n)
+{
+	const unsigned char *body;
+	const char *v, *lv;
+	size_t len;
+	vx_hdr h;
+	vx_err e = { 0, "" };
+	int expl;
+
+	vx_hdr_init(&h);
+	if (vx_payload_parse(&s->chunk[i], &h, &body, &len, &e) != 0) {
+		vx_hdr_free(&h);
+		tool_fail(VX_EDATA, "chunk %.4s at %llu: %s", s->chunk[i].type,
+		    (unsigned long long)s->chunk[i].offset, e.msg);
+	}
+	v = vx_hdr_get(&h, key);
+	lv = vx_hdr_get(&h, "leaves");
+	expl = strcmp(key, "volume") == 0 && lv != NULL &&
+	    strcmp(lv, "explicit") == 0;
+	if (v == NULL && !expl) {
+		vx_hdr_free(&h);
+		tool_fail(VX_EDATA, "chunk %.4s at %llu: no '%s' key",
+		    s->chunk[i].type, (unsigned long long)s->chunk[i].offset,
+		    key);
+	}
+	if (v != NULL)
+		snprintf(buf, n, "%s", v);
+	vx_hdr_free(&h);
+	return v != NULL ? buf : NULL;
+}
+
+/* find_mcel: index of the MCEL chunk that belongs to volume `name`, or -1. */
 static long
 find_mcel(const vx_stream *s, const char *name)
 {
+	char buf[256];
+	const char *v;
 	long i = -1;
 
-	while ((i = vx_stream_find(s, VX_CHUNK_MACRO, (size_t)(i + 1))) >= 0) {
-		const unsigned char *body;
-		const char *v;
-		size_t n;
-		vx_hdr h;
-		int mine;
-
-		vx_hdr_init(&h);
-		mine = vx_payload_parse(&s->chunk[i], &h, &body, &n, NULL) == 0 &&
-		    (v = vx_hdr_get(&h, "volume")) != NULL && strcmp(v, name) == 0;
-		vx_hdr_free(&h);
-		if (mine)
+	while ((i = vx_stream_find(s, VX_CHUNK_MACRO, (size_t)(i + 1))) >= 0)
+		if ((v = owner(s, i, "volume", buf, sizeof buf)) != NULL &&
+		    strcmp(v, name) == 0)
 			return i;
-	}
 	return -1;
 }
 
@@ -173,22 +201,14 @@ print_stats(const vx_macro *m, const vx_grid *g, double tbuild, int nt)
 static long
 find_tlef(const vx_stream *s, const char *name)
 {
+	char buf[256];
+	const char *v;
 	long i = -1;
 
-	while ((i = vx_stream_find(s, VX_CHUNK_TETLEAF, (size_t)(i + 1))) >= 0) {
-		const unsigned char *body;
-		const char *v;
-		size_t n;
-		vx_hdr h;
-		int mine;
-
-		vx_hdr_init(&h);
-		mine = vx_payload_parse(&s->chunk[i], &h, &body, &n, NULL) == 0 &&
-		    (v = vx_hdr_get(&h, "mesh")) != NULL && strcmp(v, name) == 0;
-		vx_hdr_free(&h);
-		if (mine)
+	while ((i = vx_stream_find(s, VX_CHUNK_TETLEAF, (size_t)(i + 1))) >= 0)
+		if ((v = owner(s, i, "mesh", buf, sizeof buf)) != NULL &&
+		    strcmp(v, name) == 0)
 			return i;
-	}
 	return -1;
 }
 

@@ -455,6 +455,17 @@ case("mcel-levels-volume.vxs", "raycast --iso 3 --size 8x8 -o OUT FILE", 65,
      "levels 9", "the volume's MCEL with levels 9", MC)
 case("mcel-levels-volume.vxs", "mip --size 8x8 -o OUT FILE", 65, "levels 9",
      "(as above)", None)
+MCNV = stream(volm(), chunk("MCEL", payload([
+    "leaves: cells", "volume-dims: 2 2 2", "volume-type: u8",
+    "volume-crc32: 00000000", "leaf-dims: 1 1 1", "levels: 0", "sizes: ",
+    "range: 0 1", "encoding: raw"])))
+case("mcel-no-volume.vxs", "raycast --iso 3 --size 8x8 -o OUT FILE", 65,
+     "no 'volume' key", "volume macrocells (leaves: cells) without the "
+     "required volume key", MCNV)
+case("mcel-no-volume.vxs", "mip --size 8x8 -o OUT FILE", 65,
+     "no 'volume' key", "(as above)", None)
+case("mcel-no-volume.vxs", "macrocell -o OUT FILE", 65,
+     "no 'volume' key", "(as above)", None)
 
 # ---- TLEF: a tet mesh's leaf grid (formats/tetmesh.md), read by raycast
 # (for the mesh it names) and vinfo (every one); macrocell only replaces it.
@@ -561,6 +572,11 @@ TL = [
     ("tlef-zlib-cut.vxs", "zlib", "zlib body cut short",
      mesh_tlef(body=zlib.compress(tlef_body())[:-3], encoding="zlib")),
 ]
+case("tlef-no-mesh.vxs", "raycast --iso 1 --size 8x8 -o OUT FILE", 65,
+     "no 'mesh' key", "TLEF without the required mesh key",
+     mesh_tlef(mesh=None))
+case("tlef-no-mesh.vxs", "macrocell -o OUT FILE", 65, "no 'mesh' key",
+     "(as above)", None)
 for name, phrase, what, data in TL:
     case(name, T + " (listing)", 65, phrase, what, data)
     # raycast reads the leaf grid of the mesh it draws (a stream error is
