@@ -263,15 +263,16 @@ main(int argc, char **argv)
 			    "hierarchical", nthr, nthr == 1 ? "" : "s");
 		else
 			fprintf(stderr, "raycast: %dx%d pixels, %d sample%s per "
-			    "pixel, about %.0f rays; solver %s, %s traversal, %d "
+			    "pixel, about %.0f rays; solver %s, %s, %d "
 			    "thread%s\n", s.camera.w, s.camera.h, o.aa * o.aa,
 			    o.aa > 1 ? "s" : "", plan.rays_per_pixel *
 			    s.camera.w * s.camera.h * o.aa * o.aa,
-			    vx_cell_solver_name(o.solver), o.flat ? "flat" :
-			    o.nomask ? "hierarchical (no cell mask)" :
-			    "hierarchical with a cell mask (a bit per cell "
-			    "of the macrocells bracketing the isovalues, "
-			    "built before the rays)", nthr,
+			    vx_cell_solver_name(o.solver), o.flat ?
+			    "flat traversal" : o.nomask ?
+			    "hierarchical traversal (no cell mask)" :
+			    "hierarchical traversal with a cell mask (a bit "
+			    "per cell of the macrocells bracketing the "
+			    "isovalues, built as rays first enter them)", nthr,
 			    nthr == 1 ? "" : "s");
 		free(buf);
 	}
