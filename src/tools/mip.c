@@ -154,7 +154,7 @@ main(int argc, char **argv)
 	vx_err e = { 0, "" };
 	vx_mip_stats ms;
 	double lo[3], hi[3], wlo, whi;
-	int status, nthr, i;
+	int nthr, i;
 	struct timespec t0, t1, c0, c1;
 
 	tool_init("mip", argc, argv);
@@ -186,22 +186,7 @@ main(int argc, char **argv)
 			tool_fail(VX_EDATA, "volume '%s': needs at least 2 samples "
 			    "per axis", g.name);
 	nthr = tool_threads(o.threads);
-	vx_macro_init(&m);
-	if (vx_macro_from_stream(&m, &st, &g, &status, NULL, &e) != 0)
-		tool_fail_err(&e);
-	if (status != VX_MACRO_LOADED) {
-		int sizes[VX_MACRO_MAXLEV][3];
-		int nlev = vx_macro_default_sizes(g.type, VX_MACRO_DEFAULT_LEVELS,
-		    sizes);
-
-		if (!o.dry)
-			fprintf(stderr, "mip: note: %s macrocells for '%s'; building "
-			    "them (run macrocell(1) in the pipeline to keep them)\n",
-			    status == VX_MACRO_STALE ? "stale" : "no", g.name);
-		if (vx_macro_build(&m, &g, nlev, (const int (*)[3])sizes, nthr,
-		    &e) != 0)
-			tool_fail_err(&e);
-	}
+	tool_macro_load(&m, &st, &g, nthr, o.dry);
 	if (o.explain)
 		explain(&o, &s, &m, nthr);
 	if (o.dry)

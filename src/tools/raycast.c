@@ -301,24 +301,8 @@ main(int argc, char **argv)
 			    nlev, (const int (*)[3])sizes, nthr, &e) != 0)
 				tool_fail_err(&e);
 		}
-	} else if (!o.flat) {
-		if (vx_macro_from_stream(&m, &st, &g, &status, NULL, &e) != 0)
-			tool_fail_err(&e);
-		if (status != VX_MACRO_LOADED) {
-			int sizes[VX_MACRO_MAXLEV][3];
-			int nlev = vx_macro_default_sizes(g.type,
-			    VX_MACRO_DEFAULT_LEVELS, sizes);
-
-			if (!o.dry)
-				fprintf(stderr, "raycast: note: %s macrocells for "
-				    "'%s'; building them (run macrocell(1) in the "
-				    "pipeline to keep them)\n", status ==
-				    VX_MACRO_STALE ? "stale" : "no", g.name);
-			if (vx_macro_build(&m, &g, nlev,
-			    (const int (*)[3])sizes, nthr, &e) != 0)
-				tool_fail_err(&e);
-		}
-	}
+	} else if (!o.flat)
+		tool_macro_load(&m, &st, &g, nthr, o.dry);
 	if (o.dry) {
 		vx_tetleaf_free(&lg);
 		vx_tetmesh_free(&mesh);

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "vx_image.h"
+#include "vx_macro.h"
 #include "vx_scene.h"
 #include "vx_version.h"
 
@@ -363,4 +364,26 @@ tool_stream_keep(vx_stream *out, vx_stream *in, const char *const *drop)
 		if (vx_stream_append(out, &c, &e) != 0)
 			tool_fail_err(&e);
 	}
+}
+
+void
+tool_macro_load(vx_macro *m, const vx_stream *st, const vx_grid *g, int nthr,
+    int quiet)
+{
+	int sizes[VX_MACRO_MAXLEV][3], nlev, status;
+	vx_err e = { 0, "" };
+
+	vx_macro_init(m);
+	if (vx_macro_from_stream(m, st, g, &status, NULL, &e) != 0)
+		tool_fail_err(&e);
+	if (status == VX_MACRO_LOADED)
+		return;
+	nlev = vx_macro_default_sizes(g->type, VX_MACRO_DEFAULT_LEVELS, sizes);
+	if (!quiet)
+		fprintf(stderr, "%s: note: %s macrocells for '%s'; building them "
+		    "(run macrocell(1) in the pipeline to keep them)\n",
+		    tool_name, status == VX_MACRO_STALE ? "stale" : "no",
+		    g->name);
+	if (vx_macro_build(m, g, nlev, (const int (*)[3])sizes, nthr, &e) != 0)
+		tool_fail_err(&e);
 }
