@@ -209,20 +209,36 @@ clip(const int64_t n[3], const double o[3], const double d[3], double *ta,
 typedef void (*emit_fn)(void *ctx, const int64_t c[3], double t0,
     double t1);
 
-/* walk: the cells (index c, covering leaves [c w, min((c+1) w, n)) per axis)
- * with clo <= c <= chi that o + t d passes through for t in [ta, tb], in
- * order.  Crossing times are computed directly from the integer plane
- * position, never accumulated, so every walk over the same planes gets the
- * same bits. */
-static void
-walk(const double o[3], const double d[3], double ta, double tb,
-    const int64_t w[3], const int64_t n[3], const int64_t clo[3],
-    const int64_t chi[3], emit_fn fn, void *ctx)
+#if defined(__GNUC__)
+#define MIP_INLINE static inline __attribute__((always_inline))
+#else
+#define MIP_INLINE static inline
+#endif
+
+/* exit_t: the time at which the ray leaves cell k (width w) along
+ * axis a. */
+MIP_INLINE double
+exit_t(const double o[3], const double d[3], const int step[3],
+    const int64_t w[3], const int64_t n[3], int a, int64_t k)
 {
-	int64_t c[3];
-	double tn[3], t = ta;
-	int a, step[3];
-	long guard;
+	if (step[a] > 0) {
+		int64_t h = (k + 1) * w[a] < n[a] ? (k + 1) * w[a] : n[a];
+
+		return ((double)h - o[a]) / d[a];
+	}
+	if (step[a] < 0)
+		return ((double)(k * w[a]) - o[a]) / d[a];
+	return INFINITY;
+}
+
+/* walk_start: a walk's first cell and crossing times. */
+MIP_INLINE void
+walk_start(const double o[3], const double d[3], double ta,
+    const int64_t w[3], const int64_t n[3], const int64_t clo[3],
+    const int64_t chi[3], int64_t c[3], int step[3], double tn[3],
+    double tq[3])
+{
+	int a;
 
 	for (a = 0; a < 3; a++) {
 		double p = o[a] + ta * d[a];
@@ -239,12 +255,27 @@ walk(const double o[3], const double d[3], double ta, double tb,
 		step[a] = d[a] > 0 ? 1 : d[a] < 0 ? -1 : 0;
 	}
 	for (a = 0; a < 3; a++) {
-		int64_t hi = (c[a] + 1) * w[a] < n[a] ? (c[a] + 1) * w[a] : n[a];
-
-		tn[a] = step[a] > 0 ? ((double)hi - o[a]) / d[a] :
-		    step[a] < 0 ? ((double)(c[a] * w[a]) - o[a]) / d[a] :
-		    INFINITY;
+		tn[a] = exit_t(o, d, step, w, n, a, c[a]);
+		tq[a] = exit_t(o, d, step, w, n, a, c[a] + step[a]);
 	}
+}
+
+/* walk: the cells (index c, covering leaves [c w, min((c+1) w, n)) per axis)
+ * with clo <= c <= chi that o + t d passes through for t in [ta, tb], in
+ * order.  Crossing times are computed directly from the integer plane
+ * position, never accumulated, so every walk over the same planes gets the
+ * same bits. */
+static void
+walk(const double o[3], const double d[3], double ta, double tb,
+    const int64_t w[3], const int64_t n[3], const int64_t clo[3],
+    const int64_t chi[3], emit_fn fn, void *ctx)
+{
+	int64_t c[3];
+	double tn[3], tq[3], t = ta;
+	int a, step[3];
+	long guard;
+
+	walk_start(o, d, ta, w, n, clo, chi, c, step, tn, tq);
 	for (guard = 0; guard < 1L << 40; guard++) {
 		a = tn[0] <= tn[1] ? (tn[0] <= tn[2] ? 0 : 2) :
 		    (tn[1] <= tn[2] ? 1 : 2);
@@ -259,9 +290,7 @@ walk(const double o[3], const double d[3], double ta, double tb,
 			break;
 		if (t1 > t)
 			t = t1;
-		int64_t hi = (c[a] + 1) * w[a] < n[a] ? (c[a] + 1) * w[a] : n[a];
-		tn[a] = step[a] > 0 ? ((double)hi - o[a]) / d[a] :
-		    ((double)(c[a] * w[a]) - o[a]) / d[a];
+		tn[a] = exit_t(o, d, step, w, n, a, c[a]);
 	}
 }
 
@@ -279,12 +308,6 @@ typedef struct mip_ctx {
 	                         ray is tame: tame_axis); -1: any other */
 	vx_mip_stats *st;
 } mip_ctx;
-
-#if defined(__GNUC__)
-#define MIP_INLINE static inline __attribute__((always_inline))
-#else
-#define MIP_INLINE static inline
-#endif
 
 /* beats: whether a cell or macrocell whose values are at most hi and
  * whose segment starts at t0 can still change the result (best, tbest)
@@ -527,51 +550,6 @@ emit_macro(void *ctx, const int64_t c[3], double t0, double t1)
  * same crossing times), fused with what is done per cell, and compute the
  * next crossing time along an axis one step ahead, so that the division
  * is off the loop's critical path. */
-
-/* exit_t: walk()'s time at which the ray leaves cell k (width w) along
- * axis a. */
-MIP_INLINE double
-exit_t(const double o[3], const double d[3], const int step[3],
-    const int64_t w[3], const int64_t n[3], int a, int64_t k)
-{
-	if (step[a] > 0) {
-		int64_t h = (k + 1) * w[a] < n[a] ? (k + 1) * w[a] : n[a];
-
-		return ((double)h - o[a]) / d[a];
-	}
-	if (step[a] < 0)
-		return ((double)(k * w[a]) - o[a]) / d[a];
-	return INFINITY;
-}
-
-/* walk_start: walk()'s first cell and crossing times. */
-MIP_INLINE void
-walk_start(const double o[3], const double d[3], double ta,
-    const int64_t w[3], const int64_t n[3], const int64_t clo[3],
-    const int64_t chi[3], int64_t c[3], int step[3], double tn[3],
-    double tq[3])
-{
-	int a;
-
-	for (a = 0; a < 3; a++) {
-		double p = o[a] + ta * d[a];
-		int64_t k = (int64_t)floor(p / (double)w[a]);
-
-		/* on a plane going down: the cell below */
-		if (d[a] < 0 && (double)(k * w[a]) == p)
-			k--;
-		if (k < clo[a])
-			k = clo[a];
-		if (k > chi[a])
-			k = chi[a];
-		c[a] = k;
-		step[a] = d[a] > 0 ? 1 : d[a] < 0 ? -1 : 0;
-	}
-	for (a = 0; a < 3; a++) {
-		tn[a] = exit_t(o, d, step, w, n, a, c[a]);
-		tq[a] = exit_t(o, d, step, w, n, a, c[a] + step[a]);
-	}
-}
 
 /* macro_walk: walk() over level-l macrocells clo..chi of [ta, tb] with
  * emit_macro(): push each one whose maximum can beat both the last-t bound
