@@ -1313,18 +1313,32 @@ vx_cellmask_build(vx_cellmask *k, const vx_macro *m, const vx_grid *g,
 
 /* ---- the MCEL chunk ---- */
 
-static int
-sizes_string(const vx_macro *m, char *buf, size_t n)
+int
+vx_macro_hdr_levels(const vx_macro *m, vx_hdr *h, vx_err *e)
 {
+	char sz[VX_MACRO_MAXLEV * 16 + 1], key[16];
 	size_t k = 0;
-	int l;
+	int l, rc;
 
-	buf[0] = '\0';
-	for (l = 1; l <= m->nlev && k < n; l++)
-		k += (size_t)snprintf(buf + k, n - k, "%s%dx%dx%d",
+	sz[0] = '\0';
+	for (l = 1; l <= m->nlev; l++)
+		k += (size_t)snprintf(sz + k, sizeof sz - k, "%s%dx%dx%d",
 		    l > 1 ? " " : "", m->size[l][0], m->size[l][1],
 		    m->size[l][2]);
-	return k < n ? 0 : -1;
+	if ((rc = vx_hdr_set(h, "levels", e, "%d", m->nlev)) ||
+	    (rc = vx_hdr_set(h, "sizes", e, "%s", sz)))
+		return rc;
+	for (l = 1; l <= m->nlev; l++) {
+		snprintf(key, sizeof key, "dims-%d", l);
+		if ((rc = vx_hdr_set(h, key, e, "%lld %lld %lld",
+		    (long long)m->dims[l][0], (long long)m->dims[l][1],
+		    (long long)m->dims[l][2])) != 0)
+			return rc;
+	}
+	if (m->root[0] <= m->root[1])
+		return vx_hdr_set(h, "range", e, "%.9g %.9g",
+		    (double)m->root[0], (double)m->root[1]);
+	return vx_hdr_set(h, "range", e, "empty");
 }
 
 int
@@ -1332,15 +1346,10 @@ vx_macro_to_chunk(const vx_macro *m, int zlevel, vx_chunk *c, vx_err *e)
 {
 	size_t nbytes = vx_macro_bytes(m), k;
 	unsigned char *body = NULL;
-	char sz[VX_MACRO_MAXLEV * 16 + 1], key[16];
 	vx_hdr h;
 	int l, rc;
 
 	vx_hdr_init(&h);
-	if (sizes_string(m, sz, sizeof sz) != 0) {
-		rc = vx_err_set(e, VX_EINTERNAL, "macrocells: sizes too long");
-		goto out;
-	}
 	if ((rc = vx_hdr_set(&h, "leaves", e, "%s", m->explicit_leaves ?
 	    "explicit" : "cells")) != 0)
 		goto out;
@@ -1357,22 +1366,8 @@ vx_macro_to_chunk(const vx_macro *m, int zlevel, vx_chunk *c, vx_err *e)
 	if ((rc = vx_hdr_set(&h, "leaf-dims", e, "%lld %lld %lld",
 	    (long long)m->dims[0][0], (long long)m->dims[0][1],
 	    (long long)m->dims[0][2])) ||
-	    (rc = vx_hdr_set(&h, "levels", e, "%d", m->nlev)) ||
-	    (rc = vx_hdr_set(&h, "sizes", e, "%s", sz)))
-		goto out;
-	for (l = 1; l <= m->nlev; l++) {
-		snprintf(key, sizeof key, "dims-%d", l);
-		if ((rc = vx_hdr_set(&h, key, e, "%lld %lld %lld",
-		    (long long)m->dims[l][0], (long long)m->dims[l][1],
-		    (long long)m->dims[l][2])) != 0)
-			goto out;
-	}
-	if (m->root[0] <= m->root[1])
-		rc = vx_hdr_set(&h, "range", e, "%.9g %.9g", (double)m->root[0],
-		    (double)m->root[1]);
-	else
-		rc = vx_hdr_set(&h, "range", e, "empty");
-	if (rc != 0 || (rc = vx_hdr_set(&h, "nonfinite", e, "ignored")) != 0)
+	    (rc = vx_macro_hdr_levels(m, &h, e)) ||
+	    (rc = vx_hdr_set(&h, "nonfinite", e, "ignored")))
 		goto out;
 	if (nbytes > 0 && (body = vx_malloc(nbytes, e)) == NULL) {
 		rc = VX_ENOMEM;

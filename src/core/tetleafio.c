@@ -63,7 +63,6 @@ vx_tetleaf_to_chunk(const vx_tetleaf *lg, const vx_tetmesh *m, int zlevel,
 	const vx_macro *mc = &lg->mc;
 	size_t noff = lg->nleaf + 1, nidx, ncell = 0, nbytes, k, i;
 	unsigned char *body = NULL;
-	char sz[VX_MACRO_MAXLEV * 16 + 1], key[16];
 	vx_hdr h;
 	int l, rc;
 
@@ -74,11 +73,6 @@ vx_tetleaf_to_chunk(const vx_tetleaf *lg, const vx_tetmesh *m, int zlevel,
 		ncell += level_cells(mc, l);
 	nbytes = 4 * (noff + nidx) + 8 * ncell;
 	vx_hdr_init(&h);
-	sz[0] = '\0';
-	for (l = 1, k = 0; l <= mc->nlev; l++)
-		k += (size_t)snprintf(sz + k, sizeof sz - k, "%s%dx%dx%d",
-		    l > 1 ? " " : "", mc->size[l][0], mc->size[l][1],
-		    mc->size[l][2]);
 	if ((rc = vx_hdr_set(&h, "mesh", e, "%s", m->name)) ||
 	    (rc = vx_hdr_set(&h, "mesh-points", e, "%zu", m->npoint)) ||
 	    (rc = vx_hdr_set(&h, "mesh-tets", e, "%zu", m->ntet)) ||
@@ -92,22 +86,7 @@ vx_tetleaf_to_chunk(const vx_tetleaf *lg, const vx_tetmesh *m, int zlevel,
 	    (rc = vx_hdr_set(&h, "leaf-size", e, "%.17g %.17g %.17g",
 	    lg->cell[0], lg->cell[1], lg->cell[2])) ||
 	    (rc = vx_hdr_set(&h, "entries", e, "%zu", nidx)) ||
-	    (rc = vx_hdr_set(&h, "levels", e, "%d", mc->nlev)) ||
-	    (rc = vx_hdr_set(&h, "sizes", e, "%s", sz)))
-		goto out;
-	for (l = 1; l <= mc->nlev; l++) {
-		snprintf(key, sizeof key, "dims-%d", l);
-		if ((rc = vx_hdr_set(&h, key, e, "%lld %lld %lld",
-		    (long long)mc->dims[l][0], (long long)mc->dims[l][1],
-		    (long long)mc->dims[l][2])) != 0)
-			goto out;
-	}
-	if (mc->root[0] <= mc->root[1])
-		rc = vx_hdr_set(&h, "range", e, "%.9g %.9g", (double)mc->root[0],
-		    (double)mc->root[1]);
-	else
-		rc = vx_hdr_set(&h, "range", e, "empty");
-	if (rc != 0)
+	    (rc = vx_macro_hdr_levels(mc, &h, e)))
 		goto out;
 	if ((body = vx_malloc(nbytes, e)) == NULL) {
 		rc = VX_ENOMEM;

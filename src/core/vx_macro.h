@@ -84,6 +84,10 @@ int vx_macro_default_sizes(vx_type t, int nlev, int sizes[][3]);
  * returns the number of levels (1..VX_MACRO_MAXLEV) or -1 with e set. */
 int vx_macro_parse_sizes(const char *s, int sizes[][3], vx_err *e);
 
+/* vx_macro_hdr_levels: the keys that describe m's levels in a chunk header
+ * (MCEL and TLEF), in this order: levels, sizes, dims-1 .. dims-L, range. */
+int vx_macro_hdr_levels(const vx_macro *m, vx_hdr *h, vx_err *e);
+
 /* vx_macro_sizes_hdr_parse: a chunk header's "sizes" value, exactly nlev
  * space-separated AxBxC (the MCEL and TLEF headers); 0 or VX_EDATA. */
 int vx_macro_sizes_hdr_parse(const char *v, int nlev, int sizes[][3],
