@@ -120,17 +120,17 @@ explain(const opts *o, const vx_scene *s, const vx_macro *m, int nthr)
 {
 	vx_plan p;
 	char buf[4096];
-	int i, nl = 0;
+	int nl = s->nlight;
 
 	vx_plan_init(&p, "mip");
 	vx_plan_add(&p, "maximum", VX_PLAN_ON, 1, "%s",
 	    o->exhaustive ? "every cell along each ray solved (reference mode)" :
-	    "priority queue over macrocells; exact cubic maximum per cell");
+	    "priority queue over macrocells (rays along a grid axis through "
+	    "integer samples: a column walk, macrocells by largest maximum "
+	    "first); exact cubic maximum per cell");
 	vx_plan_add(&p, "use last t", o->lastt && !o->exhaustive ? VX_PLAN_ON :
 	    VX_PLAN_OFF, 0, "%s", o->lastt ? "lower bound from the previous "
 	    "ray's maximum in the tile" : "switched off (--no-last-t)");
-	for (i = 0; i < s->nlight; i++)
-		nl++;
 	vx_plan_add(&p, "lights", VX_PLAN_OFF, 0, "a projection is not shaded: "
 	    "%d light%s and %d surface%s of the scene ignored", nl,
 	    nl == 1 ? "" : "s", s->nsurface, s->nsurface == 1 ? "" : "s");
