@@ -924,14 +924,17 @@ mask_block(const vx_macro *m, const vx_grid *g, int64_t c,
 	}
 	for (j = 0; j < nvals; j++) {
 		float val = vals[j];
-		/* integers: v <= val is v <= floor(val), v >= val is
-		 * v >= ceil(val) (val clamped far outside the 16-bit range) */
-		double cv = val < -0x1p40f ? -0x1p40 : val > 0x1p40f ? 0x1p40 :
-		    (double)val;
-		int64_t fl = (int64_t)floor(cv), ce = (int64_t)ceil(cv);
+		double cv;
+		int64_t fl, ce;
 
 		if (val != val)
 			continue;    /* NaN brackets nothing */
+		/* integers: v <= val is v <= floor(val), v >= val is
+		 * v >= ceil(val) (val clamped far outside the 16-bit range) */
+		cv = val < -0x1p40f ? -0x1p40 : val > 0x1p40f ? 0x1p40 :
+		    (double)val;
+		fl = (int64_t)floor(cv);
+		ce = (int64_t)ceil(cv);
 		for (z = 0; z < ns[2]; z++) {
 			cur = (int)(z & 1);
 			switch (g->type) {

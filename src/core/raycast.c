@@ -493,9 +493,6 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 		if (mask->ready)
 			S.tr.mask = mask;
 	}
-	clock_gettime(CLOCK_MONOTONIC, &t1);
-	st->mask_seconds = (double)(t1.tv_sec - t0.tv_sec) +
-	    1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
 	st->mask_bytes = S.tr.mask ? vx_cellmask_bytes(mask) : 0;
 	st->mask_blocks = S.tr.mask ? (uint64_t)mask->nblock : 0;
 	st->mask_set = S.tr.mask ? (uint64_t)mask->nset : 0;

@@ -62,9 +62,6 @@ typedef struct vx_raycast_stats {
 	uint64_t covered;                /* pixels with a hit */
 	double seconds;                  /* wall time of the render (the
 	                                    cell mask's build included) */
-	double mask_seconds;             /* wall time to prepare the cell
-	                                    mask (its bits are built lazily,
-	                                    during the render) */
 	uint64_t mask_bytes;             /* its memory, 0: none */
 	uint64_t mask_blocks, mask_set, mask_built;   /* level-1 macrocells,
 	                                    those bracketing (masked), and
