@@ -68,20 +68,6 @@ out:
 	return mesh;
 }
 
-/* The file's name without directory and extensions ("a/b.vtk.gz" -> "b"),
- * as vx_tetmesh_import names its meshes. */
-static void
-stem(const char *path, char *out, size_t cap)
-{
-	const char *b = strrchr(path, '/');
-	size_t k;
-
-	b = b ? b + 1 : path;
-	for (k = 0; b[k] && b[k] != '.' && k + 1 < cap; k++)
-		out[k] = b[k];
-	out[k] = '\0';
-}
-
 int
 vx_import_volume_or_mesh(vx_grid *g, vx_tetmesh *m, int *is_mesh,
     const char *path, const vx_import_opts *vopt,
@@ -105,7 +91,7 @@ vx_import_volume_or_mesh(vx_grid *g, vx_tetmesh *m, int *is_mesh,
 		imp_file_free(&f);
 		if (rc != 0)
 			return vx_err_push(e, "%s", stdin_ ? "<stdin>" : path);
-		stem(stdin_ ? "stdin" : path, name, sizeof name);
+		imp_stem(stdin_ ? "stdin" : path, name, sizeof name);
 		vx_tetmesh_set_name(m, name);
 		return 0;
 	}

@@ -76,6 +76,10 @@ typedef struct imp_file {
  * when it is a regular file.  VX_ENOINPUT if it cannot be opened or is
  * empty, VX_EIO on read errors.  Messages start with the path. */
 int imp_file_load(imp_file *f, const char *path, vx_err *e);
+/* imp_stem: path's file name without directory and extensions
+ * ("a/b.vtk.gz" -> "b"), at most cap - 1 bytes (imported meshes are named
+ * so). */
+void imp_stem(const char *path, char *out, size_t cap);
 void imp_file_free(imp_file *f);
 
 /* ---- frames (import_conv.c) ---- */

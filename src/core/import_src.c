@@ -386,3 +386,15 @@ imp_file_free(imp_file *f)
 		free(f->p);
 	memset(f, 0, sizeof *f);
 }
+
+void
+imp_stem(const char *path, char *out, size_t cap)
+{
+	const char *b = strrchr(path, '/');
+	size_t k;
+
+	b = b ? b + 1 : path;
+	for (k = 0; b[k] && b[k] != '.' && k + 1 < cap; k++)
+		out[k] = b[k];
+	out[k] = '\0';
+}

@@ -85,18 +85,6 @@ vx_tetmesh_import_mem(vx_tetmesh *m, const void *buf, size_t n,
 	return rc;
 }
 
-/* The file's name without directory and extensions ("a/b.vtk.gz" -> "b"). */
-static void
-stem(const char *path, char *out, size_t cap)
-{
-	const char *b = strrchr(path, '/');
-	size_t k;
-
-	b = b ? b + 1 : path;
-	for (k = 0; b[k] && b[k] != '.' && k + 1 < cap; k++)
-		out[k] = b[k];
-	out[k] = '\0';
-}
 
 int
 vx_tetmesh_import(vx_tetmesh *m, const char *path,
@@ -113,7 +101,7 @@ vx_tetmesh_import(vx_tetmesh *m, const char *path,
 	imp_file_free(&f);
 	if (rc != 0)
 		return vx_err_push(e, "%s", path);
-	stem(strcmp(path, "-") == 0 ? "stdin" : path, name, sizeof name);
+	imp_stem(strcmp(path, "-") == 0 ? "stdin" : path, name, sizeof name);
 	vx_tetmesh_set_name(m, name);
 	return 0;
 }
