@@ -136,6 +136,7 @@ setup(vx_macro *m, const int64_t n[3], int nlev, const int sizes[][3],
 			    (long long)VX_GRID_MAX_DIM);
 		m->dims[0][a] = n[a];
 		m->width[0][a] = 1;
+		m->iwidth[0][a] = 1.0;
 	}
 	m->nlev = nlev;
 	m->explicit_leaves = leaf0;
@@ -152,6 +153,7 @@ setup(vx_macro *m, const int64_t n[3], int nlev, const int sizes[][3],
 			m->width[l][a] = m->width[l - 1][a] * s;
 			if (m->width[l][a] > WIDTH_CAP)
 				m->width[l][a] = WIDTH_CAP;
+			m->iwidth[l][a] = 1.0 / (double)m->width[l][a];
 		}
 	for (l = leaf0 ? 0 : 1; l <= nlev; l++) {
 		/* each level has at most as many cells as the leaves, whose
@@ -455,9 +457,13 @@ typedef struct ray {
 	int flip;              /* bit a set where s[a] < 0 (see leaves) */
 	int64_t fixed[3];      /* leaf index along axes with s == 0 */
 	int64_t n[3];          /* leaf grid dims */
-	int64_t w[VX_MACRO_MAXLEV + 1][3];   /* level-l cell edge in leaves */
-	double iw[VX_MACRO_MAXLEV + 1][3];   /* 1 / w: only for guesses */
+	const int64_t (*w)[3];  /* w[l]: level-l cell edge in leaves */
+	const double (*iw)[3];  /* 1 / w: only for guesses */
 } ray;
+
+/* the edges of a flat walk without a hierarchy: one leaf */
+static const int64_t unit_w[1][3] = { { 1, 1, 1 } };
+static const double unit_iw[1][3] = { { 1.0, 1.0, 1.0 } };
 
 /* tcross: the time the ray crosses plane x_a = p.  One formula for every
  * level and walk, so equal planes give bit-identical times. */
@@ -689,16 +695,15 @@ leaves(const ray *r, const vx_grid *g, int64_t c[3], const int64_t lim[3],
 {
 	const int64_t *off[3] = { g->lay.off[0], g->lay.off[1], g->lay.off[2] };
 	const int *up = r->up;
-	int64_t on[3], of[3], fl = 0, ce = 0;
+	int64_t fl = 0, ce = 0, culled = 0;
+	/* the leaf and its exit times in registers: a step picks its axis
+	 * with selects, not a store and reload through an indexed array */
+	int64_t c0 = c[0], c1 = c[1], c2 = c[2];
+	double n0 = tn[0], n1 = tn[1], n2 = tn[2];
 	int flip = r->flip, isf = g->type == VX_F32, ithr = 0;
 	double t = *tp, texit;
-	int a, i, ax, e = *ep, rc;
-	vx_leaf_visit v;
+	int ax, e = *ep, rc = 0;
 
-	for (a = 0; a < 3; a++) {
-		on[a] = off[a][c[a] + !up[a]];
-		of[a] = off[a][c[a] + up[a]];
-	}
 	/* integer samples and one value v: (float)min <= v <= (float)max is
 	 * min <= floor(v) and max >= ceil(v) (v clamped far beyond the 16-bit
 	 * range first; NaN brackets nothing and takes the float test) */
@@ -711,23 +716,29 @@ leaves(const ray *r, const vx_grid *g, int64_t c[3], const int64_t lim[3],
 		ce = (int64_t)ceil(w);
 	}
 	for (;;) {
-		float lo = 0, hi = 0, qf[8];
-		int32_t qi[8], imn = 0, imx = 0;
 		int64_t nc, p;
-		double t0 = tn[0], t1 = tn[1], t2 = tn[2];
-		int in;
+		double tv;
 
-		ax = t1 < t0;
-		texit = ax ? t1 : t0;
-		if (t2 < texit) {
+		ax = n1 < n0;
+		texit = ax ? n1 : n0;
+		if (n2 < texit) {
 			ax = 2;
-			texit = t2;
+			texit = n2;
 		}
 		/* with a mask, a clear bit is this very test's answer: the
 		 * samples are loaded only for a leaf to visit */
 		if (bits != NULL && !(bits[li >> 6] >> (li & 63) & 1))
-			in = 0;
+			culled++;
 		else {
+			float lo = 0, hi = 0, qf[8];
+			int32_t qi[8], imn = 0, imx = 0;
+			int64_t on[3], of[3], cc[3] = { c0, c1, c2 };
+			int a, i, in;
+
+			for (a = 0; a < 3; a++) {
+				on[a] = off[a][cc[a] + !up[a]];
+				of[a] = off[a][cc[a] + up[a]];
+			}
 			leaf_load(g, on, of, qi, qf, &imn, &imx, &lo, &hi);
 			if (ithr)
 				in = imn <= fl && imx >= ce;
@@ -738,46 +749,59 @@ leaves(const ray *r, const vx_grid *g, int64_t c[3], const int64_t lim[3],
 				}
 				in = brackets(lo, hi, vals, nvals);
 			}
+			if (in) {
+				vx_leaf_visit v;
+
+				for (i = 0; i < 8; i++)
+					v.c[i] = isf ? qf[i ^ flip] :
+					    (float)qi[i ^ flip];
+				memcpy(v.i, cc, sizeof v.i);
+				v.leaf = c0 + (r->n[0] * (c1 + r->n[1] * c2));
+				v.t0 = t;
+				v.t1 = texit < tb ? texit : tb;
+				v.entry_axis = e;
+				v.entry_side = e >= 0 && r->s[e] < 0;
+				v.exit_axis = texit <= tb && r->s[ax] ? ax : -1;
+				v.exit_side = v.exit_axis >= 0 && r->s[ax] > 0;
+				v.lo = isf ? lo : (float)imn;
+				v.hi = isf ? hi : (float)imx;
+				s->leaves++;
+				if ((rc = fn(ctx, &v)) != 0)
+					break;
+			} else
+				culled++;
 		}
-		if (in) {
-			for (i = 0; i < 8; i++)
-				v.c[i] = isf ? qf[i ^ flip] : (float)qi[i ^ flip];
-			memcpy(v.i, c, sizeof v.i);
-			v.leaf = c[0] + (r->n[0] * (c[1] + r->n[1] * c[2]));
-			v.t0 = t;
-			v.t1 = texit < tb ? texit : tb;
-			v.entry_axis = e;
-			v.entry_side = e >= 0 && r->s[e] < 0;
-			v.exit_axis = texit <= tb && r->s[ax] ? ax : -1;
-			v.exit_side = v.exit_axis >= 0 && r->s[ax] > 0;
-			v.lo = isf ? lo : (float)imn;
-			v.hi = isf ? hi : (float)imx;
-			s->leaves++;
-			if ((rc = fn(ctx, &v)) != 0)
-				return rc;
-		} else
-			s->culled++;
 		if (!(texit < tb))
 			break;
-		nc = c[ax] + r->s[ax];
+		nc = (ax == 0 ? c0 : ax == 1 ? c1 : c2) + r->s[ax];
 		if (nc == lim[ax])
 			break;
 		/* the far plane of the next leaf, and its crossing time as
 		 * t_exit_of gives it at level 0 (inside the grid: no clamp) */
 		p = nc + up[ax];
-		c[ax] = nc;
-		on[ax] = of[ax];
-		of[ax] = off[ax][p];
-		tn[ax] = tcross(r, ax, p);
+		tv = tcross(r, ax, p);
+		c0 = ax == 0 ? nc : c0;
+		c1 = ax == 1 ? nc : c1;
+		c2 = ax == 2 ? nc : c2;
+		n0 = ax == 0 ? tv : n0;
+		n1 = ax == 1 ? tv : n1;
+		n2 = ax == 2 ? tv : n2;
 		li += dl[ax];
 		t = texit;
 		e = ax;
 	}
+	s->culled += (uint64_t)culled;
+	c[0] = c0;
+	c[1] = c1;
+	c[2] = c2;
+	tn[0] = n0;
+	tn[1] = n1;
+	tn[2] = n2;
 	*tp = t;
 	*ep = e;
 	*axp = ax;
 	*texitp = texit;
-	return 0;
+	return rc;
 }
 
 /* ray_start: the ray's set-up for a walk from level top over n leaves:
@@ -791,7 +815,7 @@ ray_start(ray *r, const vx_macro *m, int top, const int64_t n[3],
     double *tap, double *tbp, int64_t leaf[3], int *e)
 {
 	double ta = *tap, tb = *tbp;
-	int a, l;
+	int a;
 
 	if (n[0] <= 0 || n[1] <= 0 || n[2] <= 0 || !(ta <= tb))
 		return 0;
@@ -830,11 +854,9 @@ ray_start(ray *r, const vx_macro *m, int top, const int64_t n[3],
 	    nvals))
 		return 0;
 	r->flip = (!r->up[0]) | (!r->up[1]) << 1 | (!r->up[2]) << 2;
-	for (l = 0; l <= top; l++)
-		for (a = 0; a < 3; a++) {
-			r->w[l][a] = l ? m->width[l][a] : 1;
-			r->iw[l][a] = l ? 1.0 / (double)m->width[l][a] : 1.0;
-		}
+	/* a hierarchy's level 0 is the leaf: width 1 */
+	r->w = top > 0 ? (const int64_t (*)[3])m->width : unit_w;
+	r->iw = top > 0 ? (const double (*)[3])m->iwidth : unit_iw;
 	/* the start leaf (post-crossing at ta) */
 	*e = -1;
 	for (a = 0; a < 3; a++) {
@@ -1176,9 +1198,22 @@ int
 vx_cellmask_matches(const vx_cellmask *k, const vx_macro *m,
     const float *vals, int nvals)
 {
-	return k != NULL && k->ready && k->m == m && m->nlev >= 1 &&
-	    k->nvals == nvals && memcmp(k->vals, vals,
-	    (size_t)nvals * sizeof *vals) == 0;
+	int i;
+
+	if (k == NULL || !k->ready || k->m != m || m->nlev < 1 ||
+	    k->nvals != nvals)
+		return 0;
+	/* bit for bit, as memcmp would (a NaN value matches itself), without
+	 * its call on every ray */
+	for (i = 0; i < nvals; i++) {
+		uint32_t a, b;
+
+		memcpy(&a, &k->vals[i], sizeof a);
+		memcpy(&b, &vals[i], sizeof b);
+		if (a != b)
+			return 0;
+	}
+	return 1;
 }
 
 int
@@ -1187,10 +1222,14 @@ vx_macro_traverse_masked(const vx_macro *m, const vx_grid *g,
     double tmax, const float *vals, int nvals, vx_visit_fn fn, void *ctx,
     vx_trav_stats *st)
 {
-	if (g == NULL || !fits(m, g))
-		return -1;
-	if (!vx_cellmask_matches(k, m, vals, nvals))
-		k = NULL;
+	/* a mask built over this very m and g has checked that g fits m */
+	if (!(g != NULL && vx_cellmask_matches(k, m, vals, nvals) &&
+	    k->g == g)) {
+		if (g == NULL || !fits(m, g))
+			return -1;
+		if (!vx_cellmask_matches(k, m, vals, nvals))
+			k = NULL;
+	}
 	return walk(m, m->nlev, m->dims[0], g, NULL, k, o, d, tmin, tmax,
 	    vals, nvals, fn, ctx, st);
 }
@@ -1294,6 +1333,7 @@ vx_cellmask_build(vx_cellmask *k, const vx_macro *m, const vx_grid *g,
 		    "(%lld macrocells)", (long long)nset);
 	}
 	k->m = m;
+	k->g = g;
 	memcpy(k->vals, vals, (size_t)nvals * sizeof *vals);
 	k->nvals = nvals;
 	k->nblock = nb;

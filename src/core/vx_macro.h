@@ -50,6 +50,7 @@ typedef struct vx_macro {
 	int size[VX_MACRO_MAXLEV + 1][3];     /* size[l]: level-l edge in
 	                                         level-(l-1) cells; size[0] 1 */
 	int64_t width[VX_MACRO_MAXLEV + 1][3];/* level-l edge in leaves */
+	double iwidth[VX_MACRO_MAXLEV + 1][3];/* 1 / width (walk's guesses) */
 	int64_t dims[VX_MACRO_MAXLEV + 1][3]; /* cells per axis; dims[0] = n */
 	float *mm[VX_MACRO_MAXLEV + 1];       /* mm[l][2c], mm[l][2c+1]: min,
 	                                         max of level-l cell c (x
@@ -232,6 +233,7 @@ int vx_macro_traverse_flat(const vx_macro *m, const vx_grid *g,
 typedef struct vx_cellmask {
 	int ready;               /* 1: prepared (else the walk tests samples) */
 	const vx_macro *m;       /* the hierarchy it was built over */
+	const vx_grid *g;        /* and the volume (fits m: checked once) */
 	float vals[VX_CELLMASK_MAXV];
 	int nvals;
 	int64_t nblock;          /* level-1 macrocells */
