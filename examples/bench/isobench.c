@@ -138,6 +138,7 @@ main(int argc, char **argv)
 	const char *scene = NULL, *stream = NULL, *pfm = NULL, *latency = NULL;
 	const char *sizes = NULL;
 	int nframes = 5, warm = 1, stats = 0, abr = 0, fresh = 0, i, status;
+	long gsrc = -1;
 	bench b;
 	vx_stream st;
 	vx_err e = { 0, "" };
@@ -235,10 +236,11 @@ main(int argc, char **argv)
 	if (vx_stream_read(&st, f, &e) != 0)
 		die(stream, &e);
 	fclose(f);
-	if (vx_grid_from_stream(&b.g, &st, NULL, NULL, &e) != 0)
+	if (vx_grid_from_stream(&b.g, &st, NULL, &gsrc, &e) != 0)
 		die(stream, &e);
 	if (!b.ro.flat && sizes == NULL) {
-		if (vx_macro_from_stream(&b.m, &st, &b.g, &status, NULL, &e) != 0)
+		if (vx_macro_from_stream(&b.m, &st, &b.g, gsrc, &status, NULL,
+		    &e) != 0)
 			die("macrocells", &e);
 		if (status != VX_MACRO_LOADED)
 			die("the stream has no macrocells for its volume (run "

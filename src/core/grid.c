@@ -302,16 +302,19 @@ vx_grid_free(vx_grid *g)
 {
 	if (g == NULL)
 		return;
-	free(g->data);
+	if (!g->borrowed)
+		free(g->data);
 	vx_layout_free(&g->lay);
 	vx_grid_init(g);
 }
 
-int
-vx_grid_alloc(vx_grid *g, const int64_t dims[3], vx_type type,
-    const char *lay_spec, vx_err *e)
+/* grid_shape: g initialized with dims, type and the layout's tables, no
+ * samples yet; *nbytes gets their size */
+static int
+grid_shape(vx_grid *g, const int64_t dims[3], vx_type type,
+    const char *lay_spec, size_t *nbytes, vx_err *e)
 {
-	size_t ts = vx_type_size(type), nbytes;
+	size_t ts = vx_type_size(type);
 	int rc;
 
 	vx_grid_init(g);
@@ -322,17 +325,29 @@ vx_grid_alloc(vx_grid *g, const int64_t dims[3], vx_type type,
 	if (rc != 0)
 		return rc;
 	g->nsample = vx_layout_nsample(&g->lay);
-	if (vx_mul_size(&nbytes, g->nsample, ts) != 0) {
+	if (vx_mul_size(nbytes, g->nsample, ts) != 0) {
 		vx_layout_free(&g->lay);
 		return vx_err_set(e, VX_EDATA, "volume size overflows");
 	}
+	memcpy(g->dims, dims, sizeof g->dims);
+	g->type = type;
+	return 0;
+}
+
+int
+vx_grid_alloc(vx_grid *g, const int64_t dims[3], vx_type type,
+    const char *lay_spec, vx_err *e)
+{
+	size_t ts = vx_type_size(type), nbytes;
+	int rc;
+
+	if ((rc = grid_shape(g, dims, type, lay_spec, &nbytes, e)) != 0)
+		return rc;
 	if ((g->data = calloc(g->nsample, ts)) == NULL) {
 		vx_layout_free(&g->lay);
 		return vx_err_set(e, VX_ENOMEM, "cannot allocate %zu bytes for "
 		    "samples", nbytes);
 	}
-	memcpy(g->dims, dims, sizeof g->dims);
-	g->type = type;
 	return 0;
 }
 
@@ -532,8 +547,9 @@ out:
 	return rc;
 }
 
-int
-vx_grid_from_chunk(vx_grid *g, const vx_chunk *c, vx_err *e)
+/* from_chunk: vx_grid_from_chunk, or vx_grid_view_chunk when view */
+static int
+from_chunk(vx_grid *g, const vx_chunk *c, int view, vx_err *e)
 {
 	const unsigned char *body;
 	size_t bodylen, ts, nbytes;
@@ -541,7 +557,7 @@ vx_grid_from_chunk(vx_grid *g, const vx_chunk *c, vx_err *e)
 	double r[2];
 	vx_layout lay;
 	vx_type type;
-	const char *v, *lay_spec;
+	const char *v, *lay_spec, *enc;
 	vx_hdr h;
 	int rc, found, a;
 
@@ -575,7 +591,16 @@ vx_grid_from_chunk(vx_grid *g, const vx_chunk *c, vx_err *e)
 		    sizeof g->name - 1);
 		goto out;
 	}
-	if ((rc = vx_grid_alloc(g, dims, type, lay_spec, e)) != 0)
+	/* a raw body of little-endian samples, aligned for the type, is used
+	 * where it lies (its length is nbytes: vx_body_fits) */
+	enc = vx_hdr_get(&h, "encoding");
+	if (view && vx_host_is_le() && (enc == NULL || strcmp(enc, "raw") == 0)
+	    && (uintptr_t)body % ts == 0) {
+		if ((rc = grid_shape(g, dims, type, lay_spec, &nbytes, e)) != 0)
+			goto out;
+		g->data = (void *)(uintptr_t)body;
+		g->borrowed = 1;
+	} else if ((rc = vx_grid_alloc(g, dims, type, lay_spec, e)) != 0)
 		goto out;
 	if (v != NULL)
 		snprintf(g->name, sizeof g->name, "%s", v);
@@ -598,10 +623,13 @@ vx_grid_from_chunk(vx_grid *g, const vx_chunk *c, vx_err *e)
 		    "min <= max");
 		goto out;
 	}
-	if ((rc = vx_body_decode(&h, body, bodylen, g->data, nbytes, e)) != 0)
-		goto out;
-	if (!vx_host_is_le())
-		vx_swap_bytes(g->data, g->nsample, ts);
+	if (!g->borrowed) {
+		if ((rc = vx_body_decode(&h, body, bodylen, g->data, nbytes,
+		    e)) != 0)
+			goto out;
+		if (!vx_host_is_le())
+			vx_swap_bytes(g->data, g->nsample, ts);
+	}
 	if (found) {
 		g->has_range = 1;
 		g->vmin = r[0];
@@ -618,16 +646,36 @@ out:
 }
 
 int
-vx_grid_from_stream(vx_grid *g, const vx_stream *s, const char *name,
-    long *index, vx_err *e)
+vx_grid_from_chunk(vx_grid *g, const vx_chunk *c, vx_err *e)
+{
+	return from_chunk(g, c, 0, e);
+}
+
+int
+vx_grid_view_chunk(vx_grid *g, const vx_chunk *c, vx_err *e)
+{
+	return from_chunk(g, c, 1, e);
+}
+
+/* from_stream: vx_grid_from_stream or vx_grid_view_stream.  Each volume is
+ * looked at in place (all its checks, no copy); the one named is then
+ * decoded as asked. */
+static int
+from_stream(vx_grid *g, const vx_stream *s, const char *name, long *index,
+    int view, vx_err *e)
 {
 	long i = -1;
 	int rc;
 
 	while ((i = vx_stream_find(s, VX_CHUNK_VOLUME, (size_t)(i + 1))) >= 0) {
-		if ((rc = vx_grid_from_chunk(g, &s->chunk[i], e)) != 0)
+		if ((rc = from_chunk(g, &s->chunk[i], 1, e)) != 0)
 			return rc;
 		if (name == NULL || strcmp(g->name, name) == 0) {
+			if (!view) {
+				vx_grid_free(g);
+				if ((rc = from_chunk(g, &s->chunk[i], 0, e)) != 0)
+					return rc;
+			}
 			if (index != NULL)
 				*index = i;
 			return 0;
@@ -639,4 +687,18 @@ vx_grid_from_stream(vx_grid *g, const vx_stream *s, const char *name,
 		return vx_err_set(e, VX_EDATA, "no volume named '%s' in the "
 		    "stream", name);
 	return vx_err_set(e, VX_EDATA, "no volume in the stream");
+}
+
+int
+vx_grid_from_stream(vx_grid *g, const vx_stream *s, const char *name,
+    long *index, vx_err *e)
+{
+	return from_stream(g, s, name, index, 0, e);
+}
+
+int
+vx_grid_view_stream(vx_grid *g, const vx_stream *s, const char *name,
+    long *index, vx_err *e)
+{
+	return from_stream(g, s, name, index, 1, e);
 }

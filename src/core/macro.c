@@ -1404,7 +1404,9 @@ vx_macro_to_chunk(const vx_macro *m, int zlevel, vx_chunk *c, vx_err *e)
 	    (rc = vx_hdr_set(&h, "volume-type", e, "%s",
 	    vx_type_name(m->vtype))) ||
 	    (rc = vx_hdr_set(&h, "volume-crc32", e, "%08x",
-	    (unsigned)m->vcrc))))
+	    (unsigned)m->vcrc)) ||
+	    (m->has_vchunk_crc && (rc = vx_hdr_set(&h, "volume-chunk-crc32",
+	    e, "%08x", (unsigned)m->vchunk_crc)))))
 		goto out;
 	if ((rc = vx_hdr_set(&h, "leaf-dims", e, "%lld %lld %lld",
 	    (long long)m->dims[0][0], (long long)m->dims[0][1],
@@ -1585,6 +1587,16 @@ vx_macro_from_chunk(vx_macro *m, const vx_chunk *c, vx_err *e)
 			goto out;
 		}
 		m->vcrc = (uint32_t)strtoul(v, NULL, 16);
+		if ((v = vx_hdr_get(&h, "volume-chunk-crc32")) != NULL) {
+			if (strlen(v) != 8 ||
+			    strspn(v, "0123456789abcdef") != 8) {
+				rc = vx_err_set(e, VX_EDATA, "volume-chunk-crc32: "
+				    "expected 8 lower-case hex digits");
+				goto out;
+			}
+			m->vchunk_crc = (uint32_t)strtoul(v, NULL, 16);
+			m->has_vchunk_crc = 1;
+		}
 	}
 	if ((v = vx_hdr_get(&h, "range")) == NULL) {
 		rc = vx_err_set(e, VX_EDATA, "missing range");
@@ -1648,7 +1660,7 @@ vx_macro_matches(const vx_macro *m, const vx_grid *g, const uint32_t *crc)
 
 int
 vx_macro_from_stream(vx_macro *m, const vx_stream *s, const vx_grid *g,
-    int *status, long *index, vx_err *e)
+    long src, int *status, long *index, vx_err *e)
 {
 	long i = -1;
 	int rc;
@@ -1686,7 +1698,17 @@ vx_macro_from_stream(vx_macro *m, const vx_stream *s, const vx_grid *g,
 			*index = i;
 		if ((rc = vx_macro_from_chunk(m, &s->chunk[i], e)) != 0)
 			return rc;
-		if (vx_macro_matches(m, g, NULL)) {
+		/* the very bytes it was built from: their samples' CRC is the
+		 * one recorded (the other checks still run) */
+		if (src >= 0 && (size_t)src < s->n && m->has_vchunk_crc &&
+		    s->chunk[src].crc_known &&
+		    memcmp(s->chunk[src].type, VX_CHUNK_VOLUME, 4) == 0 &&
+		    s->chunk[src].crc == m->vchunk_crc) {
+			if (vx_macro_matches(m, g, &m->vcrc)) {
+				*status = VX_MACRO_LOADED;
+				return 0;
+			}
+		} else if (vx_macro_matches(m, g, NULL)) {
 			*status = VX_MACRO_LOADED;
 			return 0;
 		}

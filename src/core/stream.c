@@ -393,6 +393,8 @@ vx_stream_read_fn(vx_stream *s, vx_read_fn fn, void *ctx, vx_err *e)
 			    "chunk %s at %llu: CRC mismatch", c.type,
 			    (unsigned long long)off);
 		}
+		c.crc = vx_le32(crcb);
+		c.crc_known = 1;
 		if (memcmp(c.type, VX_CHUNK_END, 4) == 0) {
 			free(c.data);
 			break;
@@ -445,16 +447,22 @@ put(FILE *f, const void *p, size_t n, vx_err *e)
 	return 0;
 }
 
+uint32_t
+vx_chunk_crc_of(const vx_chunk *c)
+{
+	return c->crc_known ? c->crc : vx_chunk_crc(c->type, c->data, c->len);
+}
+
 static int
 write_chunk(FILE *f, const char *type, const void *data, size_t len,
-    vx_err *e)
+    uint32_t crc, vx_err *e)
 {
 	unsigned char head[12], crcb[4];
 	int rc;
 
 	memcpy(head, type, 4);
 	vx_put_le64(head + 4, (uint64_t)len);
-	vx_put_le32(crcb, vx_chunk_crc(type, data, len));
+	vx_put_le32(crcb, crc);
 	if ((rc = put(f, head, sizeof head, e)) != 0)
 		return rc;
 	if (len > 0 && (rc = put(f, data, len, e)) != 0)
@@ -486,9 +494,10 @@ vx_stream_write(const vx_stream *s, FILE *f, vx_err *e)
 		return rc;
 	for (i = 0; i < s->n; i++)
 		if ((rc = write_chunk(f, s->chunk[i].type, s->chunk[i].data,
-		    s->chunk[i].len, e)) != 0)
+		    s->chunk[i].len, vx_chunk_crc_of(&s->chunk[i]), e)) != 0)
 			return rc;
-	if ((rc = write_chunk(f, VX_CHUNK_END, NULL, 0, e)) != 0)
+	if ((rc = write_chunk(f, VX_CHUNK_END, NULL, 0,
+	    vx_chunk_crc(VX_CHUNK_END, NULL, 0), e)) != 0)
 		return rc;
 	if (fflush(f) != 0 || ferror(f))
 		return vx_err_set(e, VX_EIO, "write: %s",
@@ -524,6 +533,7 @@ vx_stream_history_add(vx_stream *s, const char *line, vx_err *e)
 	p[h->len + n] = '\n';
 	h->data = p;
 	h->len += n + 1;
+	h->crc_known = 0;
 	return 0;
 }
 
@@ -903,7 +913,7 @@ vx_payload_make(vx_chunk *c, const char *type, vx_hdr *h, const void *body,
 {
 	unsigned char *z = NULL, *p;
 	size_t zn = 0, hl = 0, i, total;
-	int rc;
+	int rc, pad = -1;
 
 	memset(c, 0, sizeof *c);
 	if (level > 0) {
@@ -915,9 +925,17 @@ vx_payload_make(vx_chunk *c, const char *type, vx_hdr *h, const void *body,
 		}
 	} else if ((rc = vx_hdr_set(h, "encoding", e, "raw")) != 0)
 		return rc;
+	/* the writer's own "pad" line replaces any in h: spaces that put a
+	 * raw body at a multiple of VX_BODY_ALIGN bytes into the payload, so a
+	 * reader can use its samples where they lie (formats/stream.md 7.1) */
 	for (i = 0; i < h->n; i++)
-		hl += strlen(h->key[i]) + 2 + strlen(h->val[i]) + 1;
+		if (strcmp(h->key[i], "pad") != 0)
+			hl += strlen(h->key[i]) + 2 + strlen(h->val[i]) + 1;
 	hl += 1;
+	if (level == 0 && n > 0 && hl % VX_BODY_ALIGN != 0) {
+		pad = (VX_BODY_ALIGN - (hl + 6) % VX_BODY_ALIGN) % VX_BODY_ALIGN;
+		hl += 6 + pad;
+	}
 	if (hl > VX_HDR_MAX) {
 		free(z);
 		return vx_err_set(e, VX_EINTERNAL, "header of %zu bytes is longer "
@@ -930,7 +948,15 @@ vx_payload_make(vx_chunk *c, const char *type, vx_hdr *h, const void *body,
 	}
 	c->data = p;
 	for (i = 0; i < h->n; i++)
-		p += sprintf((char *)p, "%s: %s\n", h->key[i], h->val[i]);
+		if (strcmp(h->key[i], "pad") != 0)
+			p += sprintf((char *)p, "%s: %s\n", h->key[i],
+			    h->val[i]);
+	if (pad >= 0) {
+		p += sprintf((char *)p, "pad: ");
+		memset(p, ' ', (size_t)pad);
+		p += pad;
+		*p++ = '\n';
+	}
 	*p++ = '\n';
 	if (level > 0)
 		memcpy(p, z, zn);
@@ -940,6 +966,7 @@ vx_payload_make(vx_chunk *c, const char *type, vx_hdr *h, const void *body,
 	memcpy(c->type, type, 4);
 	c->type[4] = '\0';
 	c->len = total;
+	c->crc_known = 0;
 	return 0;
 }
 

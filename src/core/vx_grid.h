@@ -53,7 +53,10 @@ typedef struct vx_grid {
 	double spacing[3];     /* world units per sample step, > 0 */
 	double origin[3];      /* world position of sample (0,0,0) */
 	vx_type type;
-	void *data;            /* samples in layout order, owned */
+	void *data;            /* samples in layout order, owned unless
+	                          borrowed */
+	int borrowed;          /* 1: data lies in a chunk's payload
+	                          (vx_grid_view_chunk); not freed here */
 	size_t nsample;        /* samples allocated (padded product) */
 	vx_layout lay;
 	int has_range;
@@ -129,10 +132,21 @@ int vx_grid_to_chunk(const vx_grid *g, int zlevel, vx_chunk *c, vx_err *e);
 int vx_grid_to_chunk_extra(const vx_grid *g, int zlevel, const vx_hdr *extra,
     vx_chunk *c, vx_err *e);
 int vx_grid_from_chunk(vx_grid *g, const vx_chunk *c, vx_err *e);
+/* vx_grid_view_chunk: the same checks and grid, but a raw body of samples
+ * aligned for their type on a little-endian host (every body the reference
+ * writer makes: formats/stream.md 7.1) is not copied: g->data points into
+ * c's payload (g->borrowed = 1), which must then outlive g, and neither may
+ * be changed while both live.  Other bodies are decoded into g's own
+ * memory, as vx_grid_from_chunk does.  For renderers: no second copy of
+ * the samples, no pass over them. */
+int vx_grid_view_chunk(vx_grid *g, const vx_chunk *c, vx_err *e);
 
 /* Convenience: the first VOLM chunk in a stream (or the one whose name
  * matches when name is non-NULL); *index gets its position. */
 int vx_grid_from_stream(vx_grid *g, const vx_stream *s, const char *name,
+    long *index, vx_err *e);
+/* vx_grid_view_stream: the same with vx_grid_view_chunk. */
+int vx_grid_view_stream(vx_grid *g, const vx_stream *s, const char *name,
     long *index, vx_err *e);
 
 #endif

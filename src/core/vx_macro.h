@@ -63,6 +63,9 @@ typedef struct vx_macro {
 	int64_t vdims[3];
 	vx_type vtype;
 	uint32_t vcrc;           /* vx_macro_grid_crc of the volume */
+	uint32_t vchunk_crc;     /* CRC of the volume's chunk as stored, when */
+	int has_vchunk_crc;      /* known: a reader holding that very chunk
+	                            has proven the match without a pass */
 	void *block_;            /* private: one allocation for all mm[] */
 } vx_macro;
 
@@ -304,12 +307,16 @@ enum {
 };
 
 /* vx_macro_from_stream: find the MCEL chunk belonging to volume g (same
- * name) and load it if it matches g (vx_macro_matches).  *status gets one
- * of the values above and *index the chunk's position (-1 if absent); m is
- * initialized and holds the hierarchy only when LOADED.  A malformed MCEL
- * chunk is an error (VX_EDATA), absence and staleness are not: the caller
- * then builds the hierarchy itself (and may say so). */
+ * name) and load it if it matches g (vx_macro_matches).  src: the index in
+ * s of the VOLM chunk g was decoded from and not changed since, or -1: when
+ * that chunk's CRC is known (read with it) and equals the MCEL chunk's
+ * volume-chunk-crc32, the bytes the hierarchy was built from are these, and
+ * the pass over the samples is skipped.  *status gets one of the values
+ * above and *index the chunk's position (-1 if absent); m is initialized and
+ * holds the hierarchy only when LOADED.  A malformed MCEL chunk is an error
+ * (VX_EDATA), absence and staleness are not: the caller then builds the
+ * hierarchy itself (and may say so). */
 int vx_macro_from_stream(vx_macro *m, const vx_stream *s, const vx_grid *g,
-    int *status, long *index, vx_err *e);
+    long src, int *status, long *index, vx_err *e);
 
 #endif

@@ -45,6 +45,10 @@ typedef struct vx_chunk {
 	uint64_t offset;        /* byte offset of the chunk in its input; 0 if new */
 	size_t len;             /* payload length */
 	unsigned char *data;    /* payload, owned by the chunk (may be NULL if len 0) */
+	uint32_t crc;           /* the chunk's CRC, when crc_known */
+	int crc_known;          /* 1: crc was read and checked with the payload
+	                           (vx_stream_read); code that changes data in
+	                           place sets it to 0 */
 } vx_chunk;
 
 typedef struct vx_stream {
@@ -105,6 +109,9 @@ void vx_chunk_free(vx_chunk *c);
 
 /* CRC-32 (ISO-HDLC, as in PNG and zlib) of type + payload. */
 uint32_t vx_chunk_crc(const char *type, const void *data, size_t len);
+/* vx_chunk_crc_of: chunk c's CRC: the one read with it while crc_known (no
+ * pass over the payload), else computed */
+uint32_t vx_chunk_crc_of(const vx_chunk *c);
 
 /* ---- text headers: "key: value\n" lines, ended by an empty line ---- */
 
@@ -151,10 +158,15 @@ int vx_hdr_get_f64_opt(const vx_hdr *h, const char *key, double *out,
 
 enum { VX_ENC_UNKNOWN = 0, VX_ENC_RAW, VX_ENC_ZLIB, VX_ENC_LAST };
 
+/* a raw body starts at a multiple of this many bytes into its payload */
+#define VX_BODY_ALIGN 16
+
 /* vx_payload_make: fill chunk c (type, data, len) with h's text, an empty
  * line and body (n bytes), compressing with zlib at `level` (1..9) or raw when
- * level is 0; sets the "encoding" key in h accordingly.  A header longer
- * than VX_HDR_MAX is VX_EINTERNAL. */
+ * level is 0; sets the "encoding" key in h accordingly.  A raw body gets a
+ * "pad" line of spaces that starts it at a multiple of VX_BODY_ALIGN (a
+ * "pad" key in h is not written: the writer makes its own).  A header
+ * longer than VX_HDR_MAX is VX_EINTERNAL. */
 int vx_payload_make(vx_chunk *c, const char *type, vx_hdr *h,
     const void *body, size_t n, int level, vx_err *e);
 

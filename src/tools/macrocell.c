@@ -338,6 +338,10 @@ main(int argc, char **argv)
 	}
 	if (o.stats)
 		print_stats(&m, &g, now() - t0, nt);
+	/* the volume's chunk goes out as it came in: its CRC lets a renderer
+	 * skip the pass over the samples that proves the cells match */
+	m.vchunk_crc = vx_chunk_crc_of(&s.chunk[idx]);
+	m.has_vchunk_crc = 1;
 	memset(&c, 0, sizeof c);
 	if (vx_macro_to_chunk(&m, 0, &c, &e) != 0)
 		tool_fail_err(&e);

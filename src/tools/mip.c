@@ -155,6 +155,7 @@ main(int argc, char **argv)
 	vx_mip_stats ms;
 	double lo[3], hi[3], wlo, whi;
 	int nthr, i;
+	long gi = -1;
 	struct timespec t0, t1, c0, c1;
 
 	tool_init("mip", argc, argv);
@@ -170,7 +171,7 @@ main(int argc, char **argv)
 	for (i = 0; i < o.nset; i++)
 		if (vx_scene_option(&s, o.set_name[i], o.set_val[i], &e) != 0)
 			tool_fail_err(&e);
-	if (vx_grid_from_stream(&g, &st, o.name, NULL, &e) != 0) {
+	if (vx_grid_view_stream(&g, &st, o.name, &gi, &e) != 0) {
 		/* no such volume, but a tet mesh: say so */
 		int is_mesh = 0;
 
@@ -186,7 +187,7 @@ main(int argc, char **argv)
 			tool_fail(VX_EDATA, "volume '%s': needs at least 2 samples "
 			    "per axis", g.name);
 	nthr = tool_threads(o.threads);
-	tool_macro_load(&m, &st, &g, nthr, o.dry);
+	tool_macro_load(&m, &st, &g, gi, nthr, o.dry);
 	if (o.explain)
 		explain(&o, &s, &m, nthr);
 	if (o.dry)

@@ -234,7 +234,7 @@ main(int argc, char **argv)
 			tool_fail_err(&e);
 		if (mesh.ntet == 0)
 			tool_fail(VX_EDATA, "mesh '%s' has no tets", mesh.name);
-	} else if (vx_grid_from_stream(&g, &st, want, &gi, &e) != 0)
+	} else if (vx_grid_view_stream(&g, &st, want, &gi, &e) != 0)
 		tool_fail_err(&e);
 	for (int a = 0; a < 3 && !is_mesh; a++)
 		if (g.dims[a] < 2)
@@ -302,7 +302,7 @@ main(int argc, char **argv)
 				tool_fail_err(&e);
 		}
 	} else if (!o.flat)
-		tool_macro_load(&m, &st, &g, nthr, o.dry);
+		tool_macro_load(&m, &st, &g, gi, nthr, o.dry);
 	if (o.dry) {
 		vx_tetleaf_free(&lg);
 		vx_tetmesh_free(&mesh);
@@ -318,7 +318,7 @@ main(int argc, char **argv)
 	}
 	for (k = 0; k < s.nsurface; k++)
 		if (plan.texture_on[k]) {
-			if (vx_grid_from_stream(&texg[k], &st,
+			if (vx_grid_view_stream(&texg[k], &st,
 			    s.surface[k].m.texture, NULL, &e) != 0) {
 				vx_err_push(&e, "surface %d texture", k + 1);
 				tool_fail_err(&e);

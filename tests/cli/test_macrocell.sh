@@ -121,6 +121,9 @@ def query(q):
         return h.get(w[2], "") if h else ""
     if w[0] == "payload":
         return "%08x" % zlib.crc32(b"".join(p for t, p in ch if t == "MCEL"))
+    if w[0] == "vcrc":
+        # the CRC of the VOLM chunk as stored: type and payload
+        return "%08x" % zlib.crc32(b"VOLM" + next(p for t, p in ch if t == "VOLM"))
 
 if sys.argv[1] == "make":
     exec(open(sys.argv[2]).read())
@@ -170,7 +173,9 @@ python3 "$T/mc.py" \
     "check|$T/imb.vx" "payload|$T/imb.vx" "payload|$T/im.vx" \
     "payload|$T/j1.vx" "payload|$T/j3.vx" \
     "chunks|$T/ai2.vx" "check|$T/ai2.vx|a" "check|$T/ai2.vx|density" \
-    "check|$T/flatm.vx" "hdr|$T/flatm.vx|leaf-dims" >"$T/ans"
+    "check|$T/flatm.vx" "hdr|$T/flatm.vx|leaf-dims" \
+    "hdr|$T/um.vx|volume-chunk-crc32" "vcrc|$T/um.vx" \
+    "hdr|$T/imb.vx|volume-chunk-crc32" "vcrc|$T/imb.vx" >"$T/ans"
 a() { sed -n "$1p" "$T/ans"; }
 check_eq "f32: MCEL after the volume" "$(a 1)" "hist VOLM MCEL"
 check_eq "f32: header and every pair match the oracle" "$(a 2)" ok
@@ -202,6 +207,14 @@ check_eq "volume a's MCEL" "$(a 25)" ok
 check_eq "volume density's MCEL" "$(a 26)" ok
 check_eq "no cells: empty hierarchy" "$(a 27)" ok
 check_eq "no cells: leaf-dims" "$(a 28)" "0 0 0"
+# the volume's chunk goes through macrocell unchanged, and its CRC is
+# recorded (a renderer holding that chunk skips the pass over the samples)
+check_eq "volume-chunk-crc32 is the VOLM chunk's CRC" "$(a 29)" "$(a 30)"
+# brick rewrites the volume: the key no longer names it, the cells still
+# match through the samples' CRC (check|imb.vx above), and raycast uses them
+check "brick: the old chunk CRC names another chunk" [ "$(a 31)" != "$(a 32)" ]
+raycast --size 8x8 --iso 3 <"$T/imb.vx" >/dev/null 2>"$T/imb.err"
+check_eq "brick: raycast takes the cells, no note" "$(cat "$T/imb.err")" ""
 
 # --stats: sizes, per-level numbers and the overhead against the data
 # (i16 34x17x10: 33x16x9 cells; level 1 16x8x8 -> 3x2x2 = 12 macrocells,

@@ -106,8 +106,8 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 			if (rc == 0) {
 				sink += fuzz_grid_touch(&g);
 				vx_err_clear(&e);
-				rc = vx_macro_from_stream(&m, &s, &g, &status,
-				    &idx, &e);
+				rc = vx_macro_from_stream(&m, &s, &g, (long)i,
+				    &status, &idx, &e);
 				fuzz_err_check(rc, &e);
 				/* m holds memory only when loaded */
 				if (rc == 0 && status == VX_MACRO_LOADED) {

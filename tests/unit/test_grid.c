@@ -265,10 +265,12 @@ volm_errors(void **state)
 static void
 spec_example_bytes(void **state)
 {
+	/* 107 bytes of keys and the empty line, then the writer's pad line
+	 * ("pad:" and 15 spaces, 21 bytes) puts the body at 128 = 8 x 16 */
 	static const char hdr[] = "name: density\ndims: 2 2 1\ntype: u8\n"
 	    "spacing: 1 1 2.5\norigin: 0 0 0\nlayout: linear\nrange: 1 4\n"
-	    "encoding: raw\n\n";
-	unsigned char want[189], *w = want;
+	    "encoding: raw\npad:                \n\n";
+	unsigned char want[210], *w = want;
 	int64_t d[3] = { 2, 2, 1 };
 	vx_grid g;
 	vx_stream s;
@@ -283,16 +285,16 @@ spec_example_bytes(void **state)
 	w += 20;
 	memcpy(w, "vread 0.1.0 --synth x\n\x10\xc2\xe1\xf1", 26);
 	w += 26;
-	memcpy(w, "VOLM\x6f\0\0\0\0\0\0\0", 12);
+	memcpy(w, "VOLM\x84\0\0\0\0\0\0\0", 12);
 	w += 12;
-	assert_int_equal(strlen(hdr), 107);
-	memcpy(w, hdr, 107);
-	w += 107;
-	memcpy(w, "\x01\x02\x03\x04\x9b\xb7\x7f\x80", 8);
+	assert_int_equal(strlen(hdr), 128);
+	memcpy(w, hdr, 128);
+	w += 128;
+	memcpy(w, "\x01\x02\x03\x04\x9c\x28\x4f\x2d", 8);
 	w += 8;
 	memcpy(w, "VEND\0\0\0\0\0\0\0\0\x4b\x27\x38\xa6", 16);
 	w += 16;
-	assert_int_equal(w - want, 189);
+	assert_int_equal(w - want, 210);
 
 	assert_int_equal(vx_grid_alloc(&g, d, VX_U8, NULL, &e), 0);
 	vx_grid_set(&g, 0, 0, 0, 1);
@@ -389,11 +391,14 @@ chunk_extra_keys(void **state)
 	static const char *const in[][2] = {
 		{ "layout", "linear" }, { "units", "HU" }, { "range", "7 8" },
 		{ "encoding", "zlib" }, { "x-note", " a\tb " }, { "name", "old" },
+		{ "pad", "          " },
 	};
+	/* the input's pad line is not copied: the writer makes its own,
+	 * which starts the body at a multiple of 16 */
 	static const char want[] =
 	    "name: density\ndims: 2 1 1\ntype: u8\nspacing: 1 1 1\n"
 	    "origin: 0 0 0\nlayout: bricked 2x2x2\nrange: 0 5\nunits: HU\n"
-	    "x-note:  a\tb \nencoding: raw\n\n";
+	    "x-note:  a\tb \nencoding: raw\npad:   \n\n";
 	int64_t d[3] = { 2, 1, 1 };
 	vx_err e = { 0, "" };
 	vx_grid g;
@@ -410,6 +415,7 @@ chunk_extra_keys(void **state)
 	vx_grid_range(&g);
 	assert_int_equal(vx_grid_to_chunk_extra(&g, 0, &h, &c, &e), 0);
 	assert_true(c.len == strlen(want) + 8);
+	assert_int_equal(strlen(want) % VX_BODY_ALIGN, 0);
 	assert_memory_equal(c.data, want, strlen(want));
 	vx_chunk_free(&c);
 	/* NULL: the same as vx_grid_to_chunk */
@@ -418,6 +424,87 @@ chunk_extra_keys(void **state)
 	vx_chunk_free(&c);
 	vx_grid_free(&g);
 	vx_hdr_free(&h);
+}
+
+/* vx_grid_view_chunk: a raw body the writer made is used in place (its
+ * offset is a multiple of VX_BODY_ALIGN), for every type and layout, and
+ * gives the samples vx_grid_from_chunk copies; a zlib body and a raw body
+ * the hand-made header leaves misaligned for its type are copied, with the
+ * same samples.  Oracle: vx_grid_from_chunk's grid, sample by sample. */
+static void
+view_in_place(void **state)
+{
+	static const vx_type types[] = { VX_U8, VX_U16, VX_I16, VX_F32 };
+	static const char *const lays[] = { "linear", "bricked 2x2x2" };
+	int64_t d[3] = { 5, 3, 4 };
+	vx_err e = { 0, "" };
+
+	(void)state;
+	for (size_t ti = 0; ti < 4; ti++)
+		for (size_t li = 0; li < 2; li++)
+			for (int z = 0; z < 2; z++) {
+				vx_grid g, gc, gv;
+				vx_chunk c;
+				const unsigned char *p;
+
+				assert_int_equal(vx_grid_alloc(&g, d, types[ti],
+				    lays[li], &e), 0);
+				for (int k = 0; k < 4; k++)
+					for (int j = 0; j < 3; j++)
+						for (int i = 0; i < 5; i++)
+							vx_grid_set(&g, i, j, k,
+							    (i * 7 + j * 3 + k * 11) % 23);
+				vx_grid_range(&g);
+				assert_int_equal(vx_grid_to_chunk(&g, z ? 6 : 0,
+				    &c, &e), 0);
+				assert_int_equal(vx_grid_from_chunk(&gc, &c, &e), 0);
+				assert_int_equal(vx_grid_view_chunk(&gv, &c, &e), 0);
+				p = gv.data;
+				if (z == 0) {
+					assert_int_equal(gv.borrowed, 1);
+					assert_true(p > c.data && p < c.data + c.len);
+					assert_int_equal((p - c.data) % VX_BODY_ALIGN,
+					    0);
+				} else
+					assert_int_equal(gv.borrowed, 0);
+				assert_int_equal(gc.borrowed, 0);
+				assert_int_equal(gv.nsample, gc.nsample);
+				assert_memory_equal(gv.data, gc.data, gv.nsample *
+				    vx_type_size(gv.type));
+				assert_true(gv.vmin == gc.vmin && gv.vmax == gc.vmax);
+				vx_grid_free(&gv);   /* leaves c's payload alone */
+				assert_int_equal(vx_grid_view_chunk(&gv, &c, &e), 0);
+				assert_memory_equal(gv.data, gc.data, gv.nsample *
+				    vx_type_size(gv.type));
+				vx_grid_free(&gv);
+				vx_grid_free(&gc);
+				vx_grid_free(&g);
+				vx_chunk_free(&c);
+			}
+	/* a header of odd length (no pad line: not the reference writer's)
+	 * puts the i16 body at an odd address: copied */
+	{
+		static const char hdr[] = "name: v\ndims: 2 1 1\ntype: i16\n"
+		    "range: -3 5\nencoding: raw\n\n";
+		size_t hl = strlen(hdr);
+		vx_chunk c;
+		vx_grid gv;
+
+		assert_int_equal(hl % 2, 1);
+		memset(&c, 0, sizeof c);
+		memcpy(c.type, "VOLM", 5);
+		c.len = hl + 4;
+		c.data = malloc(c.len);
+		assert_non_null(c.data);
+		memcpy(c.data, hdr, hl);
+		memcpy(c.data + hl, "\xfd\xff\x05\x00", 4);
+		assert_int_equal(vx_grid_view_chunk(&gv, &c, &e), 0);
+		assert_int_equal(gv.borrowed, 0);
+		assert_true(vx_grid_get(&gv, 0, 0, 0) == -3);
+		assert_true(vx_grid_get(&gv, 1, 0, 0) == 5);
+		vx_grid_free(&gv);
+		vx_chunk_free(&c);
+	}
 }
 
 int
@@ -435,6 +522,7 @@ main(void)
 		cmocka_unit_test(relayout_identical),
 		cmocka_unit_test(default_bricks),
 		cmocka_unit_test(chunk_extra_keys),
+		cmocka_unit_test(view_in_place),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1125,18 +1125,18 @@ chunk_roundtrip_and_staleness(void **state)
 	memset(&c, 0, sizeof c);
 	assert_int_equal(vx_macro_to_chunk(&m, 0, &c, &e), 0);
 	assert_int_equal(vx_stream_append(&s, &c, &e), 0);
-	assert_int_equal(vx_macro_from_stream(&m2, &s, &gb, &status, &idx, &e),
+	assert_int_equal(vx_macro_from_stream(&m2, &s, &gb, -1, &status, &idx, &e),
 	    0);
 	assert_int_equal(status, VX_MACRO_LOADED);
 	assert_int_equal(idx, 0);
 	vx_macro_free(&m2);
 	assert_int_equal(vx_grid_relayout(&g2, &g, "linear", &e), 0);
 	vx_grid_set(&g2, 3, 3, 3, vx_grid_get(&g2, 3, 3, 3) + 1);
-	assert_int_equal(vx_macro_from_stream(&m2, &s, &g2, &status, &idx, &e),
+	assert_int_equal(vx_macro_from_stream(&m2, &s, &g2, -1, &status, &idx, &e),
 	    0);
 	assert_int_equal(status, VX_MACRO_STALE);
 	snprintf(g2.name, sizeof g2.name, "other");
-	assert_int_equal(vx_macro_from_stream(&m2, &s, &g2, &status, &idx, &e),
+	assert_int_equal(vx_macro_from_stream(&m2, &s, &g2, -1, &status, &idx, &e),
 	    0);
 	assert_int_equal(status, VX_MACRO_ABSENT);
 	assert_int_equal(idx, -1);
@@ -1145,6 +1145,98 @@ chunk_roundtrip_and_staleness(void **state)
 	vx_grid_free(&g);
 	vx_grid_free(&gb);
 	vx_grid_free(&g2);
+}
+
+/* The MCEL chunk's volume-chunk-crc32 names the VOLM chunk's bytes: a
+ * reader holding that very chunk (its CRC read with it) takes the match
+ * without the pass over the samples; otherwise the sample CRC decides.
+ * Oracle for which path was taken: an MCEL whose volume-crc32 is wrong
+ * loads on the fast path only, and one whose volume-chunk-crc32 is wrong
+ * still loads through the samples. */
+static void
+chunk_crc_fast_path(void **state)
+{
+	int64_t dims[3] = { 9, 6, 5 };
+	static const int sz[][3] = { { 4, 2, 2 } };
+	vx_grid g, gv;
+	vx_macro m, m2;
+	vx_chunk c;
+	vx_stream s;
+	vx_err e = { 0, "" };
+	int status, k;
+	long idx, gi;
+	uint32_t vc;
+
+	(void)state;
+	rand_grid(&g, dims, VX_U16, "bricked 2x2x2", 11, 0);
+	assert_int_equal(vx_macro_build(&m, &g, 1, sz, 1, &e), 0);
+	assert_int_equal(m.has_vchunk_crc, 0);
+	vx_stream_init(&s);
+	assert_int_equal(vx_grid_to_chunk(&g, 0, &c, &e), 0);
+	assert_int_equal(vx_stream_append(&s, &c, &e), 0);
+	/* as read: the chunk's CRC known */
+	vc = vx_chunk_crc(s.chunk[0].type, s.chunk[0].data, s.chunk[0].len);
+	s.chunk[0].crc = vc;
+	s.chunk[0].crc_known = 1;
+	assert_int_equal(vx_grid_view_stream(&gv, &s, NULL, &gi, &e), 0);
+	assert_int_equal(gi, 0);
+	for (k = 0; k < 6; k++) {
+		/* k: 0 right keys; 1 wrong volume-crc32; 2 wrong chunk CRC;
+		 * 3 like 1 without src; 4 like 1 with the CRC not known;
+		 * 5 like 1, src naming the MCEL chunk */
+		static const int want[] = { VX_MACRO_LOADED, VX_MACRO_LOADED,
+		    VX_MACRO_LOADED, VX_MACRO_STALE, VX_MACRO_STALE,
+		    VX_MACRO_STALE };
+		long src = k == 3 ? -1 : k == 5 ? 1 : gi;
+
+		m.vchunk_crc = k == 2 ? vc ^ 0x10u : vc;
+		m.has_vchunk_crc = 1;
+		if (k == 1)
+			m.vcrc ^= 1;
+		memset(&c, 0, sizeof c);
+		assert_int_equal(vx_macro_to_chunk(&m, 0, &c, &e), 0);
+		if (k == 1)
+			m.vcrc ^= 1;
+		if (k == 0) {
+			/* the key round-trips */
+			assert_int_equal(vx_macro_from_chunk(&m2, &c, &e), 0);
+			assert_int_equal(m2.has_vchunk_crc, 1);
+			assert_int_equal(m2.vchunk_crc, vc);
+			vx_macro_free(&m2);
+		}
+		if (s.n > 1)
+			vx_stream_replace(&s, 1, &c);
+		else
+			assert_int_equal(vx_stream_append(&s, &c, &e), 0);
+		if (k >= 3) {   /* the tampered MCEL of case 1 */
+			memset(&c, 0, sizeof c);
+			m.vcrc ^= 1;
+			assert_int_equal(vx_macro_to_chunk(&m, 0, &c, &e), 0);
+			m.vcrc ^= 1;
+			vx_stream_replace(&s, 1, &c);
+		}
+		s.chunk[0].crc_known = k != 4;
+		assert_int_equal(vx_macro_from_stream(&m2, &s, &gv, src, &status,
+		    &idx, &e), 0);
+		if (status != want[k])
+			fail_msg("case %d: status %d, want %d", k, status,
+			    want[k]);
+		assert_int_equal(idx, 1);
+		if (status == VX_MACRO_LOADED)
+			assert_memory_equal(m2.mm[1], m.mm[1], 2 * sizeof(float) *
+			    (size_t)(m.dims[1][0] * m.dims[1][1] * m.dims[1][2]));
+		vx_macro_free(&m2);
+	}
+	/* the other checks still run on the fast path: another name is
+	 * absent, and the key's value is checked */
+	snprintf(gv.name, sizeof gv.name, "other");
+	assert_int_equal(vx_macro_from_stream(&m2, &s, &gv, gi, &status, &idx,
+	    &e), 0);
+	assert_int_equal(status, VX_MACRO_ABSENT);
+	vx_grid_free(&gv);
+	vx_stream_free(&s);
+	vx_macro_free(&m);
+	vx_grid_free(&g);
 }
 
 /* Explicit leaves survive the chunk too (level 0 is stored). */
@@ -1204,6 +1296,10 @@ chunk_errors(void **state)
 		{ "leaves: cells\nlevels: 0\nsizes:\nleaf-dims: 1 1 1\n"
 		  "volume: v\nvolume-dims: 2 2 2\nvolume-type: u8\n"
 		  "volume-crc32: 00000000\nrange: 1 0\n", "range", 0 },
+		{ "leaves: cells\nlevels: 0\nsizes:\nleaf-dims: 1 1 1\n"
+		  "volume: v\nvolume-dims: 2 2 2\nvolume-type: u8\n"
+		  "volume-crc32: 00000000\nvolume-chunk-crc32: 0ABCDEF0\n"
+		  "range: 0 1\n", "volume-chunk-crc32", 0 },
 		{ "leaves: explicit\nlevels: 0\nsizes:\nleaf-dims: 1 1 1\n"
 		  "range: 0 1\n", "body", 0 },
 	};
@@ -1316,6 +1412,7 @@ main(void)
 		cmocka_unit_test(default_sizes_overhead),
 		cmocka_unit_test(parse_sizes),
 		cmocka_unit_test(chunk_roundtrip_and_staleness),
+		cmocka_unit_test(chunk_crc_fast_path),
 		cmocka_unit_test(chunk_explicit),
 		cmocka_unit_test(chunk_errors),
 		cmocka_unit_test(degenerate_volume),

@@ -64,13 +64,43 @@ roundtrip(void **state)
 	assert_int_equal(s.n, 3);
 	assert_memory_equal(s.chunk[2].type, "zzzz", 4);  /* unknown ancillary kept */
 	assert_memory_equal(s.chunk[2].data, "keep me", 7);
+	/* each chunk's CRC is kept as read (oracle: computed anew) */
+	for (size_t i = 0; i < s.n; i++) {
+		assert_int_equal(s.chunk[i].crc_known, 1);
+		assert_int_equal(s.chunk[i].crc, vx_chunk_crc(s.chunk[i].type,
+		    s.chunk[i].data, s.chunk[i].len));
+		assert_int_equal(vx_chunk_crc_of(&s.chunk[i]), s.chunk[i].crc);
+	}
 	f = open_memstream(&out, &outn);
 	assert_int_equal(vx_stream_write(&s, f, &e), 0);
 	fclose(f);
 	assert_int_equal(outn, b.n);
 	assert_memory_equal(out, b.p, b.n);   /* byte-identical pass-through */
-	vx_stream_free(&s);
 	free(out);
+	/* a history line changes the chunk in place: its CRC is computed
+	 * again, and the stream written reads back */
+	{
+		long h = vx_stream_find(&s, VX_CHUNK_HISTORY, 0);
+		vx_stream s2;
+
+		assert_int_equal(vx_stream_history_add(&s, "tool 1 --x", &e), 0);
+		h = vx_stream_find(&s, VX_CHUNK_HISTORY, 0);
+		assert_true(h >= 0);
+		assert_int_equal(s.chunk[h].crc_known, 0);
+		assert_int_equal(vx_chunk_crc_of(&s.chunk[h]),
+		    vx_chunk_crc(s.chunk[h].type, s.chunk[h].data,
+		    s.chunk[h].len));
+		out = NULL;
+		f = open_memstream(&out, &outn);
+		assert_int_equal(vx_stream_write(&s, f, &e), 0);
+		fclose(f);
+		vx_stream_init(&s2);
+		assert_int_equal(vx_stream_read_mem(&s2, (unsigned char *)out,
+		    outn, &e), 0);
+		vx_stream_free(&s2);
+		free(out);
+	}
+	vx_stream_free(&s);
 	free(b.p);
 }
 

@@ -367,14 +367,14 @@ tool_stream_keep(vx_stream *out, vx_stream *in, const char *const *drop)
 }
 
 void
-tool_macro_load(vx_macro *m, const vx_stream *st, const vx_grid *g, int nthr,
-    int quiet)
+tool_macro_load(vx_macro *m, const vx_stream *st, const vx_grid *g,
+    long src, int nthr, int quiet)
 {
 	int sizes[VX_MACRO_MAXLEV][3], nlev, status;
 	vx_err e = { 0, "" };
 
 	vx_macro_init(m);
-	if (vx_macro_from_stream(m, st, g, &status, NULL, &e) != 0)
+	if (vx_macro_from_stream(m, st, g, src, &status, NULL, &e) != 0)
 		tool_fail_err(&e);
 	if (status == VX_MACRO_LOADED)
 		return;

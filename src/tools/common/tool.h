@@ -83,14 +83,16 @@ void tool_stream_keep(vx_stream *out, vx_stream *in,
     const char *const *drop);
 
 /* tool_macro_load: the hierarchy of volume g into m (initialized here):
- * the stream's MCEL chunk when it was built over these samples, else built
+ * the stream's MCEL chunk when it was built over these samples (src: the
+ * index of the VOLM chunk g was decoded from, or -1; see
+ * vx_macro_from_stream), else built
  * now with macrocell(1)'s default sizes and nthr threads, with a note on
  * standard error unless quiet (the note says whether the stream had none
  * or a stale one).  Exits on error. */
 struct vx_grid;
 struct vx_macro;
 void tool_macro_load(struct vx_macro *m, const vx_stream *st,
-    const struct vx_grid *g, int nthr, int quiet);
+    const struct vx_grid *g, long src, int nthr, int quiet);
 
 /* tool_threads: number of threads for -j N (0: all cores). */
 int tool_threads(long j);
