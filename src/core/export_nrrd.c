@@ -127,6 +127,23 @@ put_comment(FILE *f, const char *line)
 	fputc('\n', f);
 }
 
+/* put_escaped: a key or value of a "key:=value" line, with NRRD's escapes
+ * for backslash and newline (other control characters become '?') */
+static void
+put_escaped(FILE *f, const char *s)
+{
+	for (; *s != '\0'; s++) {
+		unsigned char ch = (unsigned char)*s;
+
+		if (ch == '\\')
+			fputs("\\\\", f);
+		else if (ch == '\n')
+			fputs("\\n", f);
+		else
+			fputc(ch < 0x20 || ch == 0x7f ? '?' : ch, f);
+	}
+}
+
 static void
 put_header(const vx_grid *g, FILE *f, const vx_nrrd_opts *o)
 {
@@ -155,9 +172,16 @@ put_header(const vx_grid *g, FILE *f, const vx_nrrd_opts *o)
 	fputs("centerings: node node node\n", f);
 	fputs("endian: little\n", f);
 	fprintf(f, "encoding: %s\n", o->gzip ? "gzip" : "raw");
-	vx_snprintf_c(line, sizeof line, "space origin: (%.17g,%.17g,%.17g)\n\n",
+	vx_snprintf_c(line, sizeof line, "space origin: (%.17g,%.17g,%.17g)\n",
 	    g->origin[0], g->origin[1], g->origin[2]);
 	fputs(line, f);
+	for (i = 0; o->keys != NULL && i < o->keys->n; i++) {
+		put_escaped(f, o->keys->key[i]);
+		fputs(":=", f);
+		put_escaped(f, o->keys->val[i]);
+		fputc('\n', f);
+	}
+	fputc('\n', f);
 }
 
 /* ---- body ---- */

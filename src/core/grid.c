@@ -478,11 +478,11 @@ vx_grid_relayout(vx_grid *dst, const vx_grid *src, const char *spec,
 /* the keys the VOLM writer writes itself (formats/stream.md 9.1) */
 static const char *const volm_keys[] = {
 	"name", "dims", "type", "spacing", "origin", "layout", "range",
-	"encoding", NULL
+	"encoding", "pad", NULL
 };
 
-static int
-volm_key_known(const char *k)
+int
+vx_grid_key_known(const char *k)
 {
 	int i;
 
@@ -527,7 +527,7 @@ vx_grid_to_chunk_extra(const vx_grid *g, int zlevel, const vx_hdr *extra,
 	    (rc = vx_hdr_set(&h, "range", e, "%.17g %.17g", g->vmin, g->vmax)))
 		goto out;
 	for (size_t i = 0; extra != NULL && i < extra->n; i++)
-		if (!volm_key_known(extra->key[i]) &&
+		if (!vx_grid_key_known(extra->key[i]) &&
 		    (rc = vx_hdr_set_str(&h, extra->key[i], extra->val[i],
 		    e)) != 0)
 			goto out;

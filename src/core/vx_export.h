@@ -17,6 +17,8 @@ typedef struct vx_nrrd_opts {
 	int level;                     /* gzip level 1..9; 0: zlib's default */
 	const char *const *comments;   /* lines written as "# line" */
 	size_t ncomments;
+	const vx_hdr *keys;            /* pairs written as "key:=value" lines
+	                                  (NULL: none) */
 } vx_nrrd_opts;
 
 /* vx_export_nrrd: write g as an attached-header NRRD0004 file on f:
@@ -34,12 +36,14 @@ typedef struct vx_nrrd_opts {
  *   endian: little
  *   encoding: raw | gzip
  *   space origin: (OX,OY,OZ)
+ *   key:=value lines, one per pair of o->keys
  *   <empty line>
  *   samples, x fastest, little-endian (gzip: one RFC 1952 member)
  *
  * The samples are written in linear order whatever g's layout, padding left
  * out.  Numbers are %.17g, so spacing and origin are exact.  Comment bytes
- * that are control characters become '?'.  f is flushed, not closed; write
+ * that are control characters become '?'; in key/value pairs a backslash
+ * is written "\\\\" and a newline "\\n", as the NRRD format escapes them.  f is flushed, not closed; write
  * errors are VX_EIO.  vx_export_nrrd is vx_export_nrrd_opts with only gzip
  * set. */
 int vx_export_nrrd(const vx_grid *g, FILE *f, int gzip, vx_err *e);

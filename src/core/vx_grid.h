@@ -121,8 +121,12 @@ int vx_grid_relayout(vx_grid *dst, const vx_grid *src, const char *spec,
     vx_err *e);
 
 /* ---- stream form: the VOLM chunk ----
- * Header keys: name, dims, type, spacing, origin, layout, range, encoding.
- * Body: nsample samples, little-endian, in layout order (pads are zero). */
+ * Header keys: name, dims, type, spacing, origin, layout, range, encoding
+ * (and the writer's pad line).  Body: nsample samples, little-endian, in
+ * layout order (pads are zero). */
+/* vx_grid_key_known: 1 if the VOLM writer writes key k itself (the keys
+ * above and "pad"): a header's other keys are the ones to carry along. */
+int vx_grid_key_known(const char *k);
 int vx_grid_to_chunk(const vx_grid *g, int zlevel, vx_chunk *c, vx_err *e);
 /* vx_grid_to_chunk_extra: the same, and then every key of `extra` (a
  * header, e.g. of the chunk g was read from; NULL: none) that the VOLM

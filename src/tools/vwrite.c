@@ -85,6 +85,7 @@ main(int argc, char **argv)
 	vx_nrrd_opts no;
 	vx_stream s;
 	vx_grid g;
+	vx_hdr vh, kv;
 	tool_out out;
 	size_t hn, n = 0, i;
 	const char *h;
@@ -95,9 +96,24 @@ main(int argc, char **argv)
 	parse_args(&o, argc, argv);
 	vx_stream_init(&s);
 	tool_read_stream(&s, o.in);
-	if (vx_grid_from_stream(&g, &s, o.name, &idx, &e) != 0) {
+	if (vx_grid_view_stream(&g, &s, o.name, &idx, &e) != 0) {
 		vx_err_push(&e, "%s", strcmp(o.in, "-") ? o.in : "<stdin>");
 		tool_fail_err(&e);
+	}
+	/* the volume's header keys the VOLM writer does not make itself
+	 * (units, notes: formats/stream.md 9.1) go along as key:=value */
+	{
+		const unsigned char *body;
+		size_t bl;
+
+		vx_hdr_init(&vh);
+		vx_hdr_init(&kv);
+		if (vx_payload_parse(&s.chunk[idx], &vh, &body, &bl, &e) != 0)
+			tool_fail_err(&e);
+		for (i = 0; i < vh.n; i++)
+			if (!vx_grid_key_known(vh.key[i]) &&
+			    vx_hdr_set_str(&kv, vh.key[i], vh.val[i], &e) != 0)
+				tool_fail_err(&e);
 	}
 	/* comments: the stream's history and this run, one line each */
 	h = vx_stream_history(&s, &hn);
@@ -118,6 +134,7 @@ main(int argc, char **argv)
 	no.gzip = o.gzip;
 	no.comments = lines;
 	no.ncomments = n;
+	no.keys = &kv;
 	tool_out_open(&out, o.out);
 	if (vx_export_nrrd_opts(&g, out.f, &no, &e) != 0) {
 		tool_out_abort(&out);
@@ -127,6 +144,8 @@ main(int argc, char **argv)
 	tool_out_close(&out);
 	free(lines);
 	free(hist);
+	vx_hdr_free(&kv);
+	vx_hdr_free(&vh);
 	vx_grid_free(&g);
 	vx_stream_free(&s);
 	return tool_finish();

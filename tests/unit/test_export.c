@@ -200,6 +200,36 @@ comments(void **state)
 	vx_grid_free(&g);
 }
 
+/* Key/value pairs: after the fields, before the empty line, in order,
+ * backslash and newline escaped as NRRD does, other control characters
+ * '?'.  Oracle: the header text. */
+static void
+key_values(void **state)
+{
+	vx_nrrd_opts o;
+	vx_err e = { 0, "" };
+	vx_hdr h;
+	vx_grid g;
+	char *out = NULL;
+	size_t outn = 0;
+	FILE *f;
+
+	(void)state;
+	make_grid(&g, VX_U8, NULL);
+	vx_hdr_init(&h);
+	assert_int_equal(vx_hdr_set_str(&h, "units", "HU", &e), 0);
+	assert_int_equal(vx_hdr_set_str(&h, "x-note", "a\\b\tc := d", &e), 0);
+	memset(&o, 0, sizeof o);
+	o.keys = &h;
+	f = open_memstream(&out, &outn);
+	assert_int_equal(vx_export_nrrd_opts(&g, f, &o, &e), 0);
+	fclose(f);
+	assert_non_null(strstr(out, ")\nunits:=HU\nx-note:=a\\\\b?c := d\n\n"));
+	free(out);
+	vx_hdr_free(&h);
+	vx_grid_free(&g);
+}
+
 /* A full disk is an I/O error, not success. */
 static void
 write_error(void **state)
@@ -269,6 +299,7 @@ main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(header_and_body),
 		cmocka_unit_test(comments),
+		cmocka_unit_test(key_values),
 		cmocka_unit_test(write_error),
 		cmocka_unit_test(gzip_large),
 	};
