@@ -1115,46 +1115,54 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 			const float *mm = m->mm[l];
 			const int64_t d0 = m->dims[l][0];
 			const int64_t d01 = d0 * m->dims[l][1];
-			const int64_t dq[3] = { r.s[0], r.s[1] * d0, r.s[2] * d01 };
 			int64_t x0 = c[l][0], x1 = c[l][1], x2 = c[l][2];
 			int64_t q = x0 + d0 * x1 + d01 * x2, nc;
-			double n0 = tn[l][0], n1 = tn[l][1], n2 = tn[l][2], tv;
 			int in;
 
-			for (;;) {
-				s.macro[l]++;
-				if ((in = brackets(mm[2 * q], mm[2 * q + 1], vals,
-				    nvals)) != 0)
-					break;
-				ax = n1 < n0;
-				texit = ax ? n1 : n0;
-				if (n2 < texit) {
-					ax = 2;
-					texit = n2;
+			s.macro[l]++;
+			in = brackets(mm[2 * q], mm[2 * q + 1], vals, nvals);
+			if (!in) {
+				const int64_t dq[3] = { r.s[0], r.s[1] * d0,
+				    r.s[2] * d01 };
+				double n0 = tn[l][0], n1 = tn[l][1], n2 = tn[l][2];
+				double tv;
+
+				for (;;) {
+					ax = n1 < n0;
+					texit = ax ? n1 : n0;
+					if (n2 < texit) {
+						ax = 2;
+						texit = n2;
+					}
+					if (!(texit < tb))
+						break;
+					nc = (ax == 0 ? x0 : ax == 1 ? x1 : x2) +
+					    r.s[ax];
+					if (nc == lim[l][ax])
+						break;
+					tv = t_exit_of(&r, l, ax, nc);
+					x0 = ax == 0 ? nc : x0;
+					x1 = ax == 1 ? nc : x1;
+					x2 = ax == 2 ? nc : x2;
+					n0 = ax == 0 ? tv : n0;
+					n1 = ax == 1 ? tv : n1;
+					n2 = ax == 2 ? tv : n2;
+					q += dq[ax];
+					t = texit;
+					e = ax;
+					start = 0;
+					s.macro[l]++;
+					if ((in = brackets(mm[2 * q], mm[2 * q + 1],
+					    vals, nvals)) != 0)
+						break;
 				}
-				if (!(texit < tb))
-					break;
-				nc = (ax == 0 ? x0 : ax == 1 ? x1 : x2) + r.s[ax];
-				if (nc == lim[l][ax])
-					break;
-				tv = t_exit_of(&r, l, ax, nc);
-				x0 = ax == 0 ? nc : x0;
-				x1 = ax == 1 ? nc : x1;
-				x2 = ax == 2 ? nc : x2;
-				n0 = ax == 0 ? tv : n0;
-				n1 = ax == 1 ? tv : n1;
-				n2 = ax == 2 ? tv : n2;
-				q += dq[ax];
-				t = texit;
-				e = ax;
-				start = 0;
+				c[l][0] = x0;
+				c[l][1] = x1;
+				c[l][2] = x2;
+				tn[l][0] = n0;
+				tn[l][1] = n1;
+				tn[l][2] = n2;
 			}
-			c[l][0] = x0;
-			c[l][1] = x1;
-			c[l][2] = x2;
-			tn[l][0] = n0;
-			tn[l][1] = n1;
-			tn[l][2] = n2;
 			if (in) {
 				/* descend into the child the ray is in at t */
 				int k = l - 1;
