@@ -25,11 +25,12 @@ static const char usage[] =
     "mip [--scene FILE] [--size WxH] [--view NAME|AZ,EL] [--perspective]\n"
     "    [--fov DEG] [--name VOLUME] [--window LO,HI] [--colormap NAME]\n"
     "    [--bits 8|16] [--no-last-t] [--exhaustive] [-j N] [--stats]\n"
-    "    [--explain] [-n] [--hdr] [--depth FILE.pfm] [-o OUT] [STREAM|-]";
+    "    [--explain] [-n] [--hdr] [-z LEVEL] [--depth FILE.pfm] [-o OUT]\n"
+    "    [STREAM|-]";
 
 typedef struct opts {
 	const char *in, *out, *scene, *name, *depth;
-	int bits, stats, explain, dry, hdr, lastt, exhaustive, persp;
+	int bits, stats, explain, dry, hdr, zlevel, lastt, exhaustive, persp;
 	int has_window;
 	double window[2];
 	vx_colormap cmap;
@@ -62,10 +63,12 @@ parse(opts *o, int argc, char **argv)
 	o->in = o->out = "-";
 	o->bits = 8;
 	o->lastt = 1;
+	o->zlevel = 1;
 	o->cmap = VX_COLORMAP_GRAY;
-	while ((c = getopt_long(argc, argv, "o:j:nh", lo, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "o:j:nhz:", lo, NULL)) != -1) {
 		switch (c) {
 		case 'o': o->out = optarg; break;
+		case 'z': o->zlevel = (int)tool_parse_long("-z", optarg, 0, 9); break;
 		case 'j': o->threads = tool_parse_long("-j", optarg, 0, 4096); break;
 		case 'n': o->dry = o->explain = 1; break;
 		case 'h':
@@ -290,9 +293,9 @@ main(int argc, char **argv)
 
 		vx_stream_init(&os);
 		tool_stream_keep(&os, &st, consumed);
-		if (vx_image_to_chunk(&val, 6, &c, &e) != 0 ||
+		if (vx_image_to_chunk(&val, o.zlevel, &c, &e) != 0 ||
 		    vx_stream_append(&os, &c, &e) != 0 ||
-		    vx_image_to_chunk(&dep, 6, &c, &e) != 0 ||
+		    vx_image_to_chunk(&dep, o.zlevel, &c, &e) != 0 ||
 		    vx_stream_append(&os, &c, &e) != 0)
 			tool_fail_err(&e);
 		tool_write_stream(&os, o.out);

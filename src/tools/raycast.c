@@ -23,12 +23,12 @@ static const char usage[] =
     "        [--effects WORDS] [--background R,G,B] [--set LINE]\n"
     "        [--name NAME] [--solver exact|neubauer|linear] [--flat]\n"
     "        [--no-cellmask] [--aa N] [-j N] [--stats] [--explain] [-n]\n"
-    "        [--hdr] [--bits 8|16] [--exposure STOPS] [--depth FILE.pfm]\n"
-    "        [--normals FILE.pfm] [-o OUT] [STREAM|-]";
+    "        [--hdr] [-z LEVEL] [--bits 8|16] [--exposure STOPS]\n"
+    "        [--depth FILE.pfm] [--normals FILE.pfm] [-o OUT] [STREAM|-]";
 
 typedef struct opts {
 	const char *in, *out, *scene, *name, *depth, *normals;
-	int hdr, bits, stats, explain, dry, flat, aa, solver, nomask;
+	int hdr, zlevel, bits, stats, explain, dry, flat, aa, solver, nomask;
 	long threads;
 	double exposure;
 	int ortho;
@@ -77,10 +77,12 @@ parse(opts *o, int argc, char **argv)
 	o->out = "-";
 	o->bits = 8;
 	o->aa = 1;
+	o->zlevel = 1;
 	o->solver = VX_CELL_EXACT;
-	while ((c = getopt_long(argc, argv, "o:j:nh", lo, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "o:j:nhz:", lo, NULL)) != -1) {
 		switch (c) {
 		case 'o': o->out = optarg; break;
+		case 'z': o->zlevel = (int)tool_parse_long("-z", optarg, 0, 9); break;
 		case 'j': o->threads = tool_parse_long("-j", optarg, 0, 4096); break;
 		case 'n': o->dry = o->explain = 1; break;
 		case 'h':
@@ -376,7 +378,7 @@ main(int argc, char **argv)
 			tool_fail_err(&e);
 		const vx_image *imgs[3] = { &color, &depth, &normal };
 		for (k = 0; k < 3; k++) {
-			if (vx_image_to_chunk(imgs[k], 6, &c, &e) != 0 ||
+			if (vx_image_to_chunk(imgs[k], o.zlevel, &c, &e) != 0 ||
 			    vx_stream_append(&out, &c, &e) != 0)
 				tool_fail_err(&e);
 		}

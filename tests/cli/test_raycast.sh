@@ -109,4 +109,21 @@ check_eq "mip: queue = exhaustive at the centre" "$(px img "$T/m4.vx" mip 32 32 
 mip --size 65x65 --stats "$T/sph.vx" 2>"$T/mst" >/dev/null
 check "mip: stats report queue work" grep -q 'queue pushes [0-9]*, pops [0-9]*' "$T/mst"
 check "mip: stats report wall and CPU time" grep -q ' [0-9.]* s (cpu [0-9.]* s)$' "$T/mst"
+
+# 9. -z: the images of --hdr are zlib level 1 by default, raw with -z 0,
+# and decode to the same bytes at every level (oracle: vximg.py decodes
+# both encodings from the spec)
+enc() { python3 -c 'import sys
+d = open(sys.argv[1], "rb").read()
+print(" ".join(sorted(set(l.split(b": ")[1].decode() for l in d.split(b"\n") if l.startswith(b"encoding: ")))))' "$1"; }
+raycast --iso 0.5 --size 65x65 --set "$cam" --hdr -z 0 "$T/sph.vx" > "$T/s0.vx"
+raycast --iso 0.5 --size 65x65 --set "$cam" --hdr -z 9 "$T/sph.vx" > "$T/s9.vx"
+check_eq "raycast --hdr: zlib by default" "$(enc "$T/s.vx")" "raw zlib"
+check_eq "raycast -z 0: raw images" "$(enc "$T/s0.vx")" "raw"
+check_eq "raycast -z 0 = default, decoded" "$(px same "$T/s.vx" "$T/s0.vx")" same
+check_eq "raycast -z 9 = default, decoded" "$(px same "$T/s.vx" "$T/s9.vx")" same
+mip --size 65x65 --hdr -z 0 "$T/sph.vx" > "$T/m0.vx"
+check_eq "mip -z 0: raw images" "$(enc "$T/m0.vx")" "raw"
+check_eq "mip -z 0 = default, decoded" "$(px same "$T/m.vx" "$T/m0.vx")" same
+expect_fail "raycast -z 10" 64 "-z" raycast -z 10 --hdr "$T/sph.vx"
 done_testing
