@@ -94,7 +94,7 @@ cli: all
 
 # ---- dependencies (Debian) ----
 DEB_BUILD := build-essential pkg-config libpng-dev zlib1g-dev libcmocka-dev
-DEB_TEST := mricron-data python3
+DEB_TEST := mricron-data python3 strace
 DEB_FUZZ := clang libclang-rt-14-dev libomp-dev
 deps:
 	@missing=""; for p in $(DEB_BUILD) $(DEB_TEST) $(DEB_FUZZ) $(DEB_EXTRA); do \

@@ -126,4 +126,26 @@ mip --size 65x65 --hdr -z 0 "$T/sph.vx" > "$T/m0.vx"
 check_eq "mip -z 0: raw images" "$(enc "$T/m0.vx")" "raw"
 check_eq "mip -z 0 = default, decoded" "$(px same "$T/m.vx" "$T/m0.vx")" same
 expect_fail "raycast -z 10" 64 "-z" raycast -z 10 --hdr "$T/sph.vx"
+
+# 10. -j 1 means one thread for the whole run, not only the frame: the
+# stream below has macrocells built before brick re-laid the volume out
+# (proving them costs a pass over the samples) and the PNG is tone-mapped,
+# both parallel loops of their own.  Oracle: strace counts the threads
+# made (none with -j 1; at least one with -j 2 on a machine with 2 cores)
+vread --synth ml --size 41 | macrocell | brick >"$T/mlrb.vx"
+if command -v strace >/dev/null 2>&1 && strace -f -qq -o /dev/null true 2>/dev/null; then
+	strace -f -qq -e trace=clone,clone3 -o "$T/st1" "$VX_BIN/raycast" -j 1 \
+	    --iso 0.5 --size 32x32 "$T/mlrb.vx" >/dev/null
+	check_eq "-j 1: no thread made" "$(grep -c clone "$T/st1")" 0
+	if [ "$(nproc)" -ge 2 ]; then
+		strace -f -qq -e trace=clone,clone3 -o "$T/st2" "$VX_BIN/raycast" \
+		    -j 2 --iso 0.5 --size 32x32 "$T/mlrb.vx" >/dev/null
+		check "-j 2: a second thread" [ "$(grep -c clone "$T/st2")" -ge 1 ]
+	else
+		skip "-j 2: a second thread" "one core"
+	fi
+else
+	skip "-j 1: no thread made" "strace missing or not allowed to trace"
+	skip "-j 2: a second thread" "strace missing or not allowed to trace"
+fi
 done_testing

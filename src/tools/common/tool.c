@@ -294,9 +294,12 @@ int
 tool_threads(long j)
 {
 #ifdef _OPENMP
-	if (j <= 0)
-		return omp_get_num_procs();
-	return (int)j;
+	int n = j <= 0 ? omp_get_num_procs() : (int)j;
+
+	/* every parallel region of the run, not only those given n: -j N
+	 * bounds the threads (a batch scheduler granted N cores) */
+	omp_set_num_threads(n);
+	return n;
 #else
 	(void)j;
 	return 1;

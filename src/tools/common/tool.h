@@ -94,7 +94,9 @@ struct vx_macro;
 void tool_macro_load(struct vx_macro *m, const vx_stream *st,
     const struct vx_grid *g, long src, int nthr, int quiet);
 
-/* tool_threads: number of threads for -j N (0: all cores). */
+/* tool_threads: number of threads for -j N (0: all cores), made the
+ * default of every parallel region of the run (tonemapping, sample CRCs):
+ * -j N bounds the run's threads, not only the frame's. */
 int tool_threads(long j);
 
 #endif
