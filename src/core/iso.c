@@ -167,13 +167,67 @@ no_root(ends *E, const iso_ctx *x, const vx_leaf_visit *v,
 	return end_pos(E, x, v, 0, iso) == sg && end_pos(E, x, v, 1, iso) == sg;
 }
 
+/* iso_roots: the roots of isovalue s in leaf v, in order of t (ol, len:
+ * the local parameterization).  out == NULL (one isovalue): each root is
+ * handed to the hit function as soon as it is found, so a hit that ends
+ * the ray costs no further root; else they are appended to out[*nh], for
+ * the caller to merge.  Returns the hit function's nonzero value, or 0.
+ * *c0: the intersection clock's start (timing on). */
+static inline int
+iso_roots(ends *E, iso_ctx *x, const vx_leaf_visit *v, const double ol[3],
+    double len, int s, vx_iso_hit *out, int *nh, uint64_t *c0)
+{
+	vx_iso_stats *st = x->st;
+	double iso = x->iso[s], sa = 0, fa, f1, r, k[4];
+	int n, kind, rc;
+
+	if (!(v->lo <= iso && iso <= v->hi))
+		return 0;
+	vx_cell_poly(v->c, ol, x->d, iso, k);
+	if (no_root(E, x, v, k, len, iso)) {
+		if (st)
+			st->roots++;   /* a root query, missed */
+		return 0;
+	}
+	fa = end_field(E, x, v, 0) - iso;
+	f1 = end_field(E, x, v, 1) - iso;
+	for (n = 0; n < MAXROOTS; n++) {
+		if (st)
+			st->roots++;
+		kind = vx_cell_first_root(k, sa, len, fa, f1, x->tr->solver, &r,
+		    NULL);
+		if (kind == VX_CELL_MISS || (n > 0 && !(r > sa)))
+			break;
+		if (out != NULL)
+			fill(&out[(*nh)++], x, v, r, s, kind, fa < 0);
+		else {
+			vx_iso_hit h;
+
+			fill(&h, x, v, r, s, kind, fa < 0);
+			if (st) {
+				st->hits++;
+				if (st->timing)
+					st->cyc_isect += vx_cycles() - *c0;
+			}
+			if ((rc = x->fn(x->ctx, &h)) != 0)
+				return rc;
+			if (st && st->timing)
+				*c0 = vx_cycles();
+		}
+		sa = r;
+		if (kind == VX_CELL_CROSS)
+			fa = fa >= 0 ? -1.0 : 1.0;
+	}
+	return 0;
+}
+
 static int
 visit(void *vctx, const vx_leaf_visit *v)
 {
 	iso_ctx *x = vctx;
 	vx_iso_stats *st = x->st;
 	vx_iso_hit hits[VX_ISO_MAX * MAXROOTS];
-	double ol[3], len, k[4];
+	double ol[3], len;
 	ends E = { { 0, 0 }, { 0, 0 } };
 	uint64_t c0 = 0;
 	int nh = 0, s, a, i, j, rc;
@@ -194,77 +248,15 @@ visit(void *vctx, const vx_leaf_visit *v)
 		ol[a] = (x->o[a] + v->t0 * x->d[a]) - (double)v->i[a];
 	len = v->t1 - v->t0;
 	if (x->niso == 1) {
-		/* One isovalue: its roots come in order of t, so each is handed
-		 * on as soon as it is found, and a hit that ends the ray (an
-		 * opaque surface) costs no further root.  The same hits in the
-		 * same order as the general case below. */
-		double iso = x->iso[0], sa = 0, fa, f1, r;
-		vx_iso_hit h;
-		int n, kind;
-
-		if (v->lo <= iso && iso <= v->hi) {
-			vx_cell_poly(v->c, ol, x->d, iso, k);
-			if (no_root(&E, x, v, k, len, iso)) {
-				if (st)
-					st->roots++;   /* a root query, missed */
-				goto done;
-			}
-			fa = end_field(&E, x, v, 0) - iso;
-			f1 = end_field(&E, x, v, 1) - iso;
-			for (n = 0; n < MAXROOTS; n++) {
-				if (st)
-					st->roots++;
-				kind = vx_cell_first_root(k, sa, len, fa, f1,
-				    x->tr->solver, &r, NULL);
-				if (kind == VX_CELL_MISS || (n > 0 && !(r > sa)))
-					break;
-				fill(&h, x, v, r, 0, kind, fa < 0);
-				if (st) {
-					st->hits++;
-					if (st->timing)
-						st->cyc_isect += vx_cycles() - c0;
-				}
-				if ((rc = x->fn(x->ctx, &h)) != 0)
-					return rc;
-				if (st && st->timing)
-					c0 = vx_cycles();
-				sa = r;
-				if (kind == VX_CELL_CROSS)
-					fa = fa >= 0 ? -1.0 : 1.0;
-			}
-		}
-done:
+		/* the same hits in the same order as the merge below */
+		if ((rc = iso_roots(&E, x, v, ol, len, 0, NULL, NULL, &c0)) != 0)
+			return rc;
 		if (st && st->timing)
 			st->cyc_isect += vx_cycles() - c0;
 		return 0;
 	}
-	for (s = 0; s < x->niso; s++) {
-		double iso = x->iso[s], sa = 0, fa, f1, r;
-		int n, kind;
-
-		if (!(v->lo <= iso && iso <= v->hi))
-			continue;
-		vx_cell_poly(v->c, ol, x->d, iso, k);
-		if (no_root(&E, x, v, k, len, iso)) {
-			if (st)
-				st->roots++;   /* a root query, missed */
-			continue;
-		}
-		fa = end_field(&E, x, v, 0) - iso;
-		f1 = end_field(&E, x, v, 1) - iso;
-		for (n = 0; n < MAXROOTS; n++) {
-			if (st)
-				st->roots++;
-			kind = vx_cell_first_root(k, sa, len, fa, f1,
-			    x->tr->solver, &r, NULL);
-			if (kind == VX_CELL_MISS || (n > 0 && !(r > sa)))
-				break;
-			fill(&hits[nh++], x, v, r, s, kind, fa < 0);
-			sa = r;
-			if (kind == VX_CELL_CROSS)
-				fa = fa >= 0 ? -1.0 : 1.0;
-		}
-	}
+	for (s = 0; s < x->niso; s++)
+		(void)iso_roots(&E, x, v, ol, len, s, hits, &nh, &c0);
 	if (st && st->timing)
 		st->cyc_isect += vx_cycles() - c0;
 	/* insertion sort by t, stable: isovalue order breaks ties */
