@@ -104,7 +104,19 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 			rc = vx_grid_from_chunk(&g, c, &e);
 			fuzz_err_check(rc, &e);
 			if (rc == 0) {
+				vx_grid gv;
+				vx_err ev = { 0, "" };
+
 				sink += fuzz_grid_touch(&g);
+				/* the samples in place: the same grid, or the
+				 * same error */
+				if (vx_grid_view_chunk(&gv, c, &ev) != 0)
+					fuzz_fail("view refused what the copy took");
+				sink += fuzz_grid_touch(&gv);
+				if (gv.nsample != g.nsample || memcmp(gv.data,
+				    g.data, g.nsample * vx_type_size(g.type)) != 0)
+					fuzz_fail("view and copy differ");
+				vx_grid_free(&gv);
 				vx_err_clear(&e);
 				rc = vx_macro_from_stream(&m, &s, &g, (long)i,
 				    &status, &idx, &e);
@@ -115,6 +127,12 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 					vx_macro_free(&m);
 				}
 				vx_grid_free(&g);
+			} else {
+				vx_grid gv;
+				vx_err ev = { 0, "" };
+
+				if (vx_grid_view_chunk(&gv, c, &ev) == 0)
+					fuzz_fail("view took what the copy refused");
 			}
 		} else if (strcmp(c->type, VX_CHUNK_IMAGE) == 0) {
 			vx_image img;
