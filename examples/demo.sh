@@ -11,8 +11,10 @@ out=${VX_DEMO_OUT:-examples/out}
 mkdir -p "$out"
 PATH="$bin:$PATH"
 set -x
+# -o: each picture is written whole or not at all (a temporary file renamed
+# into place), even if the run is cut short
 vread "$head" | brick | macrocell | tee "$out/ch2.vx" |
-    raycast --scene examples/scenes/head.scn --stats --explain > "$out/head.png"
-mip --stats < "$out/ch2.vx" > "$out/head-mip.png"
+    raycast --scene examples/scenes/head.scn --stats --explain -o "$out/head.png"
+mip --stats -o "$out/head-mip.png" < "$out/ch2.vx"
 set +x
 echo "demo: wrote $out/head.png and $out/head-mip.png"
