@@ -934,7 +934,10 @@ vx_payload_make(vx_chunk *c, const char *type, vx_hdr *h, const void *body,
 	hl += 1;
 	if (level == 0 && n > 0 && hl % VX_BODY_ALIGN != 0) {
 		pad = (VX_BODY_ALIGN - (hl + 6) % VX_BODY_ALIGN) % VX_BODY_ALIGN;
-		hl += 6 + pad;
+		if (hl + 6 + (size_t)pad <= VX_HDR_MAX)
+			hl += 6 + (size_t)pad;
+		else
+			pad = -1;   /* a header at the limit stays unpadded */
 	}
 	if (hl > VX_HDR_MAX) {
 		free(z);

@@ -296,6 +296,64 @@ header_limit(void **state)
 	free(p);
 }
 
+/* The writer's pad line: a raw body starts at a multiple of VX_BODY_ALIGN,
+ * unless the pad would push the header past VX_HDR_MAX (then no pad); a
+ * header over the limit is refused.  Oracle: the header's length, from the
+ * lengths of its lines ("a: " + L bytes + LF, "encoding: raw" + LF, LF:
+ * L + 19 bytes before any pad). */
+static void
+payload_pad(void **state)
+{
+	static const struct {
+		size_t hl;      /* the header's length without a pad */
+		size_t want;    /* with it; 0: refused */
+	} t[] = {
+		{ 64, 64 }, { 65, 80 }, { 75, 96 }, { 106, 112 }, { 107, 128 },
+		{ 58, 64 }, { VX_HDR_MAX - 40, VX_HDR_MAX - 32 },
+		{ VX_HDR_MAX - 3, VX_HDR_MAX - 3 }, { VX_HDR_MAX, VX_HDR_MAX },
+		{ VX_HDR_MAX + 1, 0 },
+	};
+	unsigned char body[4] = { 1, 2, 3, 4 };
+
+	(void)state;
+	for (size_t k = 0; k < sizeof t / sizeof t[0]; k++) {
+		size_t L = t[k].hl - 19, off = 0;
+		char *v = malloc(L + 1);
+		const unsigned char *b;
+		vx_err e = { 0, "" };
+		vx_chunk c;
+		vx_hdr h, h2;
+		int rc;
+
+		assert_non_null(v);
+		memset(v, 'x', L);
+		v[L] = '\0';
+		vx_hdr_init(&h);
+		assert_int_equal(vx_hdr_set_str(&h, "a", v, &e), 0);
+		rc = vx_payload_make(&c, "VOLM", &h, body, sizeof body, 0, &e);
+		if (t[k].want == 0) {
+			assert_int_equal(rc, VX_EINTERNAL);
+		} else {
+			assert_int_equal(rc, 0);
+			vx_hdr_init(&h2);
+			assert_int_equal(vx_hdr_parse(&h2, c.data, c.len, &off,
+			    &e), 0);
+			if (off != t[k].want)
+				fail_msg("case %zu: header %zu bytes, want %zu", k,
+				    off, t[k].want);
+			assert_int_equal(c.len, off + sizeof body);
+			b = c.data + off;
+			assert_memory_equal(b, body, sizeof body);
+			assert_int_equal(vx_hdr_get(&h2, "pad") != NULL,
+			    off != t[k].hl);
+			vx_hdr_free(&h2);
+			vx_chunk_free(&c);
+		}
+		vx_hdr_free(&h);
+		free(v);
+	}
+}
+
 static void
 payload_zlib(void **state)
 {
@@ -636,6 +694,7 @@ main(void)
 		cmocka_unit_test(roundtrip),
 		cmocka_unit_test(malformed),
 		cmocka_unit_test(headers),
+		cmocka_unit_test(payload_pad),
 		cmocka_unit_test(header_limit),
 		cmocka_unit_test(payload_zlib),
 		cmocka_unit_test(history),
