@@ -658,8 +658,8 @@ vx_grid_view_chunk(vx_grid *g, const vx_chunk *c, vx_err *e)
 }
 
 /* from_stream: vx_grid_from_stream or vx_grid_view_stream.  Each volume is
- * looked at in place (all its checks, no copy); the one named is then
- * decoded as asked. */
+ * looked at in place (all its checks, no copy of a raw body); the one named
+ * is then copied if a copy is asked for. */
 static int
 from_stream(vx_grid *g, const vx_stream *s, const char *name, long *index,
     int view, vx_err *e)
@@ -671,7 +671,9 @@ from_stream(vx_grid *g, const vx_stream *s, const char *name, long *index,
 		if ((rc = from_chunk(g, &s->chunk[i], 1, e)) != 0)
 			return rc;
 		if (name == NULL || strcmp(g->name, name) == 0) {
-			if (!view) {
+			/* a copy asked for: a body decoded by the look
+			 * (zlib) already is one */
+			if (!view && g->borrowed) {
 				vx_grid_free(g);
 				if ((rc = from_chunk(g, &s->chunk[i], 0, e)) != 0)
 					return rc;

@@ -473,6 +473,34 @@ view_in_place(void **state)
 				    vx_type_size(gv.type));
 				assert_true(gv.vmin == gc.vmin && gv.vmax == gc.vmax);
 				vx_grid_free(&gv);   /* leaves c's payload alone */
+				{
+					/* from a stream: a copy always, a view
+					 * of a raw body */
+					vx_stream st;
+					vx_grid gs;
+					vx_chunk cc = c;
+					long ix;
+
+					cc.data = malloc(c.len);
+					assert_non_null(cc.data);
+					memcpy(cc.data, c.data, c.len);
+					vx_stream_init(&st);
+					assert_int_equal(vx_stream_append(&st, &cc,
+					    &e), 0);
+					assert_int_equal(vx_grid_from_stream(&gs, &st,
+					    "density", &ix, &e), 0);
+					assert_int_equal(gs.borrowed, 0);
+					assert_memory_equal(gs.data, gc.data,
+					    gs.nsample * vx_type_size(gs.type));
+					vx_grid_free(&gs);
+					assert_int_equal(vx_grid_view_stream(&gs, &st,
+					    NULL, &ix, &e), 0);
+					assert_int_equal(gs.borrowed, z == 0);
+					assert_memory_equal(gs.data, gc.data,
+					    gs.nsample * vx_type_size(gs.type));
+					vx_grid_free(&gs);
+					vx_stream_free(&st);
+				}
 				assert_int_equal(vx_grid_view_chunk(&gv, &c, &e), 0);
 				assert_memory_equal(gv.data, gc.data, gv.nsample *
 				    vx_type_size(gv.type));
