@@ -466,6 +466,16 @@ case("mcel-no-volume.vxs", "mip --size 8x8 -o OUT FILE", 65,
      "no 'volume' key", "(as above)", None)
 case("mcel-no-volume.vxs", "macrocell -o OUT FILE", 65,
      "no 'volume' key", "(as above)", None)
+MCCC = stream(volm(), chunk("MCEL", payload([
+    "leaves: cells", "volume: density", "volume-dims: 2 2 2",
+    "volume-type: u8", "volume-crc32: 00000000",
+    "volume-chunk-crc32: 0ABCDEF0", "leaf-dims: 1 1 1", "levels: 0",
+    "sizes: ", "range: 0 1", "encoding: raw"])))
+case("mcel-chunk-crc.vxs", "raycast --iso 3 --size 8x8 -o OUT FILE", 65,
+     "volume-chunk-crc32", "the volume's MCEL with an upper-case "
+     "volume-chunk-crc32", MCCC)
+case("mcel-chunk-crc.vxs", "mip --size 8x8 -o OUT FILE", 65,
+     "volume-chunk-crc32", "(as above)", None)
 
 # ---- TLEF: a tet mesh's leaf grid (formats/tetmesh.md), read by raycast
 # (for the mesh it names) and vinfo (every one); macrocell only replaces it.
