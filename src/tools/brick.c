@@ -148,7 +148,7 @@ main(int argc, char **argv)
 	parse_args(&o, argc, argv);
 	vx_stream_init(&s);
 	tool_read_stream(&s, o.in);
-	if (vx_grid_from_stream(&g, &s, o.name, &idx, &e) != 0)
+	if (vx_grid_view_stream(&g, &s, o.name, &idx, &e) != 0)
 		tool_fail_err(&e);
 	if (o.linear)
 		snprintf(spec, sizeof spec, "linear");

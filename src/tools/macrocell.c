@@ -326,7 +326,7 @@ main(int argc, char **argv)
 	if (o.density > 0 || o.bbox)
 		tool_usage_fail(usage, "--density and --bbox apply to tet "
 		    "meshes");
-	if (vx_grid_from_stream(&g, &s, o.name, &idx, &e) != 0)
+	if (vx_grid_view_stream(&g, &s, o.name, &idx, &e) != 0)
 		tool_fail_err(&e);
 	if (o.sizes == NULL && nlev > 0)
 		vx_macro_default_sizes(g.type, nlev, sizes);

@@ -220,9 +220,9 @@ decode_volume(const vx_chunk *c, const opts *o, vol_info *v, vx_err *e)
 
 	memset(v, 0, sizeof *v);
 	vx_hdr_init(&h);
-	if ((rc = vx_grid_from_chunk(&v->g, c, e)) != 0)
+	if ((rc = vx_grid_view_chunk(&v->g, c, e)) != 0)
 		return rc;
-	/* the header's range, as written (vx_grid_from_chunk takes it as is) */
+	/* the header's range, as written (the grid takes it as is) */
 	if ((rc = vx_payload_parse(c, &h, &body, &v->bodylen, e)) == 0)
 		rc = vx_hdr_get_f64_opt(&h, "range", v->hr, 2, &found, e);
 	vx_hdr_free(&h);
@@ -356,7 +356,7 @@ decode_mcel(const vx_stream *s, const vx_chunk *c, mcel_info *mi, vx_err *e)
 		mi->status = "explicit leaves";
 		return 0;
 	}
-	if (vx_grid_from_stream(&g, s, mi->m.name, NULL, &ge) != 0) {
+	if (vx_grid_view_stream(&g, s, mi->m.name, NULL, &ge) != 0) {
 		mi->status = "no such volume";
 		return 0;
 	}

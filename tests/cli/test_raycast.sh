@@ -149,8 +149,20 @@ if command -v strace >/dev/null 2>&1 && strace -f -qq -o /dev/null true 2>/dev/n
 	else
 		skip "-j 2: a second thread" "one core"
 	fi
+	# a pipe on standard input is widened to 1 MiB (fewer turns for a big
+	# stream), a file is left alone (oracle: the fcntl calls strace sees)
+	cat "$T/mlrb.vx" | ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0" \
+	    strace -qq -e trace=fcntl -o "$T/st3" "$VX_BIN/raycast" -j 1 \
+	    --iso 0.5 --size 8x8 >/dev/null
+	check "stdin pipe widened" grep -q 'fcntl(0, F_SETPIPE_SZ, 1048576)' "$T/st3"
+	ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0" \
+	    strace -qq -e trace=fcntl -o "$T/st4" "$VX_BIN/raycast" -j 1 \
+	    --iso 0.5 --size 8x8 <"$T/mlrb.vx" >/dev/null
+	check_eq "stdin file left alone" "$(grep -c F_SETPIPE_SZ "$T/st4")" 0
 else
 	skip "-j 1: no thread made" "strace missing or not allowed to trace"
 	skip "-j 2: a second thread" "strace missing or not allowed to trace"
+	skip "stdin pipe widened" "strace missing or not allowed to trace"
+	skip "stdin file left alone" "strace missing or not allowed to trace"
 fi
 done_testing

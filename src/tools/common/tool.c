@@ -2,6 +2,7 @@
 #include "tool.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <getopt.h>
 #include <math.h>
 #include <signal.h>
@@ -146,6 +147,23 @@ tool_parse_doubles(const char *opt, const char *s, double *out, int n)
 		tool_fail(VX_EUSAGE, "%s: '%s': expected %d numbers", opt, s, n);
 }
 
+/* pipe_widen: a pipe's buffer as large as an unprivileged process may make
+ * it (1 MiB by default, /proc/sys/fs/pipe-max-size): a 126 MB stream then
+ * crosses in 1 MiB turns instead of 64 KiB ones.  Not a pipe, or not
+ * allowed: nothing changes. */
+static void
+pipe_widen(int fd)
+{
+#ifdef F_SETPIPE_SZ
+	struct stat st;
+
+	if (fstat(fd, &st) == 0 && S_ISFIFO(st.st_mode))
+		(void)fcntl(fd, F_SETPIPE_SZ, 1 << 20);
+#else
+	(void)fd;
+#endif
+}
+
 void
 tool_read_stream(vx_stream *s, const char *path)
 {
@@ -159,6 +177,8 @@ tool_read_stream(vx_stream *s, const char *path)
 	} else if (isatty(STDIN_FILENO))
 		tool_fail(VX_EUSAGE, "standard input is a terminal: pipe a "
 		    "voxlux stream in (see vread(1))");
+	else
+		pipe_widen(STDIN_FILENO);
 	rc = vx_stream_read(s, f, &e);
 	if (f != stdin)
 		fclose(f);
@@ -179,6 +199,7 @@ tool_out_open(tool_out *o, const char *path)
 	if (strcmp(path, "-") == 0) {
 		o->f = stdout;
 		o->is_stdout = 1;
+		pipe_widen(STDOUT_FILENO);
 		snprintf(o->path, sizeof o->path, "<stdout>");
 		return;
 	}
