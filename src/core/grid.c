@@ -498,39 +498,51 @@ vx_grid_to_chunk(const vx_grid *g, int zlevel, vx_chunk *c, vx_err *e)
 	return vx_grid_to_chunk_extra(g, zlevel, NULL, c, e);
 }
 
+/* volm_hdr: the VOLM header of g, then extra's keys the writer does not
+ * make itself (h initialized by the caller) */
+static int
+volm_hdr(const vx_grid *g, const vx_hdr *extra, vx_hdr *h, vx_err *e)
+{
+	char lay[128];
+	int rc;
+
+	if (g->name[0] == '\0')
+		return vx_err_set(e, VX_EDATA, "volume: empty name");
+	vx_layout_string(&g->lay, lay, sizeof lay);
+	if ((rc = vx_hdr_set(h, "name", e, "%s", g->name)) ||
+	    (rc = vx_hdr_set(h, "dims", e, "%lld %lld %lld",
+	    (long long)g->dims[0], (long long)g->dims[1],
+	    (long long)g->dims[2])) ||
+	    (rc = vx_hdr_set(h, "type", e, "%s", vx_type_name(g->type))) ||
+	    (rc = vx_hdr_set(h, "spacing", e, "%.17g %.17g %.17g",
+	    g->spacing[0], g->spacing[1], g->spacing[2])) ||
+	    (rc = vx_hdr_set(h, "origin", e, "%.17g %.17g %.17g",
+	    g->origin[0], g->origin[1], g->origin[2])) ||
+	    (rc = vx_hdr_set(h, "layout", e, "%s", lay)))
+		return rc;
+	if (g->has_range &&
+	    (rc = vx_hdr_set(h, "range", e, "%.17g %.17g", g->vmin, g->vmax)))
+		return rc;
+	for (size_t i = 0; extra != NULL && i < extra->n; i++)
+		if (!vx_grid_key_known(extra->key[i]) &&
+		    (rc = vx_hdr_set_str(h, extra->key[i], extra->val[i],
+		    e)) != 0)
+			return rc;
+	return 0;
+}
+
 int
 vx_grid_to_chunk_extra(const vx_grid *g, int zlevel, const vx_hdr *extra,
     vx_chunk *c, vx_err *e)
 {
 	size_t ts = vx_type_size(g->type), nbytes = g->nsample * ts;
-	char lay[128];
 	vx_hdr h;
 	void *body = g->data, *tmp = NULL;
 	int rc;
 
 	vx_hdr_init(&h);
-	if (g->name[0] == '\0')
-		return vx_err_set(e, VX_EDATA, "volume: empty name");
-	vx_layout_string(&g->lay, lay, sizeof lay);
-	if ((rc = vx_hdr_set(&h, "name", e, "%s", g->name)) ||
-	    (rc = vx_hdr_set(&h, "dims", e, "%lld %lld %lld",
-	    (long long)g->dims[0], (long long)g->dims[1],
-	    (long long)g->dims[2])) ||
-	    (rc = vx_hdr_set(&h, "type", e, "%s", vx_type_name(g->type))) ||
-	    (rc = vx_hdr_set(&h, "spacing", e, "%.17g %.17g %.17g",
-	    g->spacing[0], g->spacing[1], g->spacing[2])) ||
-	    (rc = vx_hdr_set(&h, "origin", e, "%.17g %.17g %.17g",
-	    g->origin[0], g->origin[1], g->origin[2])) ||
-	    (rc = vx_hdr_set(&h, "layout", e, "%s", lay)))
+	if ((rc = volm_hdr(g, extra, &h, e)) != 0)
 		goto out;
-	if (g->has_range &&
-	    (rc = vx_hdr_set(&h, "range", e, "%.17g %.17g", g->vmin, g->vmax)))
-		goto out;
-	for (size_t i = 0; extra != NULL && i < extra->n; i++)
-		if (!vx_grid_key_known(extra->key[i]) &&
-		    (rc = vx_hdr_set_str(&h, extra->key[i], extra->val[i],
-		    e)) != 0)
-			goto out;
 	if (!vx_host_is_le() && ts > 1) {
 		if ((tmp = vx_malloc(nbytes, e)) == NULL) {
 			rc = VX_ENOMEM;
@@ -544,6 +556,30 @@ vx_grid_to_chunk_extra(const vx_grid *g, int zlevel, const vx_hdr *extra,
 out:
 	free(tmp);
 	vx_hdr_free(&h);
+	return rc;
+}
+
+int
+vx_grid_to_chunk_take(vx_grid *g, int zlevel, const vx_hdr *extra,
+    vx_chunk *c, vx_err *e)
+{
+	size_t nbytes = g->nsample * vx_type_size(g->type);
+	vx_hdr h;
+	int rc;
+
+	/* compressed, byte-swapped or not g's own memory: a copy, as ever */
+	if (zlevel > 0 || !vx_host_is_le() || g->borrowed || g->data == NULL) {
+		rc = vx_grid_to_chunk_extra(g, zlevel, extra, c, e);
+		vx_grid_free(g);
+		return rc;
+	}
+	vx_hdr_init(&h);
+	if ((rc = volm_hdr(g, extra, &h, e)) == 0) {
+		rc = vx_payload_wrap(c, VX_CHUNK_VOLUME, &h, g->data, nbytes, e);
+		g->data = NULL;   /* the chunk's now (or freed) */
+	}
+	vx_hdr_free(&h);
+	vx_grid_free(g);
 	return rc;
 }
 

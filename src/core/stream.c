@@ -907,9 +907,12 @@ deflate_body(const void *body, size_t n, int level, unsigned char **out,
 	return 0;
 }
 
-int
-vx_payload_make(vx_chunk *c, const char *type, vx_hdr *h, const void *body,
-    size_t n, int level, vx_err *e)
+/* payload_build: vx_payload_make, or vx_payload_wrap when own is the body's
+ * own buffer (raw; taken over, freed on error): it grows in place and the
+ * body moves up behind the header, instead of being copied */
+static int
+payload_build(vx_chunk *c, const char *type, vx_hdr *h, const void *body,
+    size_t n, int level, void *own, vx_err *e)
 {
 	unsigned char *z = NULL, *p;
 	size_t zn = 0, hl = 0, i, total;
@@ -923,8 +926,10 @@ vx_payload_make(vx_chunk *c, const char *type, vx_hdr *h, const void *body,
 			free(z);
 			return rc;
 		}
-	} else if ((rc = vx_hdr_set(h, "encoding", e, "raw")) != 0)
+	} else if ((rc = vx_hdr_set(h, "encoding", e, "raw")) != 0) {
+		free(own);
 		return rc;
+	}
 	/* the writer's own "pad" line replaces any in h: spaces that put a
 	 * raw body at a multiple of VX_BODY_ALIGN bytes into the payload, so a
 	 * reader can use its samples where they lie (formats/stream.md 7.1) */
@@ -941,11 +946,23 @@ vx_payload_make(vx_chunk *c, const char *type, vx_hdr *h, const void *body,
 	}
 	if (hl > VX_HDR_MAX) {
 		free(z);
+		free(own);
 		return vx_err_set(e, VX_EINTERNAL, "header of %zu bytes is longer "
 		    "than %zu", hl, VX_HDR_MAX);
 	}
-	if (vx_add_size(&total, hl, level > 0 ? zn : n) != 0 ||
-	    (p = malloc(total)) == NULL) {
+	if (vx_add_size(&total, hl, level > 0 ? zn : n) != 0) {
+		free(z);
+		free(own);
+		return vx_err_set(e, VX_ENOMEM, "cannot allocate chunk payload");
+	}
+	if (own != NULL) {
+		if ((p = realloc(own, total)) == NULL) {
+			free(own);
+			return vx_err_set(e, VX_ENOMEM, "cannot allocate chunk "
+			    "payload");
+		}
+		memmove(p + hl, p, n);
+	} else if ((p = malloc(total)) == NULL) {
 		free(z);
 		return vx_err_set(e, VX_ENOMEM, "cannot allocate chunk payload");
 	}
@@ -963,7 +980,7 @@ vx_payload_make(vx_chunk *c, const char *type, vx_hdr *h, const void *body,
 	*p++ = '\n';
 	if (level > 0)
 		memcpy(p, z, zn);
-	else if (n > 0)
+	else if (own == NULL && n > 0)
 		memcpy(p, body, n);
 	free(z);
 	memcpy(c->type, type, 4);
@@ -971,6 +988,22 @@ vx_payload_make(vx_chunk *c, const char *type, vx_hdr *h, const void *body,
 	c->len = total;
 	c->crc_known = 0;
 	return 0;
+}
+
+int
+vx_payload_make(vx_chunk *c, const char *type, vx_hdr *h, const void *body,
+    size_t n, int level, vx_err *e)
+{
+	return payload_build(c, type, h, body, n, level, NULL, e);
+}
+
+int
+vx_payload_wrap(vx_chunk *c, const char *type, vx_hdr *h, void *body,
+    size_t n, vx_err *e)
+{
+	if (body == NULL && n > 0)
+		return vx_err_set(e, VX_EINTERNAL, "payload: no body");
+	return payload_build(c, type, h, body, n, 0, body, e);
 }
 
 int

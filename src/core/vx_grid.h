@@ -135,6 +135,12 @@ int vx_grid_to_chunk(const vx_grid *g, int zlevel, vx_chunk *c, vx_err *e);
  * unknown keys then pass through (formats/stream.md 9.1). */
 int vx_grid_to_chunk_extra(const vx_grid *g, int zlevel, const vx_hdr *extra,
     vx_chunk *c, vx_err *e);
+/* vx_grid_to_chunk_take: vx_grid_to_chunk_extra's chunk, byte for byte, made
+ * from g's own memory (raw, on a little-endian host: no second copy of the
+ * samples, vx_payload_wrap); g is consumed (freed, also on error).  For
+ * tools that write a volume they are done with (vread, brick). */
+int vx_grid_to_chunk_take(vx_grid *g, int zlevel, const vx_hdr *extra,
+    vx_chunk *c, vx_err *e);
 int vx_grid_from_chunk(vx_grid *g, const vx_chunk *c, vx_err *e);
 /* vx_grid_view_chunk: the same checks and grid, but a raw body of samples
  * aligned for their type on a little-endian host (every body the reference

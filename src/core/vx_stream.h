@@ -169,6 +169,13 @@ enum { VX_ENC_UNKNOWN = 0, VX_ENC_RAW, VX_ENC_ZLIB, VX_ENC_LAST };
  * longer than VX_HDR_MAX is VX_EINTERNAL. */
 int vx_payload_make(vx_chunk *c, const char *type, vx_hdr *h,
     const void *body, size_t n, int level, vx_err *e);
+/* vx_payload_wrap: the same payload as vx_payload_make at level 0 (raw),
+ * byte for byte, from body, a malloc'd buffer holding the n body bytes at
+ * its start, which the chunk takes over (freed on error too): the buffer
+ * grows in place and the body moves up behind the header, with no second
+ * buffer of the body's size. */
+int vx_payload_wrap(vx_chunk *c, const char *type, vx_hdr *h, void *body,
+    size_t n, vx_err *e);
 
 /* vx_payload_parse: parse c's header into h; *body / *bodylen point into c. */
 int vx_payload_parse(const vx_chunk *c, vx_hdr *h, const unsigned char **body,

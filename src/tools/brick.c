@@ -186,12 +186,12 @@ main(int argc, char **argv)
 	if (vx_payload_parse(&s.chunk[idx], &h, &body, &bodylen, &e) != 0)
 		tool_fail_err(&e);
 	memset(&c, 0, sizeof c);
-	if (vx_grid_to_chunk_extra(&b, input_zlevel(&h), &h, &c, &e) != 0)
+	vx_grid_free(&g);   /* a view: nothing freed, done with it */
+	/* the new layout's memory becomes the chunk (b is freed) */
+	if (vx_grid_to_chunk_take(&b, input_zlevel(&h), &h, &c, &e) != 0)
 		tool_fail_err(&e);
 	vx_hdr_free(&h);
 	vx_stream_replace(&s, (size_t)idx, &c);
-	vx_grid_free(&g);
-	vx_grid_free(&b);
 	tool_write_stream(&s, o.out);
 	vx_stream_free(&s);
 	return tool_finish();

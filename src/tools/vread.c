@@ -353,10 +353,10 @@ main(int argc, char **argv)
 			tool_fail_err(&e);
 		vx_tetmesh_free(&m);
 	} else {
-		if (vx_grid_to_chunk(&g, o.zlevel, &c, &e) != 0 ||
+		/* the samples' own memory becomes the chunk (g is freed) */
+		if (vx_grid_to_chunk_take(&g, o.zlevel, NULL, &c, &e) != 0 ||
 		    vx_stream_append(&s, &c, &e) != 0)
 			tool_fail_err(&e);
-		vx_grid_free(&g);
 	}
 	tool_write_stream(&s, o.out);
 	vx_stream_free(&s);

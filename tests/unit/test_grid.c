@@ -535,6 +535,48 @@ view_in_place(void **state)
 	}
 }
 
+/* vx_grid_to_chunk_take: the chunk vx_grid_to_chunk_extra makes, byte for
+ * byte (oracle), from the grid's own memory, for every type, both layouts,
+ * raw and zlib, with extra keys; the grid is consumed. */
+static void
+to_chunk_take_same(void **state)
+{
+	static const vx_type types[] = { VX_U8, VX_U16, VX_I16, VX_F32 };
+	static const char *const lays[] = { "linear", "bricked 2x2x2" };
+	int64_t d[3] = { 7, 3, 2 };
+	vx_err e = { 0, "" };
+	vx_hdr x;
+
+	(void)state;
+	vx_hdr_init(&x);
+	assert_int_equal(vx_hdr_set_str(&x, "units", "HU", &e), 0);
+	assert_int_equal(vx_hdr_set_str(&x, "pad", "   ", &e), 0);
+	for (size_t ti = 0; ti < 4; ti++)
+		for (size_t li = 0; li < 2; li++)
+			for (int z = 0; z < 2; z++)
+				for (int k = 0; k < 2; k++) {
+					vx_grid g;
+					vx_chunk c1, c2;
+
+					assert_int_equal(vx_grid_alloc(&g, d,
+					    types[ti], lays[li], &e), 0);
+					for (int i = 0; i < 7; i++)
+						vx_grid_set(&g, i, i % 3, i % 2,
+						    i * 5 - 3);
+					vx_grid_range(&g);
+					assert_int_equal(vx_grid_to_chunk_extra(&g,
+					    z ? 6 : 0, k ? &x : NULL, &c1, &e), 0);
+					assert_int_equal(vx_grid_to_chunk_take(&g,
+					    z ? 6 : 0, k ? &x : NULL, &c2, &e), 0);
+					assert_null(g.data);
+					assert_int_equal(c2.len, c1.len);
+					assert_memory_equal(c2.data, c1.data, c1.len);
+					vx_chunk_free(&c1);
+					vx_chunk_free(&c2);
+				}
+	vx_hdr_free(&x);
+}
+
 int
 main(void)
 {
@@ -551,6 +593,7 @@ main(void)
 		cmocka_unit_test(default_bricks),
 		cmocka_unit_test(chunk_extra_keys),
 		cmocka_unit_test(view_in_place),
+		cmocka_unit_test(to_chunk_take_same),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -298,7 +298,8 @@ header_limit(void **state)
 
 /* The writer's pad line: a raw body starts at a multiple of VX_BODY_ALIGN,
  * unless the pad would push the header past VX_HDR_MAX (then no pad); a
- * header over the limit is refused.  Oracle: the header's length, from the
+ * header over the limit is refused.  vx_payload_wrap gives the same bytes
+ * or the same refusal.  Oracle: the header's length, from the
  * lengths of its lines ("a: " + L bytes + LF, "encoding: raw" + LF, LF:
  * L + 19 bytes before any pad). */
 static void
@@ -331,6 +332,23 @@ payload_pad(void **state)
 		vx_hdr_init(&h);
 		assert_int_equal(vx_hdr_set_str(&h, "a", v, &e), 0);
 		rc = vx_payload_make(&c, "VOLM", &h, body, sizeof body, 0, &e);
+		{
+			/* vx_payload_wrap: the same bytes from the body's own
+			 * buffer, or the same refusal (the buffer freed) */
+			unsigned char *own = malloc(sizeof body);
+			vx_chunk cw;
+			int rw;
+
+			assert_non_null(own);
+			memcpy(own, body, sizeof body);
+			rw = vx_payload_wrap(&cw, "VOLM", &h, own, sizeof body, &e);
+			assert_int_equal(rw, rc);
+			if (rw == 0) {
+				assert_int_equal(cw.len, c.len);
+				assert_memory_equal(cw.data, c.data, c.len);
+				vx_chunk_free(&cw);
+			}
+		}
 		if (t[k].want == 0) {
 			assert_int_equal(rc, VX_EINTERNAL);
 		} else {
