@@ -873,6 +873,64 @@ ray_start(ray *r, const vx_macro *m, int top, const int64_t n[3],
 	return 1;
 }
 
+/* vx_macro_boxes_entry: see vx_macro.h.  The ray is set up as ray_start
+ * sets it up (the same crossing-time function, so the same times). */
+double
+vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *bx, size_t nbox,
+    const double o[3], const double d[3])
+{
+	double best = INFINITY;
+	int64_t fixed[3] = { 0, 0, 0 };
+	size_t k;
+	ray r;
+	int a;
+
+	for (a = 0; a < 3; a++) {
+		double ad = fabs(d[a]);
+
+		if (!isfinite(o[a]) || !isfinite(d[a]))
+			return INFINITY;
+		r.o[a] = o[a];
+		r.d[a] = d[a];
+		r.s[a] = d[a] > 0 ? 1 : d[a] < 0 ? -1 : 0;
+		r.up[a] = r.s[a] >= 0;
+		r.div[a] = !(ad >= 0x1p-1000 && ad <= 0x1p1000);
+		r.inv[a] = r.s[a] ? 1.0 / d[a] : 0.0;
+		r.n[a] = m->dims[0][a];
+		if (r.s[a] == 0) {
+			/* the leaf the walk keeps along a (ray_start) */
+			if (!(o[a] >= 0 && o[a] <= (double)r.n[a]))
+				return INFINITY;
+			fixed[a] = (int64_t)floor(o[a]);
+			if (fixed[a] > r.n[a] - 1)
+				fixed[a] = r.n[a] - 1;
+		}
+	}
+	for (k = 0; k < nbox && !(bx[k].lb > best); k++) {
+		double tin = -INFINITY, tout = INFINITY;
+
+		for (a = 0; a < 3; a++) {
+			int64_t lo = bx[k].lo[a], hi = bx[k].hi[a];
+
+			if (r.s[a] == 0) {
+				if (fixed[a] < lo || fixed[a] >= hi)
+					break;
+			} else {
+				double tn = tcross(&r, a, r.up[a] ? lo : hi);
+				double tf = tcross(&r, a, r.up[a] ? hi : lo);
+
+				if (tn > tin)
+					tin = tn;
+				if (tf < tout)
+					tout = tf;
+			}
+		}
+		if (a == 3 && !(tin > tout) && tin < best)
+			best = tin;
+	}
+	return best;
+}
+
 /* ---- cell masks ----
  * A level-1 macrocell's samples are read once each, a row of samples along
  * x at a time, into two bit masks per value v: below (bit x set when sample

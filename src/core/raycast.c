@@ -33,16 +33,180 @@ typedef struct rc_shared {
 	int niso;
 	int composite;
 	double tex_lo[VX_SCENE_MAX_SURFACES], tex_hi[VX_SCENE_MAX_SURFACES];
+	/* binning: the level-1 macrocells that bracket an isovalue, listed
+	 * per bin of BIN x BIN pixels whose primary rays may cross them, by
+	 * a lower bound of their entry time (bin k: binlist[binoff[k] ..
+	 * binoff[k + 1])); NULL: off */
+	int nbx, nby;
+	int64_t *binoff;
+	vx_cellbox *binlist;
 } rc_shared;
+
+#define BIN 8
 
 /* What each thread owns: on cache lines of its own (the counters are
  * written per cell; neighbours sharing a line would slow both threads). */
 typedef struct rc_local {
 	_Alignas(64) vx_iso_stats st;
 	vx_tettrace_stats tst;
-	uint64_t primary, shadow, shaded, covered;
+	uint64_t primary, shadow, shaded, covered, binned;
 	uint64_t cyc_total, cyc_shade, cyc_shadow;
 } rc_local;
+
+static int
+box_cmp(const void *a, const void *b)
+{
+	const vx_cellbox *x = a, *y = b;
+
+	if (x->lb != y->lb)
+		return x->lb < y->lb ? -1 : 1;
+	for (int k = 0; k < 3; k++)
+		if (x->lo[k] != y->lo[k])
+			return x->lo[k] < y->lo[k] ? -1 : 1;
+	return 0;
+}
+
+/* bins_build: S->binoff / binlist for the level-1 macrocells that bracket
+ * an isovalue: each is listed in the bins its projected box, widened by two
+ * pixels, overlaps (the whole image when a corner is not in front of the
+ * eye), with a lower bound of a primary ray's entry time (t is world
+ * distance along the unit ray: from the eye to the box, or the box's least
+ * depth for an orthographic camera; lowered by far more than rounding), and
+ * each bin is sorted by it.  Conservative: a primary ray that enters such a
+ * macrocell lies in one of its bins.  Returns 0, or VX_ENOMEM. */
+static int
+bins_build(rc_shared *S, const vx_camera *cam, vx_err *e)
+{
+	const vx_macro *m = S->tr.m;
+	const vx_grid *g = S->g;
+	int64_t nb = m->dims[1][0] * m->dims[1][1] * m->dims[1][2], b;
+	int64_t nbin, *cur = NULL;
+	int (*rect)[4] = NULL;
+	vx_cellbox *box = NULL;
+	int pass, i;
+
+	S->nbx = (cam->w + BIN - 1) / BIN;
+	S->nby = (cam->h + BIN - 1) / BIN;
+	nbin = (int64_t)S->nbx * S->nby;
+	if ((S->binoff = calloc((size_t)nbin + 1, sizeof *S->binoff)) == NULL ||
+	    (rect = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *rect)) == NULL ||
+	    (box = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *box)) == NULL)
+		goto nomem;
+	for (b = 0; b < nb; b++) {
+		const float *p = m->mm[1] + 2 * b;
+		int64_t c[3] = { b % m->dims[1][0],
+		    (b / m->dims[1][0]) % m->dims[1][1],
+		    b / (m->dims[1][0] * m->dims[1][1]) };
+		double lo[2] = { INFINITY, INFINITY }, hi[2] = { -INFINITY,
+		    -INFINITY }, wlo[3], whi[3], dist2 = 0, depth = INFINITY;
+		int in = 0, front = 1, a;
+
+		for (i = 0; i < S->niso; i++)
+			in |= p[0] <= S->iso[i] && S->iso[i] <= p[1];
+		rect[b][0] = -1;
+		if (!in)
+			continue;
+		for (a = 0; a < 3; a++) {
+			box[b].lo[a] = c[a] * m->width[1][a];
+			box[b].hi[a] = box[b].lo[a] + m->width[1][a];
+			if (box[b].hi[a] > m->dims[0][a])
+				box[b].hi[a] = m->dims[0][a];
+			wlo[a] = g->origin[a] + g->spacing[a] *
+			    (double)box[b].lo[a];
+			whi[a] = g->origin[a] + g->spacing[a] *
+			    (double)box[b].hi[a];
+			if (cam->o[a] < wlo[a])
+				dist2 += (wlo[a] - cam->o[a]) * (wlo[a] - cam->o[a]);
+			else if (cam->o[a] > whi[a])
+				dist2 += (cam->o[a] - whi[a]) * (cam->o[a] - whi[a]);
+		}
+		for (i = 0; i < 8; i++) {
+			double q[3], w[3], px, py, dep;
+
+			for (a = 0; a < 3; a++)
+				q[a] = (double)(i >> a & 1 ? box[b].hi[a] :
+				    box[b].lo[a]);
+			vx_index_to_world(g, q, w);
+			dep = (w[0] - cam->o[0]) * cam->fwd[0] + (w[1] -
+			    cam->o[1]) * cam->fwd[1] + (w[2] - cam->o[2]) *
+			    cam->fwd[2];
+			depth = dep < depth ? dep : depth;
+			if (!front || !vx_camera_project(cam, w, &px, &py,
+			    &dep) || !isfinite(px) || !isfinite(py))
+				front = 0;
+			else {
+				lo[0] = px < lo[0] ? px : lo[0];
+				hi[0] = px > hi[0] ? px : hi[0];
+				lo[1] = py < lo[1] ? py : lo[1];
+				hi[1] = py > hi[1] ? py : hi[1];
+			}
+		}
+		box[b].lb = cam->projection == VX_ORTHOGRAPHIC ? depth :
+		    sqrt(dist2);
+		box[b].lb -= 0x1p-30 * (fabs(box[b].lb) + 1);
+		if (!front) {
+			rect[b][0] = 0;
+			rect[b][1] = 0;
+			rect[b][2] = S->nbx - 1;
+			rect[b][3] = S->nby - 1;
+		} else {
+			double x0 = floor(lo[0]) - 2, x1 = ceil(hi[0]) + 2;
+			double y0 = floor(lo[1]) - 2, y1 = ceil(hi[1]) + 2;
+
+			if (x1 < 0 || y1 < 0 || x0 > cam->w || y0 > cam->h)
+				continue;   /* off the image */
+			x0 = x0 < 0 ? 0 : x0;
+			y0 = y0 < 0 ? 0 : y0;
+			x1 = x1 > cam->w - 1 ? cam->w - 1 : x1;
+			y1 = y1 > cam->h - 1 ? cam->h - 1 : y1;
+			rect[b][0] = (int)x0 / BIN;
+			rect[b][1] = (int)y0 / BIN;
+			rect[b][2] = (int)x1 / BIN;
+			rect[b][3] = (int)y1 / BIN;
+		}
+	}
+	/* two passes: count per bin, then fill; then sort each bin */
+	for (pass = 0; pass < 2; pass++) {
+		if (pass == 1) {
+			for (i = 0; i < nbin; i++)
+				S->binoff[i + 1] += S->binoff[i];
+			if ((S->binlist = malloc((size_t)(S->binoff[nbin] > 0 ?
+			    S->binoff[nbin] : 1) * sizeof *S->binlist)) == NULL ||
+			    (cur = malloc((size_t)nbin * sizeof *cur)) == NULL)
+				goto nomem;
+			memcpy(cur, S->binoff, (size_t)nbin * sizeof *cur);
+		}
+		for (b = 0; b < nb; b++) {
+			if (rect[b][0] < 0)
+				continue;
+			for (int by = rect[b][1]; by <= rect[b][3]; by++)
+				for (int bx = rect[b][0]; bx <= rect[b][2]; bx++) {
+					int64_t k = (int64_t)by * S->nbx + bx;
+
+					if (pass == 0)
+						S->binoff[k + 1]++;
+					else
+						S->binlist[cur[k]++] = box[b];
+				}
+		}
+	}
+	for (i = 0; i < nbin; i++)
+		qsort(S->binlist + S->binoff[i], (size_t)(S->binoff[i + 1] -
+		    S->binoff[i]), sizeof *S->binlist, box_cmp);
+	free(cur);
+	free(rect);
+	free(box);
+	return 0;
+nomem:
+	free(cur);
+	free(rect);
+	free(box);
+	free(S->binoff);
+	free(S->binlist);
+	S->binoff = NULL;
+	S->binlist = NULL;
+	return vx_err_set(e, VX_ENOMEM, "raycast: out of memory (bins)");
+}
 
 void
 vx_raycast_opts_init(vx_raycast_opts *o)
@@ -387,10 +551,35 @@ pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
 		vx_tetleaf_trace(S->lg, S->mesh, ow, dw, S->isod, S->niso, 0,
 		    INFINITY, tet_layer, &x, &L->tst);
 	else {
+		double t0 = 0;
+		int walk = 1;
+
 		vx_world_to_index(S->g, ow, oi);
 		vx_world_to_index_dir(S->g, dw, di);
-		vx_iso_trace(&S->tr, oi, di, 0, INFINITY, S->iso, S->niso, layer,
-		    &x, &L->st);
+		if (S->binoff != NULL) {
+			/* start just before the first bracketing level-1
+			 * macrocell the ray enters (none: nothing to walk); the
+			 * walk visits the same leaves (vx_macro_boxes_entry) */
+			int bx = (int)px / BIN, by = (int)py / BIN;
+			int64_t k, t;
+			double te;
+
+			bx = bx < 0 ? 0 : bx >= S->nbx ? S->nbx - 1 : bx;
+			by = by < 0 ? 0 : by >= S->nby ? S->nby - 1 : by;
+			k = (int64_t)by * S->nbx + bx;
+			t = S->binoff[k];
+			te = vx_macro_boxes_entry(S->tr.m, S->binlist + t,
+			    (size_t)(S->binoff[k + 1] - t), oi, di);
+			if (te == INFINITY)
+				walk = 0;
+			else if (te > 0)
+				t0 = nextafter(te, -INFINITY);
+		}
+		if (walk)
+			vx_iso_trace(&S->tr, oi, di, t0, INFINITY, S->iso,
+			    S->niso, layer, &x, &L->st);
+		else
+			L->binned++;
 	}
 	for (int i = 0; i < 3; i++)
 		out[i] = x.C[i];          /* premultiplied (formats/image.md) */
@@ -415,6 +604,7 @@ add_local(vx_raycast_stats *st, const rc_local *L, double *cyc)
 	st->nonfinite += L->st.nonfinite;
 	st->shaded += L->shaded;
 	st->covered += L->covered;
+	st->binned += L->binned;
 	for (l = 0; l <= VX_MACRO_MAXLEV; l++)
 		st->macro[l] += L->st.trav.macro[l] + L->tst.trav.macro[l];
 	cyc[0] += (double)L->cyc_total;
@@ -493,6 +683,15 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 		if (mask->ready)
 			S.tr.mask = mask;
 	}
+	/* bins of the level-1 macrocells that bracket (a volume walked
+	 * hierarchically, one sample per pixel) */
+	if (S.mesh == NULL && !S.tr.flat && S.tr.m != NULL && S.tr.m->nlev >= 1 &&
+	    !o->no_binning && (rc = bins_build(&S, cam, e)) != 0) {
+		if (mask == &own)
+			vx_cellmask_free(&own);
+		return rc;
+	}
+	st->bins = S.binoff != NULL;
 	st->mask_bytes = S.tr.mask ? vx_cellmask_bytes(mask) : 0;
 	st->mask_blocks = S.tr.mask ? (uint64_t)mask->nblock : 0;
 	st->mask_set = S.tr.mask ? (uint64_t)mask->nset : 0;
@@ -571,6 +770,8 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	st->mask_built = S.tr.mask ? (uint64_t)vx_cellmask_built(mask) : 0;
 	if (mask == &own)
 		vx_cellmask_free(&own);
+	free(S.binoff);
+	free(S.binlist);
 	st->seconds = (double)(t1.tv_sec - t0.tv_sec) +
 	    1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
 	if (o->timing && cyc[0] > 0) {

@@ -285,6 +285,27 @@ int vx_macro_traverse_masked(const vx_macro *m, const vx_grid *g,
     double tmax, const float *vals, int nvals, vx_visit_fn fn, void *ctx,
     vx_trav_stats *st);
 
+/* A box of leaves [lo, hi) per axis (a macrocell's), and lb, a lower bound
+ * of the entry time of every ray it will be asked about. */
+typedef struct vx_cellbox {
+	double lb;
+	int64_t lo[3], hi[3];
+} vx_cellbox;
+
+/* vx_macro_boxes_entry: the earliest time the ray o + t d (leaf
+ * coordinates, as for the walk) enters one of the boxes bx[0..nbox),
+ * sorted by lb, in the walk's own arithmetic: a box's entry is the largest
+ * crossing time of its near faces; a box whose far faces are crossed before
+ * that, or beside which a ray parallel to an axis runs, is not entered; the
+ * boxes from the first whose lb exceeds the earliest entry so far are not
+ * looked at.  +Inf: none is entered (or the ray is not finite).  Every leaf
+ * of those boxes that a walk of this ray visits is entered at or after
+ * this time, so a walk started before it visits exactly the leaves a walk
+ * from the segment's start does, when the boxes are those of all the
+ * level-1 macrocells that bracket the values (raycast's binning). */
+double vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *bx,
+    size_t nbox, const double o[3], const double d[3]);
+
 /* ---- stream form: the MCEL chunk (formats/macrocell.md) ---- */
 
 /* vx_macro_to_chunk: the MCEL chunk of m (zlevel 0 raw, 1..9 zlib). */

@@ -35,6 +35,12 @@ typedef struct vx_raycast_opts {
 	                            size, (box volume / tets)^(1/3); default
 	                            1e-3) */
 	int timing;              /* 1: measure the share of time per phase */
+	int no_binning;          /* 1: every primary ray walks from its start
+	                            (same picture, for measuring the bins:
+	                            each ray otherwise starts just before the
+	                            first level-1 macrocell bracketing an
+	                            isovalue that it enters, and a ray that
+	                            enters none is not walked) */
 	int no_cellmask;         /* 1: no cell mask (vx_macro.h): the walk
 	                            reads every stepped leaf's samples (same
 	                            picture, for measuring the mask) */
@@ -63,6 +69,9 @@ typedef struct vx_raycast_stats {
 	double seconds;                  /* wall time of the render (the
 	                                    cell mask's build included) */
 	uint64_t mask_bytes;             /* its memory, 0: none */
+	int bins;                /* 1: primary rays were binned */
+	uint64_t binned;         /* primary rays that entered no bracketing
+	                            level-1 macrocell: not walked */
 	uint64_t mask_blocks, mask_set, mask_built;   /* level-1 macrocells,
 	                                    those bracketing (masked), and
 	                                    those whose bits rays needed */

@@ -22,13 +22,15 @@ static const char usage[] =
     "        [--ortho] [--fov DEG] [--light SPEC] [--lights none]\n"
     "        [--effects WORDS] [--background R,G,B] [--set LINE]\n"
     "        [--name NAME] [--solver exact|neubauer|linear] [--flat]\n"
-    "        [--no-cellmask] [--aa N] [-j N] [--stats] [--explain] [-n]\n"
-    "        [--hdr] [-z LEVEL] [--bits 8|16] [--exposure STOPS]\n"
-    "        [--depth FILE.pfm] [--normals FILE.pfm] [-o OUT] [STREAM|-]";
+    "        [--no-cellmask] [--no-binning] [--aa N] [-j N] [--stats]\n"
+    "        [--explain] [-n] [--hdr] [-z LEVEL] [--bits 8|16]\n"
+    "        [--exposure STOPS] [--depth FILE.pfm] [--normals FILE.pfm]\n"
+    "        [-o OUT] [STREAM|-]";
 
 typedef struct opts {
 	const char *in, *out, *scene, *name, *depth, *normals;
 	int hdr, zlevel, bits, stats, explain, dry, flat, aa, solver, nomask;
+	int nobin;
 	long threads;
 	double exposure;
 	int ortho;
@@ -52,7 +54,7 @@ parse(opts *o, int argc, char **argv)
 	enum { O_SCENE = 256, O_ISO, O_SIZE, O_VIEW, O_ORTHO, O_FOV, O_LIGHT,
 	    O_LIGHTS, O_EFFECTS, O_BG, O_SET, O_NAME, O_SOLVER, O_FLAT, O_AA,
 	    O_STATS, O_EXPLAIN, O_HDR, O_BITS, O_EXPOSURE, O_DEPTH, O_NORMALS,
-	    O_NOMASK };
+	    O_NOMASK, O_NOBIN };
 	static const struct option lo[] = {
 		{ "scene", 1, 0, O_SCENE }, { "iso", 1, 0, O_ISO },
 		{ "size", 1, 0, O_SIZE }, { "view", 1, 0, O_VIEW },
@@ -62,6 +64,7 @@ parse(opts *o, int argc, char **argv)
 		{ "set", 1, 0, O_SET }, { "name", 1, 0, O_NAME },
 		{ "solver", 1, 0, O_SOLVER }, { "flat", 0, 0, O_FLAT },
 		{ "no-cellmask", 0, 0, O_NOMASK },
+		{ "no-binning", 0, 0, O_NOBIN },
 		{ "aa", 1, 0, O_AA }, { "stats", 0, 0, O_STATS },
 		{ "explain", 0, 0, O_EXPLAIN }, { "dry-run", 0, 0, 'n' },
 		{ "hdr", 0, 0, O_HDR }, { "bits", 1, 0, O_BITS },
@@ -107,6 +110,7 @@ parse(opts *o, int argc, char **argv)
 			break;
 		case O_FLAT: o->flat = 1; break;
 		case O_NOMASK: o->nomask = 1; break;
+		case O_NOBIN: o->nobin = 1; break;
 		case O_AA: o->aa = (int)tool_parse_long("--aa", optarg, 1, 16); break;
 		case O_STATS: o->stats = 1; break;
 		case O_EXPLAIN: o->explain = 1; break;
@@ -179,6 +183,11 @@ print_stats(const vx_raycast_stats *st, const vx_macro *m, int w, int h,
 		    (unsigned long long)st->mask_blocks,
 		    (unsigned long long)st->mask_built,
 		    (double)st->mask_bytes / 1024);
+	if (!st->mesh && st->bins)
+		fprintf(stderr, "raycast: binning: %llu of %llu primary rays "
+		    "enter no bracketing level-1 macrocell (not walked)\n",
+		    (unsigned long long)st->binned,
+		    (unsigned long long)st->primary);
 	if (m != NULL) {
 		fprintf(stderr, "raycast: macrocells examined:");
 		for (l = m->nlev; l >= 1; l--)
@@ -276,6 +285,12 @@ main(int argc, char **argv)
 			    "per cell of the macrocells bracketing the "
 			    "isovalues, built as rays first enter them)", nthr,
 			    nthr == 1 ? "" : "s");
+		if (!is_mesh && !o.flat)
+			fprintf(stderr, "raycast: primary rays %s\n", o.nobin ?
+			    "walk from the eye (--no-binning)" : "start just "
+			    "before the first level-1 macrocell bracketing an "
+			    "isovalue that they enter (binned per 8x8 pixels); "
+			    "a ray that enters none is not walked");
 		free(buf);
 	}
 	if (plan.nsurface_on == 0)
@@ -343,6 +358,7 @@ main(int argc, char **argv)
 	ro.aa = o.aa;
 	ro.timing = o.stats;
 	ro.no_cellmask = o.nomask;
+	ro.no_binning = o.nobin;
 	vx_image_init(&color);
 	vx_image_init(&depth);
 	vx_image_init(&normal);

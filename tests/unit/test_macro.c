@@ -965,6 +965,144 @@ cellmask_equals_plain_walk(void **state)
 	assert_true(masked > 100);   /* the walks did use lazy bits */
 }
 
+static int
+lb_cmp(const void *a, const void *b)
+{
+	double x = ((const vx_cellbox *)a)->lb, y = ((const vx_cellbox *)b)->lb;
+
+	return x < y ? -1 : x > y ? 1 : 0;
+}
+
+/* vx_macro_boxes_entry, the ground of raycast's binning: for the boxes of
+ * every level-1 macrocell that brackets the values, the walk started just
+ * before the earliest entry visits exactly the leaves (same data, same
+ * order) of the walk from the segment's start, and none when there is no
+ * entry; boxes in any order with lb -Inf give the same time as sorted
+ * ones with true lower bounds.  Rays: random, through macrocell corners
+ * and edges along axes (ties), and from inside the volume.  Oracle: the
+ * walk from 0. */
+static void
+boxes_entry_keeps_visits(void **state)
+{
+	uint64_t s = 777;
+	int64_t entered = 0, none = 0;
+
+	(void)state;
+	for (int k = 0; k < 24; k++) {
+		int64_t dims[3];
+		int sz[2][3], nlev = 1 + irand(&s, 2);
+		float vals[2];
+		int nv = 1 + irand(&s, 2);
+		vx_cellbox *bx;
+		size_t nbx = 0;
+		vx_grid g;
+		vx_macro m;
+		vx_err e = { 0, "" };
+
+		for (int a = 0; a < 3; a++)
+			dims[a] = 3 + irand(&s, 30);
+		for (int l = 0; l < 2; l++)
+			for (int a = 0; a < 3; a++)
+				sz[l][a] = 1 + irand(&s, 6);
+		rand_grid(&g, dims, k % 2 ? VX_U8 : VX_F32, NULL,
+		    hash64(900 + k), 0);
+		assert_int_equal(vx_macro_build(&m, &g, nlev, sz, 1, &e), 0);
+		for (int q = 0; q < nv; q++)
+			vals[q] = (float)irand(&s, 200) + 0.5f;
+		bx = calloc((size_t)(m.dims[1][0] * m.dims[1][1] *
+		    m.dims[1][2]), sizeof *bx);
+		assert_non_null(bx);
+		for (int64_t b = 0; b < m.dims[1][0] * m.dims[1][1] *
+		    m.dims[1][2]; b++) {
+			int64_t c[3] = { b % m.dims[1][0],
+			    (b / m.dims[1][0]) % m.dims[1][1],
+			    b / (m.dims[1][0] * m.dims[1][1]) };
+			int in = 0;
+
+			for (int q = 0; q < nv; q++)
+				in |= m.mm[1][2 * b] <= vals[q] &&
+				    vals[q] <= m.mm[1][2 * b + 1];
+			if (!in)
+				continue;
+			bx[nbx].lb = -INFINITY;
+			for (int a = 0; a < 3; a++) {
+				bx[nbx].lo[a] = c[a] * m.width[1][a];
+				bx[nbx].hi[a] = bx[nbx].lo[a] + m.width[1][a];
+				if (bx[nbx].hi[a] > m.dims[0][a])
+					bx[nbx].hi[a] = m.dims[0][a];
+			}
+			nbx++;
+		}
+		for (int j = 0; j < 120; j++) {
+			uint64_t r = hash64(((uint64_t)k << 20) + (uint64_t)j);
+			double o[3], d[3], te, t0;
+			rec h, h2;
+			int ok = 1;
+
+			for (int x = 0; x < 3; x++) {
+				o[x] = rand_coord(&r, dims[x] - 1);
+				d[x] = rand_dir(&r);
+			}
+			if (j % 3 == 1)   /* along axes through corners */
+				for (int x = 0; x < 3; x++) {
+					o[x] = (double)(sz[0][x] * irand(&r, 4));
+					d[x] = irand(&r, 3) ? (irand(&r, 2) ? 1 :
+					    -1) : 0;
+				}
+			if (j % 3 == 2)   /* from inside, anywhere */
+				for (int x = 0; x < 3; x++)
+					o[x] = urand(&r) * (double)(dims[x] - 1);
+			te = vx_macro_boxes_entry(&m, bx, nbx, o, d);
+			if (nbx > 0) {
+				/* sorted by exact per-box bounds: the early stop
+				 * gives the same time */
+				vx_cellbox *sb = malloc(nbx * sizeof *sb);
+
+				assert_non_null(sb);
+				memcpy(sb, bx, nbx * sizeof *sb);
+				for (size_t i = 0; i < nbx; i++)
+					sb[i].lb = vx_macro_boxes_entry(&m, &bx[i], 1,
+					    o, d);
+				qsort(sb, nbx, sizeof *sb, lb_cmp);
+				ok &= memcmp(&te, &(double){ vx_macro_boxes_entry(
+				    &m, sb, nbx, o, d) }, sizeof te) == 0;
+				free(sb);
+			}
+			rec_init(&h, m.dims[0]);
+			rec_init(&h2, m.dims[0]);
+			ok &= vx_macro_traverse(&m, &g, o, d, 0, INFINITY, vals,
+			    nv, collect, &h, NULL) == 0;
+			if (te == INFINITY) {
+				ok &= h.n == 0;
+				none++;
+			} else {
+				t0 = te > 0 ? nextafter(te, -INFINITY) : 0;
+				ok &= vx_macro_traverse(&m, &g, o, d, t0,
+				    INFINITY, vals, nv, collect, &h2, NULL) == 0;
+				ok &= h2.n == h.n;
+				for (int i = 0; ok && i < h.n; i++)
+					ok &= same_visit(&h2.v[i], &h.v[i]) &&
+					    memcmp(h2.v[i].c, h.v[i].c,
+					    sizeof h.v[i].c) == 0;
+				/* the bound: no visit starts before it */
+				ok &= h.n == 0 || h.v[0].t0 >= te || h.v[0].t0 == 0;
+				entered += h.n > 0;
+			}
+			if (!ok)
+				fprintf(stderr, "# grid %d ray %d: entry %.17g, "
+				    "%d visits from 0, %d from there\n", k, j, te,
+				    h.n, h2.n);
+			assert_true(ok);
+			free(h.v);
+			free(h2.v);
+		}
+		free(bx);
+		vx_macro_free(&m);
+		vx_grid_free(&g);
+	}
+	assert_true(entered > 200 && none > 50);
+}
+
 /* The visitor's nonzero value stops the walk and is returned. */
 static int
 stop_at_third(void *ctx, const vx_leaf_visit *v)
@@ -1407,6 +1545,7 @@ main(void)
 		cmocka_unit_test(hierarchy_equals_filtered_flat),
 		cmocka_unit_test(cellmask_bits_brute_force),
 		cmocka_unit_test(cellmask_equals_plain_walk),
+		cmocka_unit_test(boxes_entry_keeps_visits),
 		cmocka_unit_test(visitor_stops),
 		cmocka_unit_test(explicit_leaves),
 		cmocka_unit_test(default_sizes_overhead),
