@@ -73,7 +73,8 @@ box_cmp(const void *a, const void *b)
  * distance along the unit ray: from the eye to the box, or the box's least
  * depth for an orthographic camera; lowered by far more than rounding), and
  * each bin is sorted by it.  Conservative: a primary ray that enters such a
- * macrocell lies in one of its bins.  Returns 0, or VX_ENOMEM. */
+ * macrocell lies in one of its bins.  More than 8 entries a pixel: no bins
+ * (S->binoff NULL; the rays walk from the eye).  Returns 0, or VX_ENOMEM. */
 static int
 bins_build(rc_shared *S, const vx_camera *cam, vx_err *e)
 {
@@ -170,6 +171,18 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_err *e)
 		if (pass == 1) {
 			for (i = 0; i < nbin; i++)
 				S->binoff[i + 1] += S->binoff[i];
+			/* more entries than a few per pixel (an eye among the
+			 * macrocells: boxes spanning the image): the lists
+			 * would cost more than they save, and their memory is
+			 * bounded by the image, not by the macrocells */
+			if (S->binoff[nbin] > 8 * (int64_t)cam->w * cam->h +
+			    65536) {
+				free(S->binoff);
+				S->binoff = NULL;
+				free(rect);
+				free(box);
+				return 0;
+			}
 			if ((S->binlist = malloc((size_t)(S->binoff[nbin] > 0 ?
 			    S->binoff[nbin] : 1) * sizeof *S->binlist)) == NULL ||
 			    (cur = malloc((size_t)nbin * sizeof *cur)) == NULL)

@@ -166,6 +166,15 @@ check_eq "binning = no binning: 2x2 samples" "$(px same "$T/aa1.vx" "$T/aa2.vx")
 raycast --iso 0.5 --size 65x65 --set "$cam" --stats "$T/sph.vx" 2>"$T/bst" >/dev/null
 check "binning: --stats counts the rays not walked" \
     grep -q 'binning: [1-9][0-9]* of 4225 primary rays enter no' "$T/bst"
+# an eye among 32768 one-cell macrocells: boxes behind the eye span the
+# image, the lists would pass 8 entries a pixel: no bins, the same picture
+vread --synth ml --size 33 | macrocell --sizes 1x1x1 >"$T/ml1.vx"
+set -- --iso 0.2,0.45 --size 40x30 --set "camera perspective eye 0.1 0.05 -0.2 look 1 1 1 up 0 0 1 fov 90"
+raycast "$@" --hdr --stats "$T/ml1.vx" >"$T/cap1.vx" 2>"$T/bst2"
+raycast "$@" --hdr --no-binning "$T/ml1.vx" >"$T/cap2.vx"
+check_eq "binning: over 8 entries a pixel, none" "$(grep -c 'binning:' "$T/bst2")" 0
+check_eq "binning: over 8 entries a pixel, the same picture" \
+    "$(px same "$T/cap1.vx" "$T/cap2.vx")" same
 
 # 10. -j 1 means one thread for the whole run, not only the frame: the
 # stream below has macrocells built before brick re-laid the volume out
