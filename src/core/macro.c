@@ -501,6 +501,21 @@ t_exit_of(const ray *r, int l, int a, int64_t c)
 	    plane_lo(r, l, a, c));
 }
 
+/* min_axis: the axis whose next crossing comes first (the lowest on a
+ * tie, the walk's order), its time in *t */
+static inline int
+min_axis(double n0, double n1, double n2, double *t)
+{
+	int ax = n1 < n0;
+
+	*t = ax ? n1 : n0;
+	if (n2 < *t) {
+		ax = 2;
+		*t = n2;
+	}
+	return ax;
+}
+
 /* find_cell: among level-l cells k0..k1-1 along axis a (s != 0), the one
  * the ray is in at time t: the last one in walking order whose entry face
  * is crossed at or before t (post != 0) or strictly before t (post == 0);
@@ -719,12 +734,7 @@ leaves(const ray *r, const vx_grid *g, int64_t c[3], const int64_t lim[3],
 		int64_t nc, p;
 		double tv;
 
-		ax = n1 < n0;
-		texit = ax ? n1 : n0;
-		if (n2 < texit) {
-			ax = 2;
-			texit = n2;
-		}
+		ax = min_axis(n0, n1, n2, &texit);
 		/* with a mask, a clear bit is this very test's answer: the
 		 * samples are loaded only for a leaf to visit */
 		if (bits != NULL && !(bits[li >> 6] >> (li & 63) & 1))
@@ -804,22 +814,14 @@ leaves(const ray *r, const vx_grid *g, int64_t c[3], const int64_t lim[3],
 	return rc;
 }
 
-/* ray_start: the ray's set-up for a walk from level top over n leaves:
- * r filled in, the segment [*ta, *tb] clipped to the grid, the start leaf
- * (the one the ray is in just after *ta) and its entry axis *e (-1: *ta is
- * on no face of it).  Returns 0 when nothing is to be walked (the ray
- * misses, is not finite, or the root range brackets none of the values). */
+/* ray_axes: the ray's per-axis set-up over n leaves (direction signs,
+ * crossing-time factors, the leaf kept along an axis the ray does not
+ * move on).  Returns 0 when the ray is not finite or runs parallel to an
+ * axis outside the grid (it visits nothing). */
 static int
-ray_start(ray *r, const vx_macro *m, int top, const int64_t n[3],
-    const double o[3], const double d[3], const float *vals, int nvals,
-    double *tap, double *tbp, int64_t leaf[3], int *e)
+ray_axes(ray *r, const int64_t n[3], const double o[3], const double d[3])
 {
-	double ta = *tap, tb = *tbp;
-	int a;
-
-	if (n[0] <= 0 || n[1] <= 0 || n[2] <= 0 || !(ta <= tb))
-		return 0;
-	for (a = 0; a < 3; a++) {
+	for (int a = 0; a < 3; a++) {
 		double ad = fabs(d[a]);
 
 		if (!isfinite(o[a]) || !isfinite(d[a]))
@@ -838,7 +840,29 @@ ray_start(ray *r, const vx_macro *m, int top, const int64_t n[3],
 			r->fixed[a] = (int64_t)floor(o[a]);
 			if (r->fixed[a] > n[a] - 1)
 				r->fixed[a] = n[a] - 1;
-		} else {
+		}
+	}
+	return 1;
+}
+
+/* ray_start: the ray's set-up for a walk from level top over n leaves:
+ * r filled in, the segment [*ta, *tb] clipped to the grid, the start leaf
+ * (the one the ray is in just after *ta) and its entry axis *e (-1: *ta is
+ * on no face of it).  Returns 0 when nothing is to be walked (the ray
+ * misses, is not finite, or the root range brackets none of the values). */
+static int
+ray_start(ray *r, const vx_macro *m, int top, const int64_t n[3],
+    const double o[3], const double d[3], const float *vals, int nvals,
+    double *tap, double *tbp, int64_t leaf[3], int *e)
+{
+	double ta = *tap, tb = *tbp;
+	int a;
+
+	if (n[0] <= 0 || n[1] <= 0 || n[2] <= 0 || !(ta <= tb) ||
+	    !ray_axes(r, n, o, d))
+		return 0;
+	for (a = 0; a < 3; a++) {
+		if (r->s[a] != 0) {
 			double t0 = tcross(r, a, r->s[a] > 0 ? 0 : n[a]);
 			double t1 = tcross(r, a, r->s[a] > 0 ? n[a] : 0);
 
@@ -873,6 +897,30 @@ ray_start(ray *r, const vx_macro *m, int top, const int64_t n[3],
 	return 1;
 }
 
+void
+vx_macro_cell_box(const vx_macro *m, int l, int64_t b, int64_t lo[3],
+    int64_t hi[3])
+{
+	int64_t c[3] = { b % m->dims[l][0], (b / m->dims[l][0]) % m->dims[l][1],
+	    b / (m->dims[l][0] * m->dims[l][1]) };
+	ray r;
+
+	/* the walk's own planes: the last cell's upper one is the grid's */
+	r.w = (const int64_t (*)[3])m->width;
+	for (int a = 0; a < 3; a++) {
+		r.n[a] = m->dims[0][a];
+		lo[a] = plane_lo(&r, l, a, c[a]);
+		hi[a] = plane_hi(&r, l, a, c[a]);
+	}
+}
+
+int
+vx_macro_cell_brackets(const vx_macro *m, int l, int64_t b,
+    const float *vals, int nvals)
+{
+	return brackets(m->mm[l][2 * b], m->mm[l][2 * b + 1], vals, nvals);
+}
+
 /* vx_macro_boxes_entry: see vx_macro.h.  The ray is set up as ray_start
  * sets it up (the same crossing-time function, so the same times). */
 double
@@ -880,32 +928,12 @@ vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *bx, size_t nbox,
     const double o[3], const double d[3])
 {
 	double best = INFINITY;
-	int64_t fixed[3] = { 0, 0, 0 };
 	size_t k;
 	ray r;
 	int a;
 
-	for (a = 0; a < 3; a++) {
-		double ad = fabs(d[a]);
-
-		if (!isfinite(o[a]) || !isfinite(d[a]))
-			return INFINITY;
-		r.o[a] = o[a];
-		r.d[a] = d[a];
-		r.s[a] = d[a] > 0 ? 1 : d[a] < 0 ? -1 : 0;
-		r.up[a] = r.s[a] >= 0;
-		r.div[a] = !(ad >= 0x1p-1000 && ad <= 0x1p1000);
-		r.inv[a] = r.s[a] ? 1.0 / d[a] : 0.0;
-		r.n[a] = m->dims[0][a];
-		if (r.s[a] == 0) {
-			/* the leaf the walk keeps along a (ray_start) */
-			if (!(o[a] >= 0 && o[a] <= (double)r.n[a]))
-				return INFINITY;
-			fixed[a] = (int64_t)floor(o[a]);
-			if (fixed[a] > r.n[a] - 1)
-				fixed[a] = r.n[a] - 1;
-		}
-	}
+	if (!ray_axes(&r, m->dims[0], o, d))
+		return INFINITY;
 	for (k = 0; k < nbox && !(bx[k].lb > best); k++) {
 		double tin = -INFINITY, tout = INFINITY;
 
@@ -913,7 +941,7 @@ vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *bx, size_t nbox,
 			int64_t lo = bx[k].lo[a], hi = bx[k].hi[a];
 
 			if (r.s[a] == 0) {
-				if (fixed[a] < lo || fixed[a] >= hi)
+				if (r.fixed[a] < lo || r.fixed[a] >= hi)
 					break;
 			} else {
 				double tn = tcross(&r, a, r.up[a] ? lo : hi);
@@ -1142,10 +1170,7 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 				lo = -INFINITY;
 				hi = INFINITY;
 			}
-			ax = tn[0][1] < tn[0][0] ? 1 : 0;
-			if (tn[0][2] < tn[0][ax])
-				ax = 2;
-			texit = tn[0][ax];
+			ax = min_axis(tn[0][0], tn[0][1], tn[0][2], &texit);
 			if (brackets(lo, hi, vals, nvals)) {
 				memcpy(v.i, c[0], sizeof v.i);
 				v.leaf = c[0][0] + n[0] * (c[0][1] + n[1] *
@@ -1186,12 +1211,7 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 				double tv;
 
 				for (;;) {
-					ax = n1 < n0;
-					texit = ax ? n1 : n0;
-					if (n2 < texit) {
-						ax = 2;
-						texit = n2;
-					}
+					ax = min_axis(n0, n1, n2, &texit);
 					if (!(texit < tb))
 						break;
 					nc = (ax == 0 ? x0 : ax == 1 ? x1 : x2) +

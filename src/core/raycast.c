@@ -94,28 +94,22 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_err *e)
 	    (box = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *box)) == NULL)
 		goto nomem;
 	for (b = 0; b < nb; b++) {
-		const float *p = m->mm[1] + 2 * b;
-		int64_t c[3] = { b % m->dims[1][0],
-		    (b / m->dims[1][0]) % m->dims[1][1],
-		    b / (m->dims[1][0] * m->dims[1][1]) };
 		double lo[2] = { INFINITY, INFINITY }, hi[2] = { -INFINITY,
-		    -INFINITY }, wlo[3], whi[3], dist2 = 0, depth = INFINITY;
-		int in = 0, front = 1, a;
+		    -INFINITY }, ilo[3], ihi[3], wlo[3], whi[3], dist2 = 0,
+		    depth = INFINITY;
+		int front = 1, a;
 
-		for (i = 0; i < S->niso; i++)
-			in |= p[0] <= S->iso[i] && S->iso[i] <= p[1];
 		rect[b][0] = -1;
-		if (!in)
+		if (!vx_macro_cell_brackets(m, 1, b, S->iso, S->niso))
 			continue;
+		vx_macro_cell_box(m, 1, b, box[b].lo, box[b].hi);
 		for (a = 0; a < 3; a++) {
-			box[b].lo[a] = c[a] * m->width[1][a];
-			box[b].hi[a] = box[b].lo[a] + m->width[1][a];
-			if (box[b].hi[a] > m->dims[0][a])
-				box[b].hi[a] = m->dims[0][a];
-			wlo[a] = g->origin[a] + g->spacing[a] *
-			    (double)box[b].lo[a];
-			whi[a] = g->origin[a] + g->spacing[a] *
-			    (double)box[b].hi[a];
+			ilo[a] = (double)box[b].lo[a];
+			ihi[a] = (double)box[b].hi[a];
+		}
+		vx_index_to_world(g, ilo, wlo);
+		vx_index_to_world(g, ihi, whi);
+		for (a = 0; a < 3; a++) {
 			if (cam->o[a] < wlo[a])
 				dist2 += (wlo[a] - cam->o[a]) * (wlo[a] - cam->o[a]);
 			else if (cam->o[a] > whi[a])
@@ -125,8 +119,7 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_err *e)
 			double q[3], w[3], px, py, dep;
 
 			for (a = 0; a < 3; a++)
-				q[a] = (double)(i >> a & 1 ? box[b].hi[a] :
-				    box[b].lo[a]);
+				q[a] = i >> a & 1 ? ihi[a] : ilo[a];
 			vx_index_to_world(g, q, w);
 			dep = (w[0] - cam->o[0]) * cam->fwd[0] + (w[1] -
 			    cam->o[1]) * cam->fwd[1] + (w[2] - cam->o[2]) *

@@ -285,6 +285,15 @@ int vx_macro_traverse_masked(const vx_macro *m, const vx_grid *g,
     double tmax, const float *vals, int nvals, vx_visit_fn fn, void *ctx,
     vx_trav_stats *st);
 
+/* vx_macro_cell_box: level-l cell b's box of leaves, [lo, hi) per axis
+ * (the walk's planes).  vx_macro_cell_brackets: 1 if its stored range
+ * brackets one of vals (the walk's test: lo <= v <= hi; l >= 1, or 0 with
+ * explicit leaves). */
+void vx_macro_cell_box(const vx_macro *m, int l, int64_t b, int64_t lo[3],
+    int64_t hi[3]);
+int vx_macro_cell_brackets(const vx_macro *m, int l, int64_t b,
+    const float *vals, int nvals);
+
 /* A box of leaves [lo, hi) per axis (a macrocell's), and lb, a lower bound
  * of the entry time of every ray it will be asked about. */
 typedef struct vx_cellbox {
