@@ -116,17 +116,16 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_err *e)
 				dist2 += (cam->o[a] - whi[a]) * (cam->o[a] - whi[a]);
 		}
 		for (i = 0; i < 8; i++) {
-			double q[3], w[3], px, py, dep;
+			double q[3], w[3], px = 0, py = 0, dep = INFINITY;
+			int in;
 
 			for (a = 0; a < 3; a++)
 				q[a] = i >> a & 1 ? ihi[a] : ilo[a];
 			vx_index_to_world(g, q, w);
-			dep = (w[0] - cam->o[0]) * cam->fwd[0] + (w[1] -
-			    cam->o[1]) * cam->fwd[1] + (w[2] - cam->o[2]) *
-			    cam->fwd[2];
+			/* the depth is set for points behind the eye too */
+			in = vx_camera_project(cam, w, &px, &py, &dep);
 			depth = dep < depth ? dep : depth;
-			if (!front || !vx_camera_project(cam, w, &px, &py,
-			    &dep) || !isfinite(px) || !isfinite(py))
+			if (!in || !isfinite(px) || !isfinite(py))
 				front = 0;
 			else {
 				lo[0] = px < lo[0] ? px : lo[0];

@@ -98,7 +98,8 @@ void vx_camera_ray(const vx_camera *c, double px, double py, double o[3],
 
 /* vx_camera_project: the image point (px, py) where world point p appears,
  * and its depth along the forward axis from the eye.  Returns 1 if the point
- * is in front of the eye (depth > 0), else 0 (then px, py are not set).
+ * is in front of the eye (depth > 0), else 0 (then px, py are not set; the
+ * depth is, either way).
  * Inverse of vx_camera_ray for points on the ray. */
 int vx_camera_project(const vx_camera *c, const double p[3], double *px,
     double *py, double *depth);
