@@ -925,7 +925,7 @@ vx_macro_cell_brackets(const vx_macro *m, int l, int64_t b,
  * sets it up (the same crossing-time function, so the same times). */
 double
 vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *bx, size_t nbox,
-    const double o[3], const double d[3])
+    const double o[3], const double d[3], const int32_t q[2])
 {
 	double best = INFINITY;
 	size_t k;
@@ -936,6 +936,10 @@ vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *bx, size_t nbox,
 		return INFINITY;
 	for (k = 0; k < nbox && !(bx[k].lb > best); k++) {
 		double tin = -INFINITY, tout = INFINITY;
+
+		if (q != NULL && (q[0] < bx[k].fp[0] || q[0] > bx[k].fp[2] ||
+		    q[1] < bx[k].fp[1] || q[1] > bx[k].fp[3]))
+			continue;
 
 		for (a = 0; a < 3; a++) {
 			int64_t lo = bx[k].lo[a], hi = bx[k].hi[a];
@@ -1088,6 +1092,70 @@ mask_get(vx_cellmask *k, const vx_macro *m, const vx_grid *g, int64_t b)
 	mask_block(m, g, b, k->vals, k->nvals, k->bits + k->slot[b]);
 	atomic_store_explicit(&k->state[b], 2, memory_order_release);
 	return k->bits + k->slot[b];
+}
+
+/* row_bits: n <= 64 bits of array v from bit position p */
+static inline uint64_t
+row_bits(const uint64_t *v, int64_t p, int n)
+{
+	int sh = (int)(p & 63);
+	uint64_t r = v[p >> 6] >> sh;
+
+	if (sh + n > 64)
+		r |= v[(p >> 6) + 1] << (64 - sh);
+	return n >= 64 ? r : r & (((uint64_t)1 << n) - 1);
+}
+
+size_t
+vx_cellmask_boxes(vx_cellmask *k, int64_t b, int sub, vx_cellbox *out)
+{
+	const vx_macro *m = k->m;
+	const uint64_t *bits;
+	const int64_t *w;
+	int64_t lo[3], hi[3], nl[3], jy, jz, j, y, z;
+	uint64_t full;
+	size_t n = 0;
+
+	if (!k->ready)
+		return 0;
+	if (k->slot[b] < 0)
+		return 0;
+	vx_macro_cell_box(m, 1, b, lo, hi);
+	if (sub < 1 || (bits = mask_get(k, m, k->g, b)) == NULL) {
+		memcpy(out[0].lo, lo, sizeof lo);
+		memcpy(out[0].hi, hi, sizeof hi);
+		return 1;
+	}
+	w = m->width[1];
+	for (int a = 0; a < 3; a++)
+		nl[a] = hi[a] - lo[a];
+	full = sub < 64 ? ((uint64_t)1 << sub) - 1 : ~(uint64_t)0;
+	/* per row of blocks along x: the OR of its rows of leaf bits, then
+	 * each block's sub bits of it (a row is at most 63 leaves) */
+	for (jz = 0; jz < nl[2]; jz += sub)
+		for (jy = 0; jy < nl[1]; jy += sub) {
+			uint64_t r = 0;
+
+			for (z = jz; z < jz + sub && z < nl[2]; z++)
+				for (y = jy; y < jy + sub && y < nl[1]; y++)
+					r |= row_bits(bits, w[0] * (y + w[1] * z),
+					    (int)nl[0]);
+			for (j = 0; r != 0 && j < nl[0]; j += sub) {
+				if ((r >> j & full) == 0)
+					continue;
+				out[n].lo[0] = lo[0] + j;
+				out[n].lo[1] = lo[1] + jy;
+				out[n].lo[2] = lo[2] + jz;
+				out[n].hi[0] = j + sub < nl[0] ? lo[0] + j + sub :
+				    hi[0];
+				out[n].hi[1] = jy + sub < nl[1] ? lo[1] + jy +
+				    sub : hi[1];
+				out[n].hi[2] = jz + sub < nl[2] ? lo[2] + jz +
+				    sub : hi[2];
+				n++;
+			}
+		}
+	return n;
 }
 
 /* leaf_bits: the mask bits of level-1 cell c1 (NULL: none), the index li

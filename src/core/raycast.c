@@ -33,16 +33,19 @@ typedef struct rc_shared {
 	int niso;
 	int composite;
 	double tex_lo[VX_SCENE_MAX_SURFACES], tex_hi[VX_SCENE_MAX_SURFACES];
-	/* binning: the level-1 macrocells that bracket an isovalue, listed
-	 * per bin of BIN x BIN pixels whose primary rays may cross them, by
-	 * a lower bound of their entry time (bin k: binlist[binoff[k] ..
-	 * binoff[k + 1])); NULL: off */
+	/* binning: boxes holding every cell that brackets an isovalue
+	 * (bins_build), listed per bin of BIN x BIN pixels whose primary
+	 * rays may cross them, by a lower bound of their entry time (bin k:
+	 * binlist[binoff[k] .. binoff[k + 1])); NULL: off */
 	int nbx, nby;
+	int bin_block;                /* SUB, or 0: whole macrocells */
+	int64_t bin_boxes;
 	int64_t *binoff;
 	vx_cellbox *binlist;
 } rc_shared;
 
 #define BIN 8
+#define SUB VX_RAYCAST_BLOCK   /* binned blocks of SUB^3 leaves */
 
 /* What each thread owns: on cache lines of its own (the counters are
  * written per cell; neighbours sharing a line would slow both threads). */
@@ -53,163 +56,299 @@ typedef struct rc_local {
 	uint64_t cyc_total, cyc_shade, cyc_shadow;
 } rc_local;
 
+/* box_sort: bx[0..n) in order of lb, ties in their given order (a stable
+ * radix sort of lb's bits made monotone, 8 bits a pass, passes over a byte
+ * all keys share skipped).  0, or VX_ENOMEM. */
 static int
-box_cmp(const void *a, const void *b)
+box_sort(vx_cellbox *bx, int64_t n)
 {
-	const vx_cellbox *x = a, *y = b;
+	uint64_t *key = malloc((size_t)(n > 0 ? n : 1) * 2 * sizeof *key);
+	int64_t *ix = malloc((size_t)(n > 0 ? n : 1) * 2 * sizeof *ix);
+	vx_cellbox *out = malloc((size_t)(n > 0 ? n : 1) * sizeof *out);
+	uint64_t *k0 = key, *k1 = key + n;
+	int64_t *i0 = ix, *i1 = ix + n, i;
 
-	if (x->lb != y->lb)
-		return x->lb < y->lb ? -1 : 1;
-	for (int k = 0; k < 3; k++)
-		if (x->lo[k] != y->lo[k])
-			return x->lo[k] < y->lo[k] ? -1 : 1;
+	if (key == NULL || ix == NULL || out == NULL) {
+		free(key);
+		free(ix);
+		free(out);
+		return VX_ENOMEM;
+	}
+	for (i = 0; i < n; i++) {
+		uint64_t u;
+
+		memcpy(&u, &bx[i].lb, sizeof u);
+		/* negative: all bits flipped; else the sign bit set */
+		k0[i] = u >> 63 ? ~u : u | (uint64_t)1 << 63;
+		i0[i] = i;
+	}
+	for (int sh = 0; sh < 64; sh += 8) {
+		int64_t cnt[257] = { 0 };
+		uint64_t *kt;
+		int64_t *it;
+
+		for (i = 0; i < n; i++)
+			cnt[(k0[i] >> sh & 255) + 1]++;
+		if (n == 0 || cnt[(k0[0] >> sh & 255) + 1] == n)
+			continue;
+		for (i = 0; i < 256; i++)
+			cnt[i + 1] += cnt[i];
+		for (i = 0; i < n; i++) {
+			int64_t p = cnt[k0[i] >> sh & 255]++;
+
+			k1[p] = k0[i];
+			i1[p] = i0[i];
+		}
+		kt = k0, k0 = k1, k1 = kt;
+		it = i0, i0 = i1, i1 = it;
+	}
+	for (i = 0; i < n; i++)
+		out[i] = bx[i0[i]];
+	memcpy(bx, out, (size_t)n * sizeof *bx);
+	free(key);
+	free(ix);
+	free(out);
 	return 0;
 }
 
-/* bins_build: S->binoff / binlist for the level-1 macrocells that bracket
- * an isovalue: each is listed in the bins its projected box, widened by two
- * pixels, overlaps (the whole image when a corner is not in front of the
- * eye), with a lower bound of a primary ray's entry time (t is world
- * distance along the unit ray: from the eye to the box, or the box's least
- * depth for an orthographic camera; lowered by far more than rounding), and
- * each bin is sorted by it.  Conservative: a primary ray that enters such a
- * macrocell lies in one of its bins.  More than 8 entries a pixel: no bins
- * (S->binoff NULL; the rays walk from the eye).  Returns 0, or VX_ENOMEM. */
+/* box_place: bx's lb (t is world distance along the unit ray: from the
+ * eye to the box, or the box's least depth for an orthographic camera;
+ * lowered by far more than rounding) and its footprint, the pixels its
+ * projection covers widened by two (the whole image when a corner is not
+ * in front of the eye).  0: the box is off the image. */
 static int
-bins_build(rc_shared *S, const vx_camera *cam, vx_err *e)
+box_place(const rc_shared *S, const vx_camera *cam, vx_cellbox *bx)
 {
-	const vx_macro *m = S->tr.m;
-	const vx_grid *g = S->g;
-	int64_t nb = m->dims[1][0] * m->dims[1][1] * m->dims[1][2], b;
-	int64_t nbin, *cur = NULL;
-	int (*rect)[4] = NULL;
-	vx_cellbox *box = NULL;
-	int pass, i;
+	double lo[2] = { INFINITY, INFINITY }, hi[2] = { -INFINITY,
+	    -INFINITY }, dist2 = 0, depth = INFINITY;
+	double vz[3][2], va[3][2], vb[3][2];
+	int front = 1, persp = cam->projection != VX_ORTHOGRAPHIC, a, i;
 
-	S->nbx = (cam->w + BIN - 1) / BIN;
-	S->nby = (cam->h + BIN - 1) / BIN;
-	nbin = (int64_t)S->nbx * S->nby;
-	if ((S->binoff = calloc((size_t)nbin + 1, sizeof *S->binoff)) == NULL ||
-	    (rect = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *rect)) == NULL ||
-	    (box = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *box)) == NULL)
-		goto nomem;
-	for (b = 0; b < nb; b++) {
-		double lo[2] = { INFINITY, INFINITY }, hi[2] = { -INFINITY,
-		    -INFINITY }, ilo[3], ihi[3], wlo[3], whi[3], dist2 = 0,
-		    depth = INFINITY;
-		int front = 1, a;
+	/* world = origin + index * spacing, axis by axis: a corner's
+	 * camera coordinates are sums of one term per axis (vx_camera_project's
+	 * dot products, in another order: the footprint's margin and lb's are
+	 * far above the rounding) */
+	for (a = 0; a < 3; a++) {
+		double w0 = S->g->origin[a] + (double)bx->lo[a] *
+		    S->g->spacing[a] - cam->o[a];
+		double w1 = S->g->origin[a] + (double)bx->hi[a] *
+		    S->g->spacing[a] - cam->o[a];
 
-		rect[b][0] = -1;
-		if (!vx_macro_cell_brackets(m, 1, b, S->iso, S->niso))
+		if (w0 > 0)
+			dist2 += w0 * w0;
+		else if (w1 < 0)
+			dist2 += w1 * w1;
+		vz[a][0] = w0 * cam->fwd[a];
+		vz[a][1] = w1 * cam->fwd[a];
+		va[a][0] = w0 * cam->right[a];
+		va[a][1] = w1 * cam->right[a];
+		vb[a][0] = w0 * cam->upv[a];
+		vb[a][1] = w1 * cam->upv[a];
+	}
+	for (i = 0; i < 8; i++) {
+		int i0 = i & 1, i1 = i >> 1 & 1, i2 = i >> 2 & 1;
+		double z = vz[0][i0] + vz[1][i1] + vz[2][i2];
+		double u = va[0][i0] + va[1][i1] + va[2][i2];
+		double v = vb[0][i0] + vb[1][i1] + vb[2][i2];
+		double px, py;
+
+		depth = z < depth ? z : depth;
+		if (!(z > 0)) {
+			front = 0;
 			continue;
-		vx_macro_cell_box(m, 1, b, box[b].lo, box[b].hi);
-		for (a = 0; a < 3; a++) {
-			ilo[a] = (double)box[b].lo[a];
-			ihi[a] = (double)box[b].hi[a];
 		}
-		vx_index_to_world(g, ilo, wlo);
-		vx_index_to_world(g, ihi, whi);
-		for (a = 0; a < 3; a++) {
-			if (cam->o[a] < wlo[a])
-				dist2 += (wlo[a] - cam->o[a]) * (wlo[a] - cam->o[a]);
-			else if (cam->o[a] > whi[a])
-				dist2 += (cam->o[a] - whi[a]) * (cam->o[a] - whi[a]);
+		if (persp) {
+			u /= z;
+			v /= z;
 		}
-		for (i = 0; i < 8; i++) {
-			double q[3], w[3], px = 0, py = 0, dep = INFINITY;
-			int in;
-
-			for (a = 0; a < 3; a++)
-				q[a] = i >> a & 1 ? ihi[a] : ilo[a];
-			vx_index_to_world(g, q, w);
-			/* the depth is set for points behind the eye too */
-			in = vx_camera_project(cam, w, &px, &py, &dep);
-			depth = dep < depth ? dep : depth;
-			if (!in || !isfinite(px) || !isfinite(py))
-				front = 0;
-			else {
-				lo[0] = px < lo[0] ? px : lo[0];
-				hi[0] = px > hi[0] ? px : hi[0];
-				lo[1] = py < lo[1] ? py : lo[1];
-				hi[1] = py > hi[1] ? py : hi[1];
-			}
-		}
-		box[b].lb = cam->projection == VX_ORTHOGRAPHIC ? depth :
-		    sqrt(dist2);
-		box[b].lb -= 0x1p-30 * (fabs(box[b].lb) + 1);
-		if (!front) {
-			rect[b][0] = 0;
-			rect[b][1] = 0;
-			rect[b][2] = S->nbx - 1;
-			rect[b][3] = S->nby - 1;
-		} else {
-			double x0 = floor(lo[0]) - 2, x1 = ceil(hi[0]) + 2;
-			double y0 = floor(lo[1]) - 2, y1 = ceil(hi[1]) + 2;
-
-			if (x1 < 0 || y1 < 0 || x0 > cam->w || y0 > cam->h)
-				continue;   /* off the image */
-			x0 = x0 < 0 ? 0 : x0;
-			y0 = y0 < 0 ? 0 : y0;
-			x1 = x1 > cam->w - 1 ? cam->w - 1 : x1;
-			y1 = y1 > cam->h - 1 ? cam->h - 1 : y1;
-			rect[b][0] = (int)x0 / BIN;
-			rect[b][1] = (int)y0 / BIN;
-			rect[b][2] = (int)x1 / BIN;
-			rect[b][3] = (int)y1 / BIN;
+		px = 0.5 * cam->w * (1 + u / cam->half_w);
+		py = 0.5 * cam->h * (1 - v / cam->half_h);
+		if (!isfinite(px) || !isfinite(py))
+			front = 0;
+		else {
+			lo[0] = px < lo[0] ? px : lo[0];
+			hi[0] = px > hi[0] ? px : hi[0];
+			lo[1] = py < lo[1] ? py : lo[1];
+			hi[1] = py > hi[1] ? py : hi[1];
 		}
 	}
-	/* two passes: count per bin, then fill; then sort each bin */
+	bx->lb = persp ? sqrt(dist2) : depth;
+	bx->lb -= 0x1p-30 * (fabs(bx->lb) + 1);
+	if (!front) {
+		bx->fp[0] = 0;
+		bx->fp[1] = 0;
+		bx->fp[2] = cam->w - 1;
+		bx->fp[3] = cam->h - 1;
+	} else {
+		double x0 = floor(lo[0]) - 2, x1 = ceil(hi[0]) + 2;
+		double y0 = floor(lo[1]) - 2, y1 = ceil(hi[1]) + 2;
+
+		if (x1 < 0 || y1 < 0 || x0 > cam->w || y0 > cam->h)
+			return 0;
+		bx->fp[0] = x0 < 0 ? 0 : (int32_t)x0;
+		bx->fp[1] = y0 < 0 ? 0 : (int32_t)y0;
+		bx->fp[2] = x1 > cam->w - 1 ? cam->w - 1 : (int32_t)x1;
+		bx->fp[3] = y1 > cam->h - 1 ? cam->h - 1 : (int32_t)y1;
+	}
+	return 1;
+}
+
+/* bins_fill: the bins of boxes bx[0..n) (placed, sorted by lb): each box
+ * in every bin its footprint overlaps, in order.  1: more entries than
+ * the bound (no bins made), 0 done, or VX_ENOMEM. */
+static int
+bins_fill(rc_shared *S, const vx_camera *cam, const vx_cellbox *bx,
+    int64_t n, vx_err *e)
+{
+	int64_t nbin = (int64_t)S->nbx * S->nby, i, b;
+	int pass;
+
+	memset(S->binoff, 0, (size_t)(nbin + 1) * sizeof *S->binoff);
 	for (pass = 0; pass < 2; pass++) {
-		if (pass == 1) {
-			for (i = 0; i < nbin; i++)
-				S->binoff[i + 1] += S->binoff[i];
-			/* more entries than a few per pixel (an eye among the
-			 * macrocells: boxes spanning the image): the lists
-			 * would cost more than they save, and their memory is
-			 * bounded by the image, not by the macrocells */
-			if (S->binoff[nbin] > 8 * (int64_t)cam->w * cam->h +
-			    65536) {
-				free(S->binoff);
-				S->binoff = NULL;
-				free(rect);
-				free(box);
-				return 0;
-			}
-			if ((S->binlist = malloc((size_t)(S->binoff[nbin] > 0 ?
-			    S->binoff[nbin] : 1) * sizeof *S->binlist)) == NULL ||
-			    (cur = malloc((size_t)nbin * sizeof *cur)) == NULL)
-				goto nomem;
-			memcpy(cur, S->binoff, (size_t)nbin * sizeof *cur);
-		}
-		for (b = 0; b < nb; b++) {
-			if (rect[b][0] < 0)
-				continue;
-			for (int by = rect[b][1]; by <= rect[b][3]; by++)
-				for (int bx = rect[b][0]; bx <= rect[b][2]; bx++) {
-					int64_t k = (int64_t)by * S->nbx + bx;
+		for (b = 0; b < n; b++)
+			for (int by = bx[b].fp[1] / BIN; by <= bx[b].fp[3] / BIN;
+			    by++)
+				for (int x = bx[b].fp[0] / BIN; x <= bx[b].fp[2] /
+				    BIN; x++) {
+					int64_t k = (int64_t)by * S->nbx + x;
 
 					if (pass == 0)
 						S->binoff[k + 1]++;
 					else
-						S->binlist[cur[k]++] = box[b];
+						S->binlist[S->binoff[k]++] = bx[b];
 				}
-		}
+		if (pass == 1)
+			break;
+		for (i = 0; i < nbin; i++)
+			S->binoff[i + 1] += S->binoff[i];
+		/* more entries than a few per pixel (an eye among the
+		 * macrocells: boxes spanning the image): the lists would cost
+		 * more than they save, and their memory is bounded by the
+		 * image, not by the volume */
+		if (S->binoff[nbin] > 8 * (int64_t)cam->w * cam->h + 65536)
+			return 1;
+		if ((S->binlist = malloc((size_t)(S->binoff[nbin] > 0 ?
+		    S->binoff[nbin] : 1) * sizeof *S->binlist)) == NULL)
+			return vx_err_set(e, VX_ENOMEM, "raycast: out of memory "
+			    "(bins)");
+		/* binoff[k], bin k's start, is its cursor as it fills */
 	}
-	for (i = 0; i < nbin; i++)
-		qsort(S->binlist + S->binoff[i], (size_t)(S->binoff[i + 1] -
-		    S->binoff[i]), sizeof *S->binlist, box_cmp);
-	free(cur);
-	free(rect);
-	free(box);
+	/* binoff[k] is now bin k's end, the next one's start: shift back */
+	memmove(S->binoff + 1, S->binoff, (size_t)nbin * sizeof *S->binoff);
+	S->binoff[0] = 0;
 	return 0;
-nomem:
-	free(cur);
-	free(rect);
+}
+
+/* bins_build: S->binoff / binlist: the primary rays' bins of BIN x BIN
+ * pixels, each listing, by a lower bound of their entry time, the boxes a
+ * ray of the bin may enter among those that hold every leaf that brackets
+ * an isovalue: with a cell mask, the blocks of SUB^3 leaves of the
+ * bracketing level-1 macrocells that hold a bracketing leaf (building the
+ * bits of those in view), else those macrocells whole (also when the
+ * blocks' lists would pass the bound of bins_fill).  Conservative: a
+ * primary ray that enters such a box lies in its footprint.  More than
+ * the bound with whole macrocells too: no bins (S->binoff NULL; the rays
+ * walk from the eye).  Returns 0, or VX_ENOMEM. */
+static int
+bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
+{
+	const vx_macro *m = S->tr.m;
+	int64_t nb = m->dims[1][0] * m->dims[1][1] * m->dims[1][2], b, n;
+	int64_t per = 1, nbr = 0, *first = NULL, *cnt = NULL;
+	vx_cellbox *box = NULL, *all = NULL;
+	int sub = mask != NULL && mask->ready ? SUB : 0, rc = 0, nthr, a;
+
+#ifdef _OPENMP
+	nthr = S->o->nthreads > 0 ? S->o->nthreads : omp_get_num_procs();
+#else
+	nthr = 1;
+#endif
+	for (a = 0; a < 3 && sub; a++)
+		per *= (m->width[1][a] + sub - 1) / sub;
+	S->nbx = (cam->w + BIN - 1) / BIN;
+	S->nby = (cam->h + BIN - 1) / BIN;
+	if ((S->binoff = calloc((size_t)S->nbx * S->nby + 1,
+	    sizeof *S->binoff)) == NULL ||
+	    (first = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *first)) == NULL)
+		goto nomem;
+	/* the bracketing macrocells, each with room for its boxes */
+	for (b = 0; b < nb; b++)
+		first[b] = vx_macro_cell_brackets(m, 1, b, S->iso, S->niso) ?
+		    nbr++ : -1;
+	if ((cnt = calloc((size_t)(nbr > 0 ? nbr : 1), sizeof *cnt)) == NULL ||
+	    (all = malloc((size_t)(nbr > 0 ? nbr : 1) * (size_t)per *
+	    sizeof *all)) == NULL)
+		goto nomem;
+	for (;;) {
+		/* each bracketing macrocell in view: its boxes (its blocks
+		 * that hold a bracketing leaf, building its bits, or itself),
+		 * placed; in parallel, gathered in macrocell order */
+#ifdef _OPENMP
+#pragma omp parallel for num_threads(nthr) schedule(dynamic, 8)
+#endif
+		for (b = 0; b < nb; b++) {
+			vx_cellbox whole, *out;
+			size_t k, nk, nkeep = 0;
+
+			if (first[b] < 0)
+				continue;
+			out = all + first[b] * per;
+			cnt[first[b]] = 0;
+			vx_macro_cell_box(m, 1, b, whole.lo, whole.hi);
+			if (!box_place(S, cam, &whole))
+				continue;
+			nk = sub ? vx_cellmask_boxes(mask, b, sub, out) : 0;
+			if (nk == 0 && !sub) {
+				out[0] = whole;
+				nkeep = 1;
+			} else if (nk == 1 && memcmp(out[0].lo, whole.lo,
+			    sizeof whole.lo) == 0 && memcmp(out[0].hi, whole.hi,
+			    sizeof whole.hi) == 0) {
+				out[0] = whole;
+				nkeep = 1;
+			} else
+				for (k = 0; k < nk; k++)
+					if (box_place(S, cam, &out[k]))
+						out[nkeep++] = out[k];
+			cnt[first[b]] = (int64_t)nkeep;
+		}
+		for (n = 0, b = 0; b < nbr; b++)
+			n += cnt[b];
+		free(box);
+		if ((box = malloc((size_t)(n > 0 ? n : 1) * sizeof *box)) ==
+		    NULL)
+			goto nomem;
+		for (n = 0, b = 0; b < nbr; b++) {
+			memcpy(box + n, all + b * per, (size_t)cnt[b] *
+			    sizeof *box);
+			n += cnt[b];
+		}
+		if (box_sort(box, n) != 0)
+			goto nomem;
+		S->bin_block = sub;
+		S->bin_boxes = n;
+		if ((rc = bins_fill(S, cam, box, n, e)) != 1 || !sub)
+			break;
+		/* too many blocks: whole macrocells */
+		sub = 0;
+		per = 1;
+	}
 	free(box);
+	free(all);
+	free(cnt);
+	free(first);
+	if (rc != 0) {
+		free(S->binoff);
+		S->binoff = NULL;
+	}
+	return rc == 1 ? 0 : rc;
+nomem:
+	free(box);
+	free(all);
+	free(cnt);
+	free(first);
 	free(S->binoff);
-	free(S->binlist);
 	S->binoff = NULL;
-	S->binlist = NULL;
 	return vx_err_set(e, VX_ENOMEM, "raycast: out of memory (bins)");
 }
 
@@ -566,6 +705,7 @@ pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
 			 * macrocell the ray enters (none: nothing to walk); the
 			 * walk visits the same leaves (vx_macro_boxes_entry) */
 			int bx = (int)px / BIN, by = (int)py / BIN;
+			const int32_t q[2] = { (int32_t)px, (int32_t)py };
 			int64_t k, t;
 			double te;
 
@@ -574,7 +714,7 @@ pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
 			k = (int64_t)by * S->nbx + bx;
 			t = S->binoff[k];
 			te = vx_macro_boxes_entry(S->tr.m, S->binlist + t,
-			    (size_t)(S->binoff[k + 1] - t), oi, di);
+			    (size_t)(S->binoff[k + 1] - t), oi, di, q);
 			if (te == INFINITY)
 				walk = 0;
 			else if (te > 0)
@@ -612,6 +752,7 @@ add_local(vx_raycast_stats *st, const rc_local *L, double *cyc)
 	st->binned += L->binned;
 	for (l = 0; l <= VX_MACRO_MAXLEV; l++)
 		st->macro[l] += L->st.trav.macro[l] + L->tst.trav.macro[l];
+	st->culled += L->st.trav.culled;
 	cyc[0] += (double)L->cyc_total;
 	cyc[1] += (double)(L->st.cyc_isect + L->tst.cyc_isect);
 	cyc[2] += (double)(L->cyc_shade - L->cyc_shadow);
@@ -691,12 +832,15 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	/* bins of the level-1 macrocells that bracket (a volume walked
 	 * hierarchically, one sample per pixel) */
 	if (S.mesh == NULL && !S.tr.flat && S.tr.m != NULL && S.tr.m->nlev >= 1 &&
-	    !o->no_binning && (rc = bins_build(&S, cam, e)) != 0) {
+	    !o->no_binning && (rc = bins_build(&S, cam, S.tr.mask ? mask : NULL,
+	    e)) != 0) {
 		if (mask == &own)
 			vx_cellmask_free(&own);
 		return rc;
 	}
 	st->bins = S.binoff != NULL;
+	st->bin_block = st->bins ? S.bin_block : 0;
+	st->bin_boxes = st->bins ? (uint64_t)S.bin_boxes : 0;
 	st->mask_bytes = S.tr.mask ? vx_cellmask_bytes(mask) : 0;
 	st->mask_blocks = S.tr.mask ? (uint64_t)mask->nblock : 0;
 	st->mask_set = S.tr.mask ? (uint64_t)mask->nset : 0;

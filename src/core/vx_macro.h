@@ -294,11 +294,15 @@ void vx_macro_cell_box(const vx_macro *m, int l, int64_t b, int64_t lo[3],
 int vx_macro_cell_brackets(const vx_macro *m, int l, int64_t b,
     const float *vals, int nvals);
 
-/* A box of leaves [lo, hi) per axis (a macrocell's), and lb, a lower bound
- * of the entry time of every ray it will be asked about. */
+/* A box of leaves [lo, hi) per axis (a macrocell's, or a block of its
+ * leaves), lb, a lower bound of the entry time of every ray it will be
+ * asked about, and a footprint fp = { x0, y0, x1, y1 }: a query point
+ * (qx, qy) outside [x0, x1] x [y0, y1] skips the box (raycast: the pixels
+ * whose rays may enter it). */
 typedef struct vx_cellbox {
 	double lb;
 	int64_t lo[3], hi[3];
+	int32_t fp[4];
 } vx_cellbox;
 
 /* vx_macro_boxes_entry: the earliest time the ray o + t d (leaf
@@ -307,13 +311,26 @@ typedef struct vx_cellbox {
  * crossing time of its near faces; a box whose far faces are crossed before
  * that, or beside which a ray parallel to an axis runs, is not entered; the
  * boxes from the first whose lb exceeds the earliest entry so far are not
- * looked at.  +Inf: none is entered (or the ray is not finite).  Every leaf
- * of those boxes that a walk of this ray visits is entered at or after
- * this time, so a walk started before it visits exactly the leaves a walk
- * from the segment's start does, when the boxes are those of all the
- * level-1 macrocells that bracket the values (raycast's binning). */
+ * looked at; with q non-NULL, neither are boxes whose footprint does not
+ * hold (q[0], q[1]).  +Inf: none is entered (or the ray is not finite).
+ * Every leaf of those boxes that a walk of this ray visits is entered at
+ * or after this time, so a walk started before it visits exactly the
+ * leaves a walk from the segment's start does, when every leaf that
+ * brackets the values lies in one of the boxes whose footprint holds q
+ * (raycast's binning: the level-1 macrocells that bracket, or the blocks
+ * of their leaves that hold a bracketing leaf, vx_cellmask_boxes). */
 double vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *bx,
-    size_t nbox, const double o[3], const double d[3]);
+    size_t nbox, const double o[3], const double d[3], const int32_t q[2]);
+
+/* vx_cellmask_boxes: the boxes (lo, hi only) of level-1 macrocell b's
+ * blocks of sub x sub x sub leaves (from its low corner; the last ones
+ * along an axis may be shorter) that hold a leaf whose bit is set, into
+ * out (room for one per block), building b's bits if no one has.  Returns
+ * their number: 0 when b brackets none of the values or k is not ready;
+ * 1, b's whole box, when sub < 1 or another thread is building b's bits
+ * (walks on k may run in other threads). */
+size_t vx_cellmask_boxes(vx_cellmask *k, int64_t b, int sub,
+    vx_cellbox *out);
 
 /* ---- stream form: the MCEL chunk (formats/macrocell.md) ---- */
 

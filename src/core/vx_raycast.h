@@ -53,6 +53,11 @@ typedef struct vx_raycast_opts {
 	                            change */
 } vx_raycast_opts;
 
+/* Primary rays are binned with the blocks of VX_RAYCAST_BLOCK^3 leaves that
+ * hold a bracketing leaf (with a cell mask; else whole level-1 macrocells). */
+#define VX_RAYCAST_BLOCK 4
+#define VX_RAYCAST_BLOCK_STR "4x4x4"
+
 typedef struct vx_raycast_stats {
 	uint64_t primary, shadow;        /* rays */
 	uint64_t cells, roots, hits;     /* cell kernel work, all rays (meshes:
@@ -63,6 +68,8 @@ typedef struct vx_raycast_stats {
 	                                    their entries scanned */
 	int mesh;                        /* 1: the source was a mesh */
 	uint64_t macro[VX_MACRO_MAXLEV + 1];
+	uint64_t culled;                 /* volumes: leaves stepped through
+	                                    without a visit (not bracketing) */
 	uint64_t nonfinite;              /* cells skipped for NaN/Inf corners */
 	uint64_t shaded;                 /* surface points shaded */
 	uint64_t covered;                /* pixels with a hit */
@@ -70,8 +77,13 @@ typedef struct vx_raycast_stats {
 	                                    cell mask's build included) */
 	uint64_t mask_bytes;             /* its memory, 0: none */
 	int bins;                /* 1: primary rays were binned */
-	uint64_t binned;         /* primary rays that entered no bracketing
-	                            level-1 macrocell: not walked */
+	int bin_block;           /* the binned boxes: blocks of bin_block^3
+	                            leaves holding a bracketing leaf, or 0:
+	                            whole level-1 macrocells */
+	uint64_t bin_boxes;      /* boxes binned (the bins' entries are
+	                            more: a box is in each bin it covers) */
+	uint64_t binned;         /* primary rays that entered no binned box:
+	                            not walked */
 	uint64_t mask_blocks, mask_set, mask_built;   /* level-1 macrocells,
 	                                    those bracketing (masked), and
 	                                    those whose bits rays needed */

@@ -178,14 +178,23 @@ print_stats(const vx_raycast_stats *st, const vx_macro *m, int w, int h,
 		    (unsigned long long)st->nonfinite);
 	if (!st->mesh && st->mask_bytes > 0)
 		fprintf(stderr, "raycast: cell mask: %llu of %llu level-1 "
-		    "macrocells bracket, %llu of them entered and masked; "
+		    "macrocells bracket, %llu of them masked (bits built); "
 		    "%.1f KiB\n", (unsigned long long)st->mask_set,
 		    (unsigned long long)st->mask_blocks,
 		    (unsigned long long)st->mask_built,
 		    (double)st->mask_bytes / 1024);
-	if (!st->mesh && st->bins)
-		fprintf(stderr, "raycast: binning: %llu of %llu primary rays "
-		    "enter no bracketing level-1 macrocell (not walked)\n",
+	if (!st->mesh && st->bins && st->bin_block)
+		fprintf(stderr, "raycast: binning: %llu boxes (blocks of "
+		    "%dx%dx%d leaves holding a bracketing leaf); %llu of %llu "
+		    "primary rays enter none (not walked)\n",
+		    (unsigned long long)st->bin_boxes, st->bin_block,
+		    st->bin_block, st->bin_block,
+		    (unsigned long long)st->binned,
+		    (unsigned long long)st->primary);
+	else if (!st->mesh && st->bins)
+		fprintf(stderr, "raycast: binning: %llu boxes (bracketing "
+		    "level-1 macrocells); %llu of %llu primary rays enter none "
+		    "(not walked)\n", (unsigned long long)st->bin_boxes,
 		    (unsigned long long)st->binned,
 		    (unsigned long long)st->primary);
 	if (m != NULL) {
@@ -193,7 +202,8 @@ print_stats(const vx_raycast_stats *st, const vx_macro *m, int w, int h,
 		for (l = m->nlev; l >= 1; l--)
 			fprintf(stderr, " level %d: %llu", l,
 			    (unsigned long long)st->macro[l]);
-		fputc('\n', stderr);
+		fprintf(stderr, "; leaves stepped through without a visit: "
+		    "%llu\n", (unsigned long long)st->culled);
 	}
 	fprintf(stderr, "raycast: time: traversal %.0f%%, %s %.0f%%, "
 	    "shading %.0f%%\n", 100 * st->share_traverse,
@@ -281,16 +291,26 @@ main(int argc, char **argv)
 			    vx_cell_solver_name(o.solver), o.flat ?
 			    "flat traversal" : o.nomask ?
 			    "hierarchical traversal (no cell mask)" :
+			    o.nobin ? "hierarchical traversal with a cell mask "
+			    "(a bit per cell of the macrocells bracketing the "
+			    "isovalues, built as rays first enter them)" :
 			    "hierarchical traversal with a cell mask (a bit "
 			    "per cell of the macrocells bracketing the "
-			    "isovalues, built as rays first enter them)", nthr,
+			    "isovalues, built before the frame for those in "
+			    "view, as rays first enter the others)", nthr,
 			    nthr == 1 ? "" : "s");
 		if (!is_mesh && !o.flat)
-			fprintf(stderr, "raycast: primary rays %s\n", o.nobin ?
+			fprintf(stderr, "raycast: primary rays %s%s\n", o.nobin ?
 			    "walk from the eye (--no-binning)" : "start just "
-			    "before the first level-1 macrocell bracketing an "
-			    "isovalue that they enter (binned per 8x8 pixels); "
-			    "a ray that enters none is not walked");
+			    "before the first box they enter (binned per 8x8 "
+			    "pixels) of ", o.nobin ? "" : o.nomask ? "the level-1 "
+			    "macrocells bracketing an isovalue; a ray that "
+			    "enters none is not walked" : "the blocks of "
+			    VX_RAYCAST_BLOCK_STR " leaves that hold a leaf "
+			    "bracketing an isovalue (the cell mask's bits of "
+			    "the bracketing macrocells in view are built for "
+			    "this before the frame); a ray that enters none is "
+			    "not walked");
 		free(buf);
 	}
 	if (plan.nsurface_on == 0)

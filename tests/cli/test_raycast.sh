@@ -52,7 +52,7 @@ if [ -x "$VX_BIN/brick" ] && [ -x "$VX_BIN/macrocell" ]; then
 	check_eq "--no-cellmask: the same picture" "$(px pngsame "$T/d.png" "$T/e.png")" same
 	check "cell mask: the same depths" cmp -s "$T/dn.pfm" "$T/dm.pfm"
 	check_eq "cell mask: the same picture as the flat walk" "$(px pngsame "$T/a.png" "$T/e.png")" same
-	check "--stats reports the cell mask" grep -q "^raycast: cell mask: [1-9][0-9]* of [0-9]* level-1 macrocells bracket, [1-9][0-9]* of them entered" "$T/e.err"
+	check "--stats reports the cell mask" grep -q "^raycast: cell mask: [1-9][0-9]* of [0-9]* level-1 macrocells bracket, [1-9][0-9]* of them masked" "$T/e.err"
 	check "--explain names the cell mask" sh -c "raycast --iso 0.5 -n '$T/sphb.vx' 2>&1 | grep -q 'with a cell mask'"
 	check "--no-cellmask --explain says it is off" sh -c "raycast --iso 0.5 -n --no-cellmask '$T/sphb.vx' 2>&1 | grep -q 'no cell mask'"
 else
@@ -127,8 +127,10 @@ check_eq "mip -z 0: raw images" "$(enc "$T/m0.vx")" "raw"
 check_eq "mip -z 0 = default, decoded" "$(px same "$T/m.vx" "$T/m0.vx")" same
 expect_fail "raycast -z 10" 64 "-z" raycast -z 10 --hdr "$T/sph.vx"
 
-# 11. binning: primary rays start just before the first bracketing
-# level-1 macrocell they enter, and rays that enter none are not walked:
+# 11. binning: primary rays start just before the first box they enter
+# among the blocks of 4^3 leaves holding a bracketing leaf (with the cell
+# mask; else the bracketing level-1 macrocells), and rays that enter none
+# are not walked:
 # the same images, bit for bit, as rays walked from the eye
 # (--no-binning), over cameras with hard cases: the eye inside the volume
 # and inside a bracketing macrocell, orthographic views along an axis
@@ -165,7 +167,29 @@ raycast --iso 0.5 --aa 2 --size 33x33 --set "$cam" --hdr --no-binning \
 check_eq "binning = no binning: 2x2 samples" "$(px same "$T/aa1.vx" "$T/aa2.vx")" same
 raycast --iso 0.5 --size 65x65 --set "$cam" --stats "$T/sph.vx" 2>"$T/bst" >/dev/null
 check "binning: --stats counts the rays not walked" \
-    grep -q 'binning: [1-9][0-9]* of 4225 primary rays enter no' "$T/bst"
+    grep -q 'binning: [1-9][0-9]* boxes (blocks of 4x4x4 leaves holding a bracketing leaf); [1-9][0-9]* of 4225 primary rays enter none' "$T/bst"
+# without a cell mask, whole level-1 macrocells: the same picture
+raycast --iso 0.5 --size 65x65 --set "$cam" --stats --no-cellmask --hdr \
+    "$T/sph.vx" 2>"$T/bst3" >"$T/nm1.vx"
+raycast --iso 0.5 --size 65x65 --set "$cam" --no-binning --hdr "$T/sph.vx" \
+    >"$T/nm2.vx"
+check "binning without a cell mask: level-1 macrocells" \
+    grep -q 'binning: [1-9][0-9]* boxes (bracketing level-1 macrocells); [1-9][0-9]* of 4225' "$T/bst3"
+check_eq "binning without a cell mask = no binning" \
+    "$(px same "$T/nm1.vx" "$T/nm2.vx")" same
+# the eye inside a volume of many small bracketing blocks: blocks behind
+# the eye span the image and their lists would pass 8 entries a pixel,
+# whole 16^3 macrocells do not: bins of those, the same picture and cells
+vread --synth ml --size 129 | macrocell --sizes 16x16x16,2x2x2 >"$T/ml16.vx"
+set -- --iso 0.2,0.45 --size 40x30 --set "camera perspective eye 0.1 0.05 -0.2 look 1 1 1 up 0 0 1 fov 90"
+raycast "$@" --hdr --stats "$T/ml16.vx" >"$T/fb1.vx" 2>"$T/bst4"
+raycast "$@" --hdr --stats --no-binning "$T/ml16.vx" >"$T/fb2.vx" 2>"$T/bst5"
+check "binning: too many blocks, level-1 macrocells" \
+    grep -q 'binning: [1-9][0-9]* boxes (bracketing level-1 macrocells)' "$T/bst4"
+check_eq "binning: too many blocks, the same picture" \
+    "$(px same "$T/fb1.vx" "$T/fb2.vx")" same
+check_eq "binning: too many blocks, the same cells" \
+    "$(grep 'cells visited' "$T/bst4")" "$(grep 'cells visited' "$T/bst5")"
 # an eye among 32768 one-cell macrocells: boxes behind the eye span the
 # image, the lists would pass 8 entries a pixel: no bins, the same picture
 vread --synth ml --size 33 | macrocell --sizes 1x1x1 >"$T/ml1.vx"

@@ -973,6 +973,114 @@ lb_cmp(const void *a, const void *b)
 	return x < y ? -1 : x > y ? 1 : 0;
 }
 
+/* vx_cellmask_boxes: for random volumes, macrocell sizes, values and block
+ * edges sub, the boxes of each level-1 macrocell are distinct aligned
+ * blocks of it (sub^3 leaves from its low corner, shorter at its far
+ * faces), each holding a leaf whose mask bit is set, and every set bit's
+ * leaf lies in one of them (oracle: the bits, read leaf by leaf, as the
+ * header lays them out); a macrocell that brackets nothing has none, sub
+ * 0 gives the whole macrocell, an unready mask nothing. */
+static void
+cellmask_boxes_cover_bits(void **state)
+{
+	uint64_t s = 4242;
+	int64_t nboxes = 0, partial = 0;
+
+	(void)state;
+	for (int k = 0; k < 30; k++) {
+		int64_t dims[3];
+		int sz[2][3], sub = 1 + irand(&s, 5);
+		float vals[2];
+		int nv = 1 + irand(&s, 2);
+		vx_grid g;
+		vx_macro m;
+		vx_cellmask mk;
+		vx_cellbox out[64 * 64];
+		vx_err e = { 0, "" };
+
+		for (int a = 0; a < 3; a++)
+			dims[a] = 2 + irand(&s, 25);
+		for (int a = 0; a < 3; a++) {
+			sz[0][a] = 1 + irand(&s, 9);
+			sz[1][a] = 1 + irand(&s, 3);
+		}
+		rand_grid(&g, dims, k % 3 ? VX_U8 : VX_F32, NULL,
+		    hash64(3100 + k), 0);
+		assert_int_equal(vx_macro_build(&m, &g, 2, sz, 1, &e), 0);
+		for (int q = 0; q < nv; q++)
+			vals[q] = (float)irand(&s, 200) + 0.5f;
+		vx_cellmask_init(&mk);
+		assert_int_equal(vx_cellmask_boxes(&mk, 0, sub, out), 0);
+		assert_int_equal(vx_cellmask_build(&mk, &m, &g, vals, nv, 1, 1,
+		    &e), 0);
+		for (int64_t b = 0; b < mk.nblock; b++) {
+			int64_t lo[3], hi[3];
+			size_t n = vx_cellmask_boxes(&mk, b, sub, out);
+			const int64_t *w = m.width[1];
+
+			vx_macro_cell_box(&m, 1, b, lo, hi);
+			if (mk.slot[b] < 0) {
+				assert_int_equal(n, 0);
+				continue;
+			}
+			const uint64_t *bits = mk.bits + mk.slot[b];
+
+			for (size_t i = 0; i < n; i++) {
+				int any = 0;
+
+				for (int a = 0; a < 3; a++) {
+					assert_true(out[i].lo[a] >= lo[a]);
+					assert_int_equal((out[i].lo[a] - lo[a]) % sub, 0);
+					assert_int_equal(out[i].hi[a], out[i].lo[a] +
+					    sub < hi[a] ? out[i].lo[a] + sub : hi[a]);
+					partial += out[i].hi[a] - out[i].lo[a] < sub;
+				}
+				for (size_t i2 = 0; i2 < i; i2++)
+					assert_false(memcmp(out[i].lo, out[i2].lo,
+					    sizeof out[i].lo) == 0);
+				for (int64_t z = out[i].lo[2]; z < out[i].hi[2]; z++)
+					for (int64_t y = out[i].lo[1]; y < out[i].hi[1]; y++)
+						for (int64_t x = out[i].lo[0]; x < out[i].hi[0];
+						    x++) {
+							int64_t li = (x - lo[0]) + w[0] * ((y -
+							    lo[1]) + w[1] * (z - lo[2]));
+
+							any |= (int)(bits[li >> 6] >> (li & 63) & 1);
+						}
+				assert_true(any);
+			}
+			for (int64_t z = lo[2]; z < hi[2]; z++)
+				for (int64_t y = lo[1]; y < hi[1]; y++)
+					for (int64_t x = lo[0]; x < hi[0]; x++) {
+						int64_t li = (x - lo[0]) + w[0] * ((y -
+						    lo[1]) + w[1] * (z - lo[2]));
+						int64_t p[3] = { x, y, z };
+						int in = 0;
+
+						if (!(bits[li >> 6] >> (li & 63) & 1))
+							continue;
+						for (size_t i = 0; i < n && !in; i++)
+							in = p[0] >= out[i].lo[0] &&
+							    p[0] < out[i].hi[0] &&
+							    p[1] >= out[i].lo[1] &&
+							    p[1] < out[i].hi[1] &&
+							    p[2] >= out[i].lo[2] &&
+							    p[2] < out[i].hi[2];
+						assert_true(in);
+					}
+			nboxes += (int64_t)n;
+			/* sub 0: the whole macrocell */
+			assert_int_equal(vx_cellmask_boxes(&mk, b, 0, out), 1);
+			assert_memory_equal(out[0].lo, lo, sizeof lo);
+			assert_memory_equal(out[0].hi, hi, sizeof hi);
+		}
+		vx_cellmask_free(&mk);
+		vx_macro_free(&m);
+		vx_grid_free(&g);
+	}
+	assert_true(nboxes > 500 && partial > 50);
+}
+
 /* vx_macro_boxes_entry, the ground of raycast's binning: for the boxes of
  * every level-1 macrocell that brackets the values, the walk started just
  * before the earliest entry visits exactly the leaves (same data, same
@@ -1033,6 +1141,30 @@ boxes_entry_keeps_visits(void **state)
 			}
 			nbx++;
 		}
+		/* the blocks of sub^3 leaves of those macrocells that hold a
+		 * bracketing leaf (raycast's finer bins), with footprints on a
+		 * 4x4 grid of query points */
+		vx_cellmask mk;
+		vx_cellbox *sbx;
+		size_t nsbx = 0;
+		int sub = 1 + irand(&s, 5);
+
+		assert_int_equal(vx_cellmask_build(&mk, &m, &g, vals, nv, 1, 1,
+		    &e), 0);
+		assert_true(mk.ready);
+		sbx = calloc((size_t)(m.dims[0][0] * m.dims[0][1] *
+		    m.dims[0][2]) + 1, sizeof *sbx);
+		assert_non_null(sbx);
+		for (int64_t b = 0; b < m.dims[1][0] * m.dims[1][1] *
+		    m.dims[1][2]; b++)
+			nsbx += vx_cellmask_boxes(&mk, b, sub, sbx + nsbx);
+		for (size_t i = 0; i < nsbx; i++) {
+			sbx[i].lb = -INFINITY;
+			sbx[i].fp[0] = irand(&s, 4);
+			sbx[i].fp[1] = irand(&s, 4);
+			sbx[i].fp[2] = sbx[i].fp[0] + irand(&s, 4);
+			sbx[i].fp[3] = sbx[i].fp[1] + irand(&s, 4);
+		}
 		for (int j = 0; j < 120; j++) {
 			uint64_t r = hash64(((uint64_t)k << 20) + (uint64_t)j);
 			double o[3], d[3], te, t0;
@@ -1052,7 +1184,7 @@ boxes_entry_keeps_visits(void **state)
 			if (j % 3 == 2)   /* from inside, anywhere */
 				for (int x = 0; x < 3; x++)
 					o[x] = urand(&r) * (double)(dims[x] - 1);
-			te = vx_macro_boxes_entry(&m, bx, nbx, o, d);
+			te = vx_macro_boxes_entry(&m, bx, nbx, o, d, NULL);
 			if (nbx > 0) {
 				/* sorted by exact per-box bounds: the early stop
 				 * gives the same time */
@@ -1062,10 +1194,10 @@ boxes_entry_keeps_visits(void **state)
 				memcpy(sb, bx, nbx * sizeof *sb);
 				for (size_t i = 0; i < nbx; i++)
 					sb[i].lb = vx_macro_boxes_entry(&m, &bx[i], 1,
-					    o, d);
+					    o, d, NULL);
 				qsort(sb, nbx, sizeof *sb, lb_cmp);
 				ok &= memcmp(&te, &(double){ vx_macro_boxes_entry(
-				    &m, sb, nbx, o, d) }, sizeof te) == 0;
+				    &m, sb, nbx, o, d, NULL) }, sizeof te) == 0;
 				free(sb);
 			}
 			rec_init(&h, m.dims[0]);
@@ -1088,15 +1220,54 @@ boxes_entry_keeps_visits(void **state)
 				ok &= h.n == 0 || h.v[0].t0 >= te || h.v[0].t0 == 0;
 				entered += h.n > 0;
 			}
+			/* from the entry into the blocks: the same visits */
+			double tb = vx_macro_boxes_entry(&m, sbx, nsbx, o, d, NULL);
+
+			if (tb == INFINITY)
+				ok &= h.n == 0;
+			else {
+				rec h3;
+
+				rec_init(&h3, m.dims[0]);
+				t0 = tb > 0 ? nextafter(tb, -INFINITY) : 0;
+				ok &= tb >= te;
+				ok &= vx_macro_traverse(&m, &g, o, d, t0,
+				    INFINITY, vals, nv, collect, &h3, NULL) == 0;
+				ok &= h3.n == h.n;
+				for (int i = 0; ok && i < h.n; i++)
+					ok &= same_visit(&h3.v[i], &h.v[i]);
+				ok &= h.n == 0 || h.v[0].t0 >= tb || h.v[0].t0 == 0;
+				free(h3.v);
+			}
+			/* footprints: the boxes whose footprint holds q, as if
+			 * the others were not there (oracle: that list) */
+			if (nsbx > 0) {
+				int32_t q[2] = { irand(&r, 6) - 1, irand(&r, 6) - 1 };
+				vx_cellbox *fb = malloc(nsbx * sizeof *fb);
+				size_t nf = 0;
+				double tq;
+
+				assert_non_null(fb);
+				for (size_t i = 0; i < nsbx; i++)
+					if (q[0] >= sbx[i].fp[0] && q[0] <= sbx[i].fp[2] &&
+					    q[1] >= sbx[i].fp[1] && q[1] <= sbx[i].fp[3])
+						fb[nf++] = sbx[i];
+				tq = vx_macro_boxes_entry(&m, fb, nf, o, d, NULL);
+				ok &= memcmp(&tq, &(double){ vx_macro_boxes_entry(&m,
+				    sbx, nsbx, o, d, q) }, sizeof tq) == 0;
+				free(fb);
+			}
 			if (!ok)
 				fprintf(stderr, "# grid %d ray %d: entry %.17g, "
-				    "%d visits from 0, %d from there\n", k, j, te,
-				    h.n, h2.n);
+				    "blocks %.17g, %d visits from 0, %d from there\n",
+				    k, j, te, tb, h.n, h2.n);
 			assert_true(ok);
 			free(h.v);
 			free(h2.v);
 		}
 		free(bx);
+		free(sbx);
+		vx_cellmask_free(&mk);
 		vx_macro_free(&m);
 		vx_grid_free(&g);
 	}
@@ -1545,6 +1716,7 @@ main(void)
 		cmocka_unit_test(hierarchy_equals_filtered_flat),
 		cmocka_unit_test(cellmask_bits_brute_force),
 		cmocka_unit_test(cellmask_equals_plain_walk),
+		cmocka_unit_test(cellmask_boxes_cover_bits),
 		cmocka_unit_test(boxes_entry_keeps_visits),
 		cmocka_unit_test(visitor_stops),
 		cmocka_unit_test(explicit_leaves),
