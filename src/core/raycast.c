@@ -42,6 +42,9 @@ typedef struct rc_shared {
 	int64_t bin_boxes;
 	int64_t *binoff;
 	vx_cellbox *binlist;
+	uint64_t *binpix;             /* per bin: bit (y % BIN) BIN + x % BIN
+	                                 set where a box's footprint holds
+	                                 pixel (x, y) (BIN 8: one word) */
 } rc_shared;
 
 #define BIN 8
@@ -193,6 +196,27 @@ box_place(const rc_shared *S, const vx_camera *cam, vx_cellbox *bx)
 	return 1;
 }
 
+/* foot_bits: the pixels of bin (bx, by) that box b's footprint holds, as
+ * binpix lays them out */
+static uint64_t
+foot_bits(const vx_cellbox *b, int bx, int by)
+{
+	int x0 = b->fp[0] - bx * BIN, x1 = b->fp[2] - bx * BIN;
+	int y0 = b->fp[1] - by * BIN, y1 = b->fp[3] - by * BIN;
+	uint64_t row, out = 0;
+
+	x0 = x0 < 0 ? 0 : x0;
+	x1 = x1 > BIN - 1 ? BIN - 1 : x1;
+	y0 = y0 < 0 ? 0 : y0;
+	y1 = y1 > BIN - 1 ? BIN - 1 : y1;
+	if (x0 > x1 || y0 > y1)
+		return 0;
+	row = ((uint64_t)2 << x1) - ((uint64_t)1 << x0);
+	for (int y = y0; y <= y1; y++)
+		out |= row << (BIN * y);
+	return out;
+}
+
 /* bins_fill: the bins of boxes bx[0..n) (placed, sorted by lb): each box
  * in every bin its footprint overlaps, in order.  1: more entries than
  * the bound (no bins made), 0 done, or VX_ENOMEM. */
@@ -204,6 +228,7 @@ bins_fill(rc_shared *S, const vx_camera *cam, const vx_cellbox *bx,
 	int pass;
 
 	memset(S->binoff, 0, (size_t)(nbin + 1) * sizeof *S->binoff);
+	memset(S->binpix, 0, (size_t)nbin * sizeof *S->binpix);
 	for (pass = 0; pass < 2; pass++) {
 		for (b = 0; b < n; b++)
 			for (int by = bx[b].fp[1] / BIN; by <= bx[b].fp[3] / BIN;
@@ -212,9 +237,11 @@ bins_fill(rc_shared *S, const vx_camera *cam, const vx_cellbox *bx,
 				    BIN; x++) {
 					int64_t k = (int64_t)by * S->nbx + x;
 
-					if (pass == 0)
+					if (pass == 0) {
 						S->binoff[k + 1]++;
-					else
+						S->binpix[k] |= foot_bits(&bx[b],
+						    x, by);
+					} else
 						S->binlist[S->binoff[k]++] = bx[b];
 				}
 		if (pass == 1)
@@ -269,6 +296,8 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 	S->nby = (cam->h + BIN - 1) / BIN;
 	if ((S->binoff = calloc((size_t)S->nbx * S->nby + 1,
 	    sizeof *S->binoff)) == NULL ||
+	    (S->binpix = calloc((size_t)S->nbx * S->nby,
+	    sizeof *S->binpix)) == NULL ||
 	    (first = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *first)) == NULL)
 		goto nomem;
 	/* the bracketing macrocells, each with room for its boxes */
@@ -339,7 +368,9 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 	free(first);
 	if (rc != 0) {
 		free(S->binoff);
+		free(S->binpix);
 		S->binoff = NULL;
+		S->binpix = NULL;
 	}
 	return rc == 1 ? 0 : rc;
 nomem:
@@ -348,7 +379,9 @@ nomem:
 	free(cnt);
 	free(first);
 	free(S->binoff);
+	free(S->binpix);
 	S->binoff = NULL;
+	S->binpix = NULL;
 	return vx_err_set(e, VX_ENOMEM, "raycast: out of memory (bins)");
 }
 
@@ -689,8 +722,21 @@ pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
 	x.dw = dw;
 	x.first = 1;
 	x.depth = INFINITY;
-	vx_camera_ray(&S->s->camera, px, py, ow, dw);
 	L->primary++;
+	if (S->binoff != NULL) {
+		/* no box's footprint holds the pixel: the ray would enter
+		 * none (vx_macro_boxes_entry), nothing to walk or even set up */
+		int bx = (int)px / BIN, by = (int)py / BIN;
+
+		bx = bx < 0 ? 0 : bx >= S->nbx ? S->nbx - 1 : bx;
+		by = by < 0 ? 0 : by >= S->nby ? S->nby - 1 : by;
+		if (!(S->binpix[(int64_t)by * S->nbx + bx] >> ((int)py - by *
+		    BIN) * BIN >> ((int)px - bx * BIN) & 1)) {
+			L->binned++;
+			goto out;
+		}
+	}
+	vx_camera_ray(&S->s->camera, px, py, ow, dw);
 	if (S->mesh != NULL)
 		vx_tetleaf_trace(S->lg, S->mesh, ow, dw, S->isod, S->niso, 0,
 		    INFINITY, tet_layer, &x, &L->tst);
@@ -701,9 +747,9 @@ pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
 		vx_world_to_index(S->g, ow, oi);
 		vx_world_to_index_dir(S->g, dw, di);
 		if (S->binoff != NULL) {
-			/* start just before the first bracketing level-1
-			 * macrocell the ray enters (none: nothing to walk); the
-			 * walk visits the same leaves (vx_macro_boxes_entry) */
+			/* start just before the first box the ray enters (none:
+			 * nothing to walk); the walk visits the same leaves
+			 * (vx_macro_boxes_entry) */
 			int bx = (int)px / BIN, by = (int)py / BIN;
 			const int32_t q[2] = { (int32_t)px, (int32_t)py };
 			int64_t k, t;
@@ -726,6 +772,7 @@ pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
 		else
 			L->binned++;
 	}
+out:
 	for (int i = 0; i < 3; i++)
 		out[i] = x.C[i];          /* premultiplied (formats/image.md) */
 	out[3] = x.A;
@@ -920,6 +967,7 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	if (mask == &own)
 		vx_cellmask_free(&own);
 	free(S.binoff);
+	free(S.binpix);
 	free(S.binlist);
 	st->seconds = (double)(t1.tv_sec - t0.tv_sec) +
 	    1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
