@@ -924,8 +924,9 @@ vx_macro_cell_brackets(const vx_macro *m, int l, int64_t b,
 /* vx_macro_boxes_entry: see vx_macro.h.  The ray is set up as ray_start
  * sets it up (the same crossing-time function, so the same times). */
 double
-vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *bx, size_t nbox,
-    const double o[3], const double d[3], const int32_t q[2])
+vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *box,
+    const uint32_t *ix, size_t nbox, const double o[3], const double d[3],
+    const int32_t q[2])
 {
 	double best = INFINITY;
 	size_t k;
@@ -934,15 +935,19 @@ vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *bx, size_t nbox,
 
 	if (!ray_axes(&r, m->dims[0], o, d))
 		return INFINITY;
-	for (k = 0; k < nbox && !(bx[k].lb > best); k++) {
+	for (k = 0; k < nbox; k++) {
+		const vx_cellbox *bx = ix != NULL ? box + ix[k] : box + k;
 		double tin = -INFINITY, tout = INFINITY;
 
-		if (q != NULL && (q[0] < bx[k].fp[0] || q[0] > bx[k].fp[2] ||
-		    q[1] < bx[k].fp[1] || q[1] > bx[k].fp[3]))
+		if (bx->lb > best)
+			break;
+
+		if (q != NULL && (q[0] < bx->fp[0] || q[0] > bx->fp[2] ||
+		    q[1] < bx->fp[1] || q[1] > bx->fp[3]))
 			continue;
 
 		for (a = 0; a < 3; a++) {
-			int64_t lo = bx[k].lo[a], hi = bx[k].hi[a];
+			int64_t lo = bx->lo[a], hi = bx->hi[a];
 
 			if (r.s[a] == 0) {
 				if (r.fixed[a] < lo || r.fixed[a] >= hi)
@@ -960,7 +965,8 @@ vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *bx, size_t nbox,
 		if (a == 3 && !(tin > tout) && tin < best)
 			best = tin;
 	}
-	return best;
+	/* +0 for -0: the same time whatever the boxes' order */
+	return best + 0.0;
 }
 
 /* ---- cell masks ----
@@ -1228,8 +1234,10 @@ vx_cellmask_boxes(vx_cellmask *k, int64_t b, int sub, vx_cellbox *out)
 		return 0;
 	vx_macro_cell_box(m, 1, b, lo, hi);
 	if (sub < 1 || (bits = mask_get(k, m, k->g, b)) == NULL) {
-		memcpy(out[0].lo, lo, sizeof lo);
-		memcpy(out[0].hi, hi, sizeof hi);
+		if (out != NULL) {
+			memcpy(out[0].lo, lo, sizeof lo);
+			memcpy(out[0].hi, hi, sizeof hi);
+		}
 		return 1;
 	}
 	w = m->width[1];
@@ -1249,6 +1257,10 @@ vx_cellmask_boxes(vx_cellmask *k, int64_t b, int sub, vx_cellbox *out)
 			for (j = 0; r != 0 && j < nl[0]; j += sub) {
 				if ((r >> j & full) == 0)
 					continue;
+				if (out == NULL) {
+					n++;
+					continue;
+				}
 				out[n].lo[0] = lo[0] + j;
 				out[n].lo[1] = lo[1] + jy;
 				out[n].lo[2] = lo[2] + jz;

@@ -41,7 +41,8 @@ typedef struct rc_shared {
 	int bin_block;                /* SUB, or 0: whole macrocells */
 	int64_t bin_boxes;
 	int64_t *binoff;
-	vx_cellbox *binlist;
+	vx_cellbox *binbox;           /* the boxes, sorted by lb */
+	uint32_t *binlist;            /* bins' entries: indices into binbox */
 	uint64_t *binpix;             /* per bin: bit (y % BIN) BIN + x % BIN
 	                                 set where a box's footprint holds
 	                                 pixel (x, y) (BIN 8: one word) */
@@ -59,17 +60,20 @@ typedef struct rc_local {
 	uint64_t cyc_total, cyc_shade, cyc_shadow;
 } rc_local;
 
-/* box_sort: bx[0..n) in order of lb, ties in their given order (a stable
+/* box_sort: *bx[0..n) in order of lb, ties in their given order (a stable
  * radix sort of lb's bits made monotone, 8 bits a pass, passes over a byte
- * all keys share skipped).  0, or VX_ENOMEM. */
+ * all keys share skipped); *bx is replaced by the sorted copy.  0, or
+ * VX_ENOMEM (*bx unchanged). */
 static int
-box_sort(vx_cellbox *bx, int64_t n)
+box_sort(vx_cellbox **bxp, int64_t n)
 {
-	uint64_t *key = malloc((size_t)(n > 0 ? n : 1) * 2 * sizeof *key);
-	int64_t *ix = malloc((size_t)(n > 0 ? n : 1) * 2 * sizeof *ix);
-	vx_cellbox *out = malloc((size_t)(n > 0 ? n : 1) * sizeof *out);
+	size_t nn = (size_t)(n > 0 ? n : 1);
+	uint64_t *key = malloc(nn * 2 * sizeof *key);
+	uint32_t *ix = malloc(nn * 2 * sizeof *ix);
+	vx_cellbox *bx = *bxp, *out = malloc(nn * sizeof *out);
 	uint64_t *k0 = key, *k1 = key + n;
-	int64_t *i0 = ix, *i1 = ix + n, i;
+	uint32_t *i0 = ix, *i1 = ix + n;
+	int64_t i;
 
 	if (key == NULL || ix == NULL || out == NULL) {
 		free(key);
@@ -83,12 +87,12 @@ box_sort(vx_cellbox *bx, int64_t n)
 		memcpy(&u, &bx[i].lb, sizeof u);
 		/* negative: all bits flipped; else the sign bit set */
 		k0[i] = u >> 63 ? ~u : u | (uint64_t)1 << 63;
-		i0[i] = i;
+		i0[i] = (uint32_t)i;
 	}
 	for (int sh = 0; sh < 64; sh += 8) {
 		int64_t cnt[257] = { 0 };
 		uint64_t *kt;
-		int64_t *it;
+		uint32_t *it;
 
 		for (i = 0; i < n; i++)
 			cnt[(k0[i] >> sh & 255) + 1]++;
@@ -107,10 +111,10 @@ box_sort(vx_cellbox *bx, int64_t n)
 	}
 	for (i = 0; i < n; i++)
 		out[i] = bx[i0[i]];
-	memcpy(bx, out, (size_t)n * sizeof *bx);
 	free(key);
 	free(ix);
-	free(out);
+	free(bx);
+	*bxp = out;
 	return 0;
 }
 
@@ -242,7 +246,8 @@ bins_fill(rc_shared *S, const vx_camera *cam, const vx_cellbox *bx,
 						S->binpix[k] |= foot_bits(&bx[b],
 						    x, by);
 					} else
-						S->binlist[S->binoff[k]++] = bx[b];
+						S->binlist[S->binoff[k]++] =
+						    (uint32_t)b;
 				}
 		if (pass == 1)
 			break;
@@ -266,32 +271,34 @@ bins_fill(rc_shared *S, const vx_camera *cam, const vx_cellbox *bx,
 	return 0;
 }
 
-/* bins_build: S->binoff / binlist: the primary rays' bins of BIN x BIN
- * pixels, each listing, by a lower bound of their entry time, the boxes a
- * ray of the bin may enter among those that hold every leaf that brackets
- * an isovalue: with a cell mask, the blocks of SUB^3 leaves of the
- * bracketing level-1 macrocells that hold a bracketing leaf (building the
- * bits of those in view), else those macrocells whole (also when the
- * blocks' lists would pass the bound of bins_fill).  Conservative: a
- * primary ray that enters such a box lies in its footprint.  More than
- * the bound with whole macrocells too: no bins (S->binoff NULL; the rays
- * walk from the eye).  Returns 0, or VX_ENOMEM. */
+/* bins_build: S->binoff / binbox / binlist / binpix: the primary rays'
+ * bins of BIN x BIN pixels, each listing, by a lower bound of their entry
+ * time, the boxes a ray of the bin may enter among those that hold every
+ * leaf that brackets an isovalue: with a cell mask, the blocks of SUB^3
+ * leaves of the bracketing level-1 macrocells that hold a bracketing leaf
+ * (building the bits of those in view), else those macrocells whole (also
+ * when the blocks or their lists would pass the bound of bins_fill).
+ * Conservative: a primary ray that enters such a box lies in its
+ * footprint.  More than the bound with whole macrocells too: no bins
+ * (S->binoff NULL; the rays walk from the eye).  The work is two parallel
+ * passes over the macrocells (count, then fill at known offsets), so the
+ * order, and the memory, are those of the boxes, whatever the threads.
+ * Returns 0, or VX_ENOMEM. */
 static int
 bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 {
 	const vx_macro *m = S->tr.m;
-	int64_t nb = m->dims[1][0] * m->dims[1][1] * m->dims[1][2], b, n;
-	int64_t per = 1, nbr = 0, *first = NULL, *cnt = NULL;
-	vx_cellbox *box = NULL, *all = NULL;
-	int sub = mask != NULL && mask->ready ? SUB : 0, rc = 0, nthr, a;
+	int64_t nb = m->dims[1][0] * m->dims[1][1] * m->dims[1][2], b, n, k;
+	int64_t nbr = 0, *first = NULL, *off = NULL;
+	int64_t cap = 8 * (int64_t)cam->w * cam->h + 65536;
+	vx_cellbox *box = NULL;
+	int sub = mask != NULL && mask->ready ? SUB : 0, rc = 0, nthr;
 
 #ifdef _OPENMP
 	nthr = S->o->nthreads > 0 ? S->o->nthreads : omp_get_num_procs();
 #else
 	nthr = 1;
 #endif
-	for (a = 0; a < 3 && sub; a++)
-		per *= (m->width[1][a] + sub - 1) / sub;
 	S->nbx = (cam->w + BIN - 1) / BIN;
 	S->nby = (cam->h + BIN - 1) / BIN;
 	if ((S->binoff = calloc((size_t)S->nbx * S->nby + 1,
@@ -300,88 +307,108 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 	    sizeof *S->binpix)) == NULL ||
 	    (first = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *first)) == NULL)
 		goto nomem;
-	/* the bracketing macrocells, each with room for its boxes */
+	/* the bracketing macrocells */
 	for (b = 0; b < nb; b++)
 		first[b] = vx_macro_cell_brackets(m, 1, b, S->iso, S->niso) ?
 		    nbr++ : -1;
-	if ((cnt = calloc((size_t)(nbr > 0 ? nbr : 1), sizeof *cnt)) == NULL ||
-	    (all = malloc((size_t)(nbr > 0 ? nbr : 1) * (size_t)per *
-	    sizeof *all)) == NULL)
+	if ((off = malloc((size_t)(nbr + 1) * sizeof *off)) == NULL)
 		goto nomem;
 	for (;;) {
-		/* each bracketing macrocell in view: its boxes (its blocks
-		 * that hold a bracketing leaf, building its bits, or itself),
-		 * placed; in parallel, gathered in macrocell order */
+		/* 1: each bracketing macrocell in view: how many boxes (its
+		 * blocks that hold a bracketing leaf, building its bits, or
+		 * itself) */
+#ifdef _OPENMP
+#pragma omp parallel for num_threads(nthr) schedule(dynamic, 8)
+#endif
+		for (b = 0; b < nb; b++) {
+			vx_cellbox whole;
+
+			if (first[b] < 0)
+				continue;
+			vx_macro_cell_box(m, 1, b, whole.lo, whole.hi);
+			off[first[b] + 1] = !box_place(S, cam, &whole) ? 0 :
+			    sub ? (int64_t)vx_cellmask_boxes(mask, b, sub, NULL) :
+			    1;
+		}
+		for (off[0] = 0, k = 0; k < nbr; k++)
+			off[k + 1] += off[k];
+		if (off[nbr] > cap && sub) {
+			sub = 0;     /* too many blocks: whole macrocells */
+			continue;
+		}
+		if (off[nbr] > cap) {
+			rc = 1;
+			break;
+		}
+		free(box);
+		if ((box = malloc((size_t)(off[nbr] > 0 ? off[nbr] : 1) *
+		    sizeof *box)) == NULL)
+			goto nomem;
+		/* 2: the boxes, placed (off the image: lb NaN), at their
+		 * macrocell's offset */
 #ifdef _OPENMP
 #pragma omp parallel for num_threads(nthr) schedule(dynamic, 8)
 #endif
 		for (b = 0; b < nb; b++) {
 			vx_cellbox whole, *out;
-			size_t k, nk, nkeep = 0;
+			int64_t nk, j;
 
-			if (first[b] < 0)
+			if (first[b] < 0 || off[first[b] + 1] == off[first[b]])
 				continue;
-			out = all + first[b] * per;
-			cnt[first[b]] = 0;
+			out = box + off[first[b]];
+			nk = off[first[b] + 1] - off[first[b]];
 			vx_macro_cell_box(m, 1, b, whole.lo, whole.hi);
-			if (!box_place(S, cam, &whole))
-				continue;
-			nk = sub ? vx_cellmask_boxes(mask, b, sub, out) : 0;
-			if (nk == 0 && !sub) {
-				out[0] = whole;
-				nkeep = 1;
-			} else if (nk == 1 && memcmp(out[0].lo, whole.lo,
+			(void)box_place(S, cam, &whole);
+			if (!sub || (nk == 1 && vx_cellmask_boxes(mask, b, sub,
+			    out) == 1 && memcmp(out[0].lo, whole.lo,
 			    sizeof whole.lo) == 0 && memcmp(out[0].hi, whole.hi,
-			    sizeof whole.hi) == 0) {
+			    sizeof whole.hi) == 0)) {
 				out[0] = whole;
-				nkeep = 1;
-			} else
-				for (k = 0; k < nk; k++)
-					if (box_place(S, cam, &out[k]))
-						out[nkeep++] = out[k];
-			cnt[first[b]] = (int64_t)nkeep;
+				continue;
+			}
+			if (nk > 1)
+				(void)vx_cellmask_boxes(mask, b, sub, out);
+			for (j = 0; j < nk; j++)
+				if (!box_place(S, cam, &out[j]))
+					out[j].lb = NAN;
 		}
-		for (n = 0, b = 0; b < nbr; b++)
-			n += cnt[b];
-		free(box);
-		if ((box = malloc((size_t)(n > 0 ? n : 1) * sizeof *box)) ==
-		    NULL)
-			goto nomem;
-		for (n = 0, b = 0; b < nbr; b++) {
-			memcpy(box + n, all + b * per, (size_t)cnt[b] *
-			    sizeof *box);
-			n += cnt[b];
-		}
-		if (box_sort(box, n) != 0)
+		for (n = 0, k = 0; k < off[nbr]; k++)
+			if (box[k].lb == box[k].lb)
+				box[n++] = box[k];
+		if (box_sort(&box, n) != 0)
 			goto nomem;
 		S->bin_block = sub;
 		S->bin_boxes = n;
+		free(S->binlist);
+		S->binlist = NULL;
 		if ((rc = bins_fill(S, cam, box, n, e)) != 1 || !sub)
 			break;
-		/* too many blocks: whole macrocells */
-		sub = 0;
-		per = 1;
+		sub = 0;     /* too many entries: whole macrocells */
 	}
-	free(box);
-	free(all);
-	free(cnt);
+	free(off);
 	free(first);
 	if (rc != 0) {
+		free(box);
 		free(S->binoff);
 		free(S->binpix);
+		free(S->binlist);
 		S->binoff = NULL;
 		S->binpix = NULL;
+		S->binlist = NULL;
+		return rc == 1 ? 0 : rc;
 	}
-	return rc == 1 ? 0 : rc;
+	S->binbox = box;
+	return 0;
 nomem:
 	free(box);
-	free(all);
-	free(cnt);
+	free(off);
 	free(first);
 	free(S->binoff);
 	free(S->binpix);
+	free(S->binlist);
 	S->binoff = NULL;
 	S->binpix = NULL;
+	S->binlist = NULL;
 	return vx_err_set(e, VX_ENOMEM, "raycast: out of memory (bins)");
 }
 
@@ -759,8 +786,9 @@ pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
 			by = by < 0 ? 0 : by >= S->nby ? S->nby - 1 : by;
 			k = (int64_t)by * S->nbx + bx;
 			t = S->binoff[k];
-			te = vx_macro_boxes_entry(S->tr.m, S->binlist + t,
-			    (size_t)(S->binoff[k + 1] - t), oi, di, q);
+			te = vx_macro_boxes_entry(S->tr.m, S->binbox,
+			    S->binlist + t, (size_t)(S->binoff[k + 1] - t), oi,
+			    di, q);
 			if (te == INFINITY)
 				walk = 0;
 			else if (te > 0)
@@ -968,6 +996,7 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 		vx_cellmask_free(&own);
 	free(S.binoff);
 	free(S.binpix);
+	free(S.binbox);
 	free(S.binlist);
 	st->seconds = (double)(t1.tv_sec - t0.tv_sec) +
 	    1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);

@@ -306,26 +306,30 @@ typedef struct vx_cellbox {
 } vx_cellbox;
 
 /* vx_macro_boxes_entry: the earliest time the ray o + t d (leaf
- * coordinates, as for the walk) enters one of the boxes bx[0..nbox),
- * sorted by lb, in the walk's own arithmetic: a box's entry is the largest
+ * coordinates, as for the walk) enters one of the boxes box[0..nbox) (or,
+ * with ix non-NULL, box[ix[0..nbox)]), sorted by lb, in the walk's own
+ * arithmetic: a box's entry is the largest
  * crossing time of its near faces; a box whose far faces are crossed before
  * that, or beside which a ray parallel to an axis runs, is not entered; the
  * boxes from the first whose lb exceeds the earliest entry so far are not
  * looked at; with q non-NULL, neither are boxes whose footprint does not
- * hold (q[0], q[1]).  +Inf: none is entered (or the ray is not finite).
+ * hold (q[0], q[1]).  +Inf: none is entered (or the ray is not finite);
+ * never -0, so boxes of equal lb give the same bits in any order.
  * Every leaf of those boxes that a walk of this ray visits is entered at
  * or after this time, so a walk started before it visits exactly the
  * leaves a walk from the segment's start does, when every leaf that
  * brackets the values lies in one of the boxes whose footprint holds q
  * (raycast's binning: the level-1 macrocells that bracket, or the blocks
  * of their leaves that hold a bracketing leaf, vx_cellmask_boxes). */
-double vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *bx,
-    size_t nbox, const double o[3], const double d[3], const int32_t q[2]);
+double vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *box,
+    const uint32_t *ix, size_t nbox, const double o[3], const double d[3],
+    const int32_t q[2]);
 
 /* vx_cellmask_boxes: the boxes (lo, hi only) of level-1 macrocell b's
  * blocks of sub x sub x sub leaves (from its low corner; the last ones
  * along an axis may be shorter) that hold a leaf whose bit is set, into
- * out (room for one per block), building b's bits if no one has.  Returns
+ * out (room for one per block; NULL: only count them), building b's bits
+ * if no one has.  Returns
  * their number: 0 when b brackets none of the values or k is not ready;
  * 1, b's whole box, when sub < 1 or another thread is building b's bits
  * (walks on k may run in other threads). */

@@ -1068,6 +1068,7 @@ cellmask_boxes_cover_bits(void **state)
 							    p[2] < out[i].hi[2];
 						assert_true(in);
 					}
+			assert_int_equal(vx_cellmask_boxes(&mk, b, sub, NULL), n);
 			nboxes += (int64_t)n;
 			/* sub 0: the whole macrocell */
 			assert_int_equal(vx_cellmask_boxes(&mk, b, 0, out), 1);
@@ -1184,7 +1185,7 @@ boxes_entry_keeps_visits(void **state)
 			if (j % 3 == 2)   /* from inside, anywhere */
 				for (int x = 0; x < 3; x++)
 					o[x] = urand(&r) * (double)(dims[x] - 1);
-			te = vx_macro_boxes_entry(&m, bx, nbx, o, d, NULL);
+			te = vx_macro_boxes_entry(&m, bx, NULL, nbx, o, d, NULL);
 			if (nbx > 0) {
 				/* sorted by exact per-box bounds: the early stop
 				 * gives the same time */
@@ -1193,11 +1194,11 @@ boxes_entry_keeps_visits(void **state)
 				assert_non_null(sb);
 				memcpy(sb, bx, nbx * sizeof *sb);
 				for (size_t i = 0; i < nbx; i++)
-					sb[i].lb = vx_macro_boxes_entry(&m, &bx[i], 1,
-					    o, d, NULL);
+					sb[i].lb = vx_macro_boxes_entry(&m, &bx[i],
+					    NULL, 1, o, d, NULL);
 				qsort(sb, nbx, sizeof *sb, lb_cmp);
 				ok &= memcmp(&te, &(double){ vx_macro_boxes_entry(
-				    &m, sb, nbx, o, d, NULL) }, sizeof te) == 0;
+				    &m, sb, NULL, nbx, o, d, NULL) }, sizeof te) == 0;
 				free(sb);
 			}
 			rec_init(&h, m.dims[0]);
@@ -1221,7 +1222,8 @@ boxes_entry_keeps_visits(void **state)
 				entered += h.n > 0;
 			}
 			/* from the entry into the blocks: the same visits */
-			double tb = vx_macro_boxes_entry(&m, sbx, nsbx, o, d, NULL);
+			double tb = vx_macro_boxes_entry(&m, sbx, NULL, nsbx, o, d,
+			    NULL);
 
 			if (tb == INFINITY)
 				ok &= h.n == 0;
@@ -1252,9 +1254,20 @@ boxes_entry_keeps_visits(void **state)
 					if (q[0] >= sbx[i].fp[0] && q[0] <= sbx[i].fp[2] &&
 					    q[1] >= sbx[i].fp[1] && q[1] <= sbx[i].fp[3])
 						fb[nf++] = sbx[i];
-				tq = vx_macro_boxes_entry(&m, fb, nf, o, d, NULL);
+				tq = vx_macro_boxes_entry(&m, fb, NULL, nf, o, d, NULL);
 				ok &= memcmp(&tq, &(double){ vx_macro_boxes_entry(&m,
-				    sbx, nsbx, o, d, q) }, sizeof tq) == 0;
+				    sbx, NULL, nsbx, o, d, q) }, sizeof tq) == 0;
+				/* the same boxes through an index list, in
+				 * reverse (lb all -Inf: any order is sorted) */
+				uint32_t *ix = malloc(nsbx * sizeof *ix);
+
+				assert_non_null(ix);
+				for (size_t i = 0; i < nsbx; i++)
+					ix[i] = (uint32_t)(nsbx - 1 - i);
+				double tr = vx_macro_boxes_entry(&m, sbx, ix, nsbx, o,
+				    d, q);
+				ok &= memcmp(&tq, &tr, sizeof tq) == 0;
+				free(ix);
 				free(fb);
 			}
 			if (!ok)
