@@ -222,33 +222,47 @@ foot_bits(const vx_cellbox *b, int bx, int by)
 }
 
 /* bins_fill: the bins of boxes bx[0..n) (placed, sorted by lb): each box
- * in every bin its footprint overlaps, in order.  1: more entries than
- * the bound (no bins made), 0 done, or VX_ENOMEM. */
+ * in every bin its footprint overlaps, in order, and the bins' pixel bits.
+ * Parallel over bands of rows of bins, one a thread (a thread owns its
+ * rows' counts and lists: the same lists whatever the threads).  1: more entries than the bound
+ * (no bins made), 0 done, or VX_ENOMEM. */
 static int
 bins_fill(rc_shared *S, const vx_camera *cam, const vx_cellbox *bx,
-    int64_t n, vx_err *e)
+    int64_t n, int nthr, vx_err *e)
 {
-	int64_t nbin = (int64_t)S->nbx * S->nby, i, b;
-	int pass;
+	int64_t nbin = (int64_t)S->nbx * S->nby, i;
+	int nband = nthr < S->nby ? nthr : S->nby, pass, t;
 
 	memset(S->binoff, 0, (size_t)(nbin + 1) * sizeof *S->binoff);
 	memset(S->binpix, 0, (size_t)nbin * sizeof *S->binpix);
 	for (pass = 0; pass < 2; pass++) {
-		for (b = 0; b < n; b++)
-			for (int by = bx[b].fp[1] / BIN; by <= bx[b].fp[3] / BIN;
-			    by++)
-				for (int x = bx[b].fp[0] / BIN; x <= bx[b].fp[2] /
-				    BIN; x++) {
-					int64_t k = (int64_t)by * S->nbx + x;
+#ifdef _OPENMP
+#pragma omp parallel for num_threads(nband) schedule(static, 1)
+#endif
+		for (t = 0; t < nband; t++) {
+			int r0 = (int)((int64_t)S->nby * t / nband);
+			int r1 = (int)((int64_t)S->nby * (t + 1) / nband);
 
-					if (pass == 0) {
-						S->binoff[k + 1]++;
-						S->binpix[k] |= foot_bits(&bx[b],
-						    x, by);
-					} else
-						S->binlist[S->binoff[k]++] =
-						    (uint32_t)b;
-				}
+			for (int64_t b = 0; b < n; b++) {
+				int y0 = bx[b].fp[1] / BIN, y1 = bx[b].fp[3] / BIN;
+
+				y0 = y0 > r0 ? y0 : r0;
+				y1 = y1 < r1 - 1 ? y1 : r1 - 1;
+				for (int r = y0; r <= y1; r++)
+					for (int x = bx[b].fp[0] / BIN; x <=
+					    bx[b].fp[2] / BIN; x++) {
+						int64_t k = (int64_t)r * S->nbx + x;
+
+						if (pass == 0) {
+							S->binoff[k + 1]++;
+							S->binpix[k] |= foot_bits(
+							    &bx[b], x, r);
+						} else
+							S->binlist[S->binoff[k]++] =
+							    (uint32_t)b;
+					}
+			}
+		}
 		if (pass == 1)
 			break;
 		for (i = 0; i < nbin; i++)
@@ -381,7 +395,7 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 		S->bin_boxes = n;
 		free(S->binlist);
 		S->binlist = NULL;
-		if ((rc = bins_fill(S, cam, box, n, e)) != 1 || !sub)
+		if ((rc = bins_fill(S, cam, box, n, nthr, e)) != 1 || !sub)
 			break;
 		sub = 0;     /* too many entries: whole macrocells */
 	}
@@ -906,6 +920,9 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	}
 	/* bins of the level-1 macrocells that bracket (a volume walked
 	 * hierarchically, one sample per pixel) */
+	struct timespec tb0, tb1;
+
+	clock_gettime(CLOCK_MONOTONIC, &tb0);
 	if (S.mesh == NULL && !S.tr.flat && S.tr.m != NULL && S.tr.m->nlev >= 1 &&
 	    !o->no_binning && (rc = bins_build(&S, cam, S.tr.mask ? mask : NULL,
 	    e)) != 0) {
@@ -913,6 +930,9 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 			vx_cellmask_free(&own);
 		return rc;
 	}
+	clock_gettime(CLOCK_MONOTONIC, &tb1);
+	st->bin_seconds = (double)(tb1.tv_sec - tb0.tv_sec) +
+	    1e-9 * (double)(tb1.tv_nsec - tb0.tv_nsec);
 	st->bins = S.binoff != NULL;
 	st->bin_block = st->bins ? S.bin_block : 0;
 	st->bin_boxes = st->bins ? (uint64_t)S.bin_boxes : 0;

@@ -84,6 +84,8 @@ typedef struct vx_raycast_stats {
 	                            more: a box is in each bin it covers) */
 	uint64_t binned;         /* primary rays that entered no binned box:
 	                            not walked */
+	double bin_seconds;      /* wall time of making the bins (the bits
+	                            of the cell mask they needed included) */
 	uint64_t mask_blocks, mask_set, mask_built;   /* level-1 macrocells,
 	                                    those bracketing (masked), and
 	                                    those whose bits rays needed */

@@ -185,16 +185,17 @@ print_stats(const vx_raycast_stats *st, const vx_macro *m, int w, int h,
 		    (double)st->mask_bytes / 1024);
 	if (!st->mesh && st->bins && st->bin_block)
 		fprintf(stderr, "raycast: binning: %llu boxes (blocks of "
-		    "%dx%dx%d leaves holding a bracketing leaf); %llu of %llu "
-		    "primary rays enter none (not walked)\n",
+		    "%dx%dx%d leaves holding a bracketing leaf, %.1f ms); %llu of "
+		    "%llu primary rays enter none (not walked)\n",
 		    (unsigned long long)st->bin_boxes, st->bin_block,
-		    st->bin_block, st->bin_block,
+		    st->bin_block, st->bin_block, 1e3 * st->bin_seconds,
 		    (unsigned long long)st->binned,
 		    (unsigned long long)st->primary);
 	else if (!st->mesh && st->bins)
 		fprintf(stderr, "raycast: binning: %llu boxes (bracketing "
-		    "level-1 macrocells); %llu of %llu primary rays enter none "
-		    "(not walked)\n", (unsigned long long)st->bin_boxes,
+		    "level-1 macrocells, %.1f ms); %llu of %llu primary rays "
+		    "enter none (not walked)\n", (unsigned long long)st->bin_boxes,
+		    1e3 * st->bin_seconds,
 		    (unsigned long long)st->binned,
 		    (unsigned long long)st->primary);
 	if (m != NULL) {
