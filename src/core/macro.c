@@ -1614,6 +1614,14 @@ vx_cellmask_built(const vx_cellmask *k)
 }
 
 int
+vx_cellmask_block_built(const vx_cellmask *k, int64_t b)
+{
+	if (k == NULL || !k->ready || b < 0 || b >= k->nblock)
+		return 0;
+	return atomic_load_explicit(&k->state[b], memory_order_acquire) == 2;
+}
+
+int
 vx_cellmask_build(vx_cellmask *k, const vx_macro *m, const vx_grid *g,
     const float *vals, int nvals, int lazy, int nthreads, vx_err *e)
 {

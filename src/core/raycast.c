@@ -289,9 +289,9 @@ bins_fill(rc_shared *S, const vx_camera *cam, const vx_cellbox *bx,
  * bins of BIN x BIN pixels, each listing, by a lower bound of their entry
  * time, the boxes a ray of the bin may enter among those that hold every
  * leaf that brackets an isovalue: with a cell mask, the blocks of SUB^3
- * leaves of the bracketing level-1 macrocells that hold a bracketing leaf
- * (building the bits of those in view), else those macrocells whole (also
- * when the blocks or their lists would pass the bound of bins_fill).
+ * leaves that hold a bracketing leaf, of the bracketing level-1 macrocells
+ * whose bits are built; else (bits not built, no mask, or the blocks or
+ * their lists would pass the bound of bins_fill) those macrocells whole.
  * Conservative: a primary ray that enters such a box lies in its
  * footprint.  More than the bound with whole macrocells too: no bins
  * (S->binoff NULL; the rays walk from the eye).  The work is two parallel
@@ -341,8 +341,8 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 				continue;
 			vx_macro_cell_box(m, 1, b, whole.lo, whole.hi);
 			off[first[b] + 1] = !box_place(S, cam, &whole) ? 0 :
-			    sub ? (int64_t)vx_cellmask_boxes(mask, b, sub, NULL) :
-			    1;
+			    sub && vx_cellmask_block_built(mask, b) ?
+			    (int64_t)vx_cellmask_boxes(mask, b, sub, NULL) : 1;
 		}
 		for (off[0] = 0, k = 0; k < nbr; k++)
 			off[k + 1] += off[k];
@@ -373,7 +373,8 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 			nk = off[first[b] + 1] - off[first[b]];
 			vx_macro_cell_box(m, 1, b, whole.lo, whole.hi);
 			(void)box_place(S, cam, &whole);
-			if (!sub || (nk == 1 && vx_cellmask_boxes(mask, b, sub,
+			if (!sub || !vx_cellmask_block_built(mask, b) ||
+			    (nk == 1 && vx_cellmask_boxes(mask, b, sub,
 			    out) == 1 && memcmp(out[0].lo, whole.lo,
 			    sizeof whole.lo) == 0 && memcmp(out[0].hi, whole.hi,
 			    sizeof whole.hi) == 0)) {
@@ -823,6 +824,39 @@ out:
 	return !x.first;
 }
 
+/* image_pixel: pixel (x, y) of the images, from its aa x aa samples */
+static void
+image_pixel(const rc_shared *S, rc_local *L, int x, int y, int aa,
+    vx_image *color, vx_image *depth, vx_image *normal)
+{
+	double acc[4] = { 0, 0, 0, 0 }, px[4], dep, n[3];
+	double best = INFINITY, bn[3] = { 0, 0, 0 };
+	int hit = 0;
+
+	for (int sy = 0; sy < aa; sy++)
+		for (int sx = 0; sx < aa; sx++) {
+			if (pixel(S, L, x + (sx + 0.5) / aa, y + (sy + 0.5) / aa,
+			    px, &dep, n)) {
+				hit = 1;
+				if (dep < best) {
+					best = dep;
+					memcpy(bn, n, sizeof bn);
+				}
+			}
+			for (int c = 0; c < 4; c++)
+				acc[c] += px[c];
+		}
+	float *out = vx_image_pixel(color, x, y);
+	for (int c = 0; c < 4; c++)
+		out[c] = (float)(acc[c] / (aa * aa));
+	if (depth != NULL)
+		*vx_image_pixel(depth, x, y) = (float)best;
+	if (normal != NULL)
+		for (int c = 0; c < 3; c++)
+			vx_image_pixel(normal, x, y)[c] = (float)bn[c];
+	L->covered += hit;
+}
+
 static void
 add_local(vx_raycast_stats *st, const rc_local *L, double *cyc)
 {
@@ -918,27 +952,6 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 		if (mask->ready)
 			S.tr.mask = mask;
 	}
-	/* bins of the level-1 macrocells that bracket (a volume walked
-	 * hierarchically, one sample per pixel) */
-	struct timespec tb0, tb1;
-
-	clock_gettime(CLOCK_MONOTONIC, &tb0);
-	if (S.mesh == NULL && !S.tr.flat && S.tr.m != NULL && S.tr.m->nlev >= 1 &&
-	    !o->no_binning && (rc = bins_build(&S, cam, S.tr.mask ? mask : NULL,
-	    e)) != 0) {
-		if (mask == &own)
-			vx_cellmask_free(&own);
-		return rc;
-	}
-	clock_gettime(CLOCK_MONOTONIC, &tb1);
-	st->bin_seconds = (double)(tb1.tv_sec - tb0.tv_sec) +
-	    1e-9 * (double)(tb1.tv_nsec - tb0.tv_nsec);
-	st->bins = S.binoff != NULL;
-	st->bin_block = st->bins ? S.bin_block : 0;
-	st->bin_boxes = st->bins ? (uint64_t)S.bin_boxes : 0;
-	st->mask_bytes = S.tr.mask ? vx_cellmask_bytes(mask) : 0;
-	st->mask_blocks = S.tr.mask ? (uint64_t)mask->nblock : 0;
-	st->mask_set = S.tr.mask ? (uint64_t)mask->nset : 0;
 	tile = o->tile > 0 ? o->tile : 16;
 	ntx = (cam->w + tile - 1) / tile;
 	nty = (cam->h + tile - 1) / tile;
@@ -960,6 +973,68 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 		loc[k].st.timing = o->timing;
 		loc[k].tst.timing = o->timing;
 	}
+	/* bins of the boxes that hold the bracketing cells (a volume walked
+	 * hierarchically).  Blocks of cells are binned only for macrocells
+	 * whose mask bits are built: when some bracketing ones are not, the
+	 * centre pixel of each bin is drawn first, with the bins as they are
+	 * (its rays build the bits of the macrocells they enter: those in
+	 * sight), and the bins are made again.  Macrocells no ray reaches
+	 * stay whole and unmasked (hidden ones, mostly). */
+	struct timespec tb0, tb1;
+	int binning = S.mesh == NULL && !S.tr.flat && S.tr.m != NULL &&
+	    S.tr.m->nlev >= 1 && !o->no_binning, sparse = 0;
+
+	clock_gettime(CLOCK_MONOTONIC, &tb0);
+	if (binning && (rc = bins_build(&S, cam, S.tr.mask ? mask : NULL,
+	    e)) != 0)
+		goto fail;
+	clock_gettime(CLOCK_MONOTONIC, &tb1);
+	st->bin_seconds = (double)(tb1.tv_sec - tb0.tv_sec) +
+	    1e-9 * (double)(tb1.tv_nsec - tb0.tv_nsec);
+	if (binning && S.binoff != NULL && S.tr.mask != NULL &&
+	    vx_cellmask_built(mask) < mask->nset) {
+		int64_t before = vx_cellmask_built(mask);
+
+		sparse = 1;
+#ifdef _OPENMP
+#pragma omp parallel for num_threads(nthr) schedule(dynamic, 16)
+#endif
+		for (int64_t kb = 0; kb < (int64_t)S.nbx * S.nby; kb++) {
+#ifdef _OPENMP
+			rc_local *L = &loc[omp_get_thread_num()];
+#else
+			rc_local *L = &loc[0];
+#endif
+			int x = (int)(kb % S.nbx) * BIN + BIN / 2;
+			int y = (int)(kb / S.nbx) * BIN + BIN / 2;
+
+			if (x < cam->w && y < cam->h)
+				image_pixel(&S, L, x, y, aa, color, depth, normal);
+		}
+		if (vx_cellmask_built(mask) > before) {
+			/* the bins' time: the first pass's rays are not in it */
+			clock_gettime(CLOCK_MONOTONIC, &tb0);
+			free(S.binoff);
+			free(S.binpix);
+			free(S.binbox);
+			free(S.binlist);
+			S.binoff = NULL;
+			S.binpix = NULL;
+			S.binbox = NULL;
+			S.binlist = NULL;
+			if ((rc = bins_build(&S, cam, mask, e)) != 0)
+				goto fail;
+			clock_gettime(CLOCK_MONOTONIC, &tb1);
+			st->bin_seconds += (double)(tb1.tv_sec - tb0.tv_sec) +
+			    1e-9 * (double)(tb1.tv_nsec - tb0.tv_nsec);
+		}
+	}
+	st->bins = S.binoff != NULL;
+	st->bin_block = st->bins ? S.bin_block : 0;
+	st->bin_boxes = st->bins ? (uint64_t)S.bin_boxes : 0;
+	st->mask_bytes = S.tr.mask ? vx_cellmask_bytes(mask) : 0;
+	st->mask_blocks = S.tr.mask ? (uint64_t)mask->nblock : 0;
+	st->mask_set = S.tr.mask ? (uint64_t)mask->nset : 0;
 #ifdef _OPENMP
 #pragma omp parallel for num_threads(nthr) schedule(dynamic, 1)
 #endif
@@ -975,35 +1050,11 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 		uint64_t c0 = o->timing ? vx_cycles() : 0;
 
 		for (int y = y0; y < y1; y++)
-			for (int x = x0; x < x1; x++) {
-				double acc[4] = { 0, 0, 0, 0 }, px[4], dep, n[3];
-				double best = INFINITY, bn[3] = { 0, 0, 0 };
-				int hit = 0;
-
-				for (int sy = 0; sy < aa; sy++)
-					for (int sx = 0; sx < aa; sx++) {
-						if (pixel(&S, L, x + (sx + 0.5) / aa,
-						    y + (sy + 0.5) / aa, px, &dep, n)) {
-							hit = 1;
-							if (dep < best) {
-								best = dep;
-								memcpy(bn, n, sizeof bn);
-							}
-						}
-						for (int c = 0; c < 4; c++)
-							acc[c] += px[c];
-					}
-				float *out = vx_image_pixel(color, x, y);
-				for (int c = 0; c < 4; c++)
-					out[c] = (float)(acc[c] / (aa * aa));
-				if (depth != NULL)
-					*vx_image_pixel(depth, x, y) = (float)best;
-				if (normal != NULL)
-					for (int c = 0; c < 3; c++)
-						vx_image_pixel(normal, x, y)[c] =
-						    (float)bn[c];
-				L->covered += hit;
-			}
+			for (int x = x0; x < x1; x++)
+				if (!sparse || x % BIN != BIN / 2 ||
+				    y % BIN != BIN / 2)
+					image_pixel(&S, L, x, y, aa, color, depth,
+					    normal);
 		if (o->timing)
 			L->cyc_total += vx_cycles() - c0;
 	}
@@ -1026,6 +1077,15 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 		st->share_traverse = 1 - st->share_isect - st->share_shade;
 	}
 	return 0;
+fail:
+	free(loc);
+	if (mask == &own)
+		vx_cellmask_free(&own);
+	free(S.binoff);
+	free(S.binpix);
+	free(S.binbox);
+	free(S.binlist);
+	return rc;
 }
 
 int

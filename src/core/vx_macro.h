@@ -267,9 +267,11 @@ int vx_cellmask_build(vx_cellmask *k, const vx_macro *m, const vx_grid *g,
     const float *vals, int nvals, int lazy, int nthreads, vx_err *e);
 
 /* vx_cellmask_bytes: memory the mask holds (bits, whether computed yet or
- * not, and tables).  vx_cellmask_built: macrocells whose bits are built. */
+ * not, and tables).  vx_cellmask_built: macrocells whose bits are built.
+ * vx_cellmask_block_built: 1 if level-1 macrocell b's bits are built. */
 size_t vx_cellmask_bytes(const vx_cellmask *k);
 int64_t vx_cellmask_built(const vx_cellmask *k);
+int vx_cellmask_block_built(const vx_cellmask *k, int64_t b);
 
 /* vx_cellmask_matches: 1 if k is ready and was built over m for exactly
  * vals[0..nvals) (bit for bit). */

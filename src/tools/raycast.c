@@ -292,13 +292,9 @@ main(int argc, char **argv)
 			    vx_cell_solver_name(o.solver), o.flat ?
 			    "flat traversal" : o.nomask ?
 			    "hierarchical traversal (no cell mask)" :
-			    o.nobin ? "hierarchical traversal with a cell mask "
-			    "(a bit per cell of the macrocells bracketing the "
-			    "isovalues, built as rays first enter them)" :
 			    "hierarchical traversal with a cell mask (a bit "
 			    "per cell of the macrocells bracketing the "
-			    "isovalues, built before the frame for those in "
-			    "view, as rays first enter the others)", nthr,
+			    "isovalues, built as rays first enter them)", nthr,
 			    nthr == 1 ? "" : "s");
 		if (!is_mesh && !o.flat)
 			fprintf(stderr, "raycast: primary rays %s%s\n", o.nobin ?
@@ -308,10 +304,11 @@ main(int argc, char **argv)
 			    "macrocells bracketing an isovalue; a ray that "
 			    "enters none is not walked" : "the blocks of "
 			    VX_RAYCAST_BLOCK_STR " leaves that hold a leaf "
-			    "bracketing an isovalue (the cell mask's bits of "
-			    "the bracketing macrocells in view are built for "
-			    "this before the frame); a ray that enters none is "
-			    "not walked");
+			    "bracketing an isovalue, in the macrocells whose "
+			    "cell mask bits are built (the centre pixel of each "
+			    "8x8 bin is drawn first, to build those in sight; "
+			    "the other bracketing macrocells whole); a ray that "
+			    "enters none is not walked");
 		free(buf);
 	}
 	if (plan.nsurface_on == 0)

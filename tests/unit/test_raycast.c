@@ -358,6 +358,87 @@ no_self_shadow_any_solver(void **state)
 	vx_grid_free(&g);
 }
 
+/* The bins' three modes give the picture of rays walked from the eye
+ * (no binning), bit for bit, with the same cells visited: blocks of 4^3
+ * cells for the macrocells whose mask bits the first rays built (a fresh
+ * mask), whole macrocells when every bracketing macrocell's bits are
+ * built but the blocks' lists would pass 8 entries a pixel (an eye inside
+ * a field of many small surfaces: blocks behind it span the image), and
+ * the modes are told apart by the stats.  Oracle: o.no_binning. */
+static void
+binning_modes(void **state)
+{
+	int64_t d[3] = { 96, 96, 96 };
+	int sizes[VX_MACRO_MAXLEV][3] = { { 16, 16, 16 }, { 2, 2, 2 } };
+	float iso = 0.05f;
+	vx_grid g;
+	vx_macro m;
+	vx_scene s;
+	vx_plan p;
+	vx_cellmask full;
+	vx_err e = { 0, "" };
+	double lo[3], hi[3];
+	vx_image c[3], dd[3], nn[3];
+	vx_raycast_stats st[3];
+
+	(void)state;
+	assert_int_equal(vx_grid_alloc(&g, d, VX_F32, NULL, &e), 0);
+	for (int z = 0; z < 96; z++)
+		for (int y = 0; y < 96; y++)
+			for (int x = 0; x < 96; x++)
+				vx_grid_set(&g, x, y, z, sin(0.9 * x) *
+				    sin(0.7 * y) * sin(0.8 * z));
+	vx_grid_range(&g);
+	assert_int_equal(vx_macro_build(&m, &g, 2, (const int (*)[3])sizes, 1,
+	    &e), 0);
+	base_scene(&s, 40, 30, iso);
+	s.camera.is_auto = 0;
+	s.camera.projection = VX_PERSPECTIVE;
+	double eye[3] = { 50.3, 44.1, 47.7 }, look[3] = { 90, 80, 70 },
+	    up[3] = { 0, 0, 1 };
+	memcpy(s.camera.eye, eye, sizeof eye);
+	memcpy(s.camera.look, look, sizeof look);
+	memcpy(s.camera.up, up, sizeof up);
+	s.camera.fov = 90;
+	vx_grid_box(&g, lo, hi);
+	assert_int_equal(vx_camera_resolve(&s.camera, lo, hi, &e), 0);
+	vx_scene_plan_isosurface(&s, &p);
+	assert_int_equal(vx_cellmask_build(&full, &m, &g, &iso, 1, 0, 1, &e),
+	    0);
+	for (int k = 0; k < 3; k++) {
+		vx_raycast_opts o;
+
+		vx_raycast_opts_init(&o);
+		o.nthreads = 2;
+		o.no_binning = k == 0;
+		o.mask_keep = k == 2 ? &full : NULL;
+		vx_image_init(&c[k]);
+		vx_image_init(&dd[k]);
+		vx_image_init(&nn[k]);
+		memset(&st[k], 0, sizeof st[k]);
+		assert_int_equal(vx_raycast_render(&s, &p, &g, &m, NULL, &o,
+		    &c[k], &dd[k], &nn[k], &st[k], &e), 0);
+	}
+	assert_int_equal(st[0].bins, 0);
+	assert_int_equal(st[1].bins, 1);
+	assert_int_equal(st[1].bin_block, VX_RAYCAST_BLOCK);
+	assert_int_equal(st[2].bins, 1);
+	assert_int_equal(st[2].bin_block, 0);
+	for (int k = 1; k < 3; k++) {
+		assert_true(same(&c[0], &c[k]));
+		assert_true(same(&dd[0], &dd[k]));
+		assert_true(same(&nn[0], &nn[k]));
+		assert_int_equal(st[0].cells, st[k].cells);
+		assert_int_equal(st[0].roots, st[k].roots);
+	}
+	assert_true(st[0].covered > 1000);
+	for (int k = 0; k < 3; k++)
+		free3(&c[k], &dd[k], &nn[k]);
+	vx_cellmask_free(&full);
+	vx_macro_free(&m);
+	vx_grid_free(&g);
+}
+
 int
 main(void)
 {
@@ -368,6 +449,7 @@ main(void)
 		cmocka_unit_test(shadow_under_sphere),
 		cmocka_unit_test(transparent_shell),
 		cmocka_unit_test(no_self_shadow_any_solver),
+		cmocka_unit_test(binning_modes),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
