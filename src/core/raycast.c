@@ -285,6 +285,20 @@ bins_fill(rc_shared *S, const vx_camera *cam, const vx_cellbox *bx,
 	return 0;
 }
 
+/* bins_free: no bins (S's lists freed, their pointers NULL) */
+static void
+bins_free(rc_shared *S)
+{
+	free(S->binoff);
+	free(S->binpix);
+	free(S->binbox);
+	free(S->binlist);
+	S->binoff = NULL;
+	S->binpix = NULL;
+	S->binbox = NULL;
+	S->binlist = NULL;
+}
+
 /* bins_build: S->binoff / binbox / binlist / binpix: the primary rays'
  * bins of BIN x BIN pixels, each listing, by a lower bound of their entry
  * time, the boxes a ray of the bin may enter among those that hold every
@@ -404,12 +418,7 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 	free(first);
 	if (rc != 0) {
 		free(box);
-		free(S->binoff);
-		free(S->binpix);
-		free(S->binlist);
-		S->binoff = NULL;
-		S->binpix = NULL;
-		S->binlist = NULL;
+		bins_free(S);
 		return rc == 1 ? 0 : rc;
 	}
 	S->binbox = box;
@@ -418,12 +427,7 @@ nomem:
 	free(box);
 	free(off);
 	free(first);
-	free(S->binoff);
-	free(S->binpix);
-	free(S->binlist);
-	S->binoff = NULL;
-	S->binpix = NULL;
-	S->binlist = NULL;
+	bins_free(S);
 	return vx_err_set(e, VX_ENOMEM, "raycast: out of memory (bins)");
 }
 
@@ -1014,14 +1018,7 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 		if (vx_cellmask_built(mask) > before) {
 			/* the bins' time: the first pass's rays are not in it */
 			clock_gettime(CLOCK_MONOTONIC, &tb0);
-			free(S.binoff);
-			free(S.binpix);
-			free(S.binbox);
-			free(S.binlist);
-			S.binoff = NULL;
-			S.binpix = NULL;
-			S.binbox = NULL;
-			S.binlist = NULL;
+			bins_free(&S);
 			if ((rc = bins_build(&S, cam, mask, e)) != 0)
 				goto fail;
 			clock_gettime(CLOCK_MONOTONIC, &tb1);
@@ -1065,10 +1062,7 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	st->mask_built = S.tr.mask ? (uint64_t)vx_cellmask_built(mask) : 0;
 	if (mask == &own)
 		vx_cellmask_free(&own);
-	free(S.binoff);
-	free(S.binpix);
-	free(S.binbox);
-	free(S.binlist);
+	bins_free(&S);
 	st->seconds = (double)(t1.tv_sec - t0.tv_sec) +
 	    1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
 	if (o->timing && cyc[0] > 0) {
@@ -1081,10 +1075,7 @@ fail:
 	free(loc);
 	if (mask == &own)
 		vx_cellmask_free(&own);
-	free(S.binoff);
-	free(S.binpix);
-	free(S.binbox);
-	free(S.binlist);
+	bins_free(&S);
 	return rc;
 }
 
