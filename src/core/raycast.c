@@ -200,6 +200,18 @@ box_place(const rc_shared *S, const vx_camera *cam, vx_cellbox *bx)
 	return 1;
 }
 
+/* bins_cap: the most boxes, and bin entries, a frame's bins may hold: 8 a
+ * pixel and a margin (beyond that they cost more than they save, and
+ * their memory stays bounded by the image), and never past what a 4-byte
+ * index reaches */
+static int64_t
+bins_cap(const vx_camera *cam)
+{
+	int64_t cap = 8 * (int64_t)cam->w * cam->h + 65536;
+
+	return cap < (int64_t)UINT32_MAX ? cap : (int64_t)UINT32_MAX;
+}
+
 /* foot_bits: the pixels of bin (bx, by) that box b's footprint holds, as
  * binpix lays them out */
 static uint64_t
@@ -268,10 +280,8 @@ bins_fill(rc_shared *S, const vx_camera *cam, const vx_cellbox *bx,
 		for (i = 0; i < nbin; i++)
 			S->binoff[i + 1] += S->binoff[i];
 		/* more entries than a few per pixel (an eye among the
-		 * macrocells: boxes spanning the image): the lists would cost
-		 * more than they save, and their memory is bounded by the
-		 * image, not by the volume */
-		if (S->binoff[nbin] > 8 * (int64_t)cam->w * cam->h + 65536)
+		 * macrocells: boxes spanning the image) */
+		if (S->binoff[nbin] > bins_cap(cam))
 			return 1;
 		if ((S->binlist = malloc((size_t)(S->binoff[nbin] > 0 ?
 		    S->binoff[nbin] : 1) * sizeof *S->binlist)) == NULL)
@@ -318,7 +328,7 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 	const vx_macro *m = S->tr.m;
 	int64_t nb = m->dims[1][0] * m->dims[1][1] * m->dims[1][2], b, n, k;
 	int64_t nbr = 0, *first = NULL, *off = NULL;
-	int64_t cap = 8 * (int64_t)cam->w * cam->h + 65536;
+	int64_t cap = bins_cap(cam);
 	vx_cellbox *box = NULL;
 	int sub = mask != NULL && mask->ready ? SUB : 0, rc = 0, nthr;
 
