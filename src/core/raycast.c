@@ -327,7 +327,7 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 {
 	const vx_macro *m = S->tr.m;
 	int64_t nb = m->dims[1][0] * m->dims[1][1] * m->dims[1][2], b, n, k;
-	int64_t nbr = 0, *first = NULL, *off = NULL;
+	int64_t nbr = 0, *brk = NULL, *off = NULL;
 	int64_t cap = bins_cap(cam);
 	vx_cellbox *box = NULL;
 	int sub = mask != NULL && mask->ready ? SUB : 0, rc = 0, nthr;
@@ -343,12 +343,12 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 	    sizeof *S->binoff)) == NULL ||
 	    (S->binpix = calloc((size_t)S->nbx * S->nby,
 	    sizeof *S->binpix)) == NULL ||
-	    (first = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *first)) == NULL)
+	    (brk = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *brk)) == NULL)
 		goto nomem;
-	/* the bracketing macrocells */
+	/* the bracketing macrocells: the parallel loops run over them */
 	for (b = 0; b < nb; b++)
-		first[b] = vx_macro_cell_brackets(m, 1, b, S->iso, S->niso) ?
-		    nbr++ : -1;
+		if (vx_macro_cell_brackets(m, 1, b, S->iso, S->niso))
+			brk[nbr++] = b;
 	if ((off = malloc((size_t)(nbr + 1) * sizeof *off)) == NULL)
 		goto nomem;
 	for (;;) {
@@ -358,15 +358,14 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 #ifdef _OPENMP
 #pragma omp parallel for num_threads(nthr) schedule(dynamic, 8)
 #endif
-		for (b = 0; b < nb; b++) {
+		for (k = 0; k < nbr; k++) {
+			const int64_t mc = brk[k];    /* the macrocell */
 			vx_cellbox whole;
 
-			if (first[b] < 0)
-				continue;
-			vx_macro_cell_box(m, 1, b, whole.lo, whole.hi);
-			off[first[b] + 1] = !box_place(S, cam, &whole) ? 0 :
-			    sub && vx_cellmask_block_built(mask, b) ?
-			    (int64_t)vx_cellmask_boxes(mask, b, sub, NULL) : 1;
+			vx_macro_cell_box(m, 1, mc, whole.lo, whole.hi);
+			off[k + 1] = !box_place(S, cam, &whole) ? 0 :
+			    sub && vx_cellmask_block_built(mask, mc) ?
+			    (int64_t)vx_cellmask_boxes(mask, mc, sub, NULL) : 1;
 		}
 		for (off[0] = 0, k = 0; k < nbr; k++)
 			off[k + 1] += off[k];
@@ -387,18 +386,19 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 #ifdef _OPENMP
 #pragma omp parallel for num_threads(nthr) schedule(dynamic, 8)
 #endif
-		for (b = 0; b < nb; b++) {
+		for (k = 0; k < nbr; k++) {
+			const int64_t mc = brk[k];    /* the macrocell */
 			vx_cellbox whole, *out;
 			int64_t nk, j;
 
-			if (first[b] < 0 || off[first[b] + 1] == off[first[b]])
+			if (off[k + 1] == off[k])
 				continue;
-			out = box + off[first[b]];
-			nk = off[first[b] + 1] - off[first[b]];
-			vx_macro_cell_box(m, 1, b, whole.lo, whole.hi);
+			out = box + off[k];
+			nk = off[k + 1] - off[k];
+			vx_macro_cell_box(m, 1, mc, whole.lo, whole.hi);
 			(void)box_place(S, cam, &whole);
-			if (!sub || !vx_cellmask_block_built(mask, b) ||
-			    (nk == 1 && vx_cellmask_boxes(mask, b, sub,
+			if (!sub || !vx_cellmask_block_built(mask, mc) ||
+			    (nk == 1 && vx_cellmask_boxes(mask, mc, sub,
 			    out) == 1 && memcmp(out[0].lo, whole.lo,
 			    sizeof whole.lo) == 0 && memcmp(out[0].hi, whole.hi,
 			    sizeof whole.hi) == 0)) {
@@ -406,7 +406,7 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 				continue;
 			}
 			if (nk > 1)
-				(void)vx_cellmask_boxes(mask, b, sub, out);
+				(void)vx_cellmask_boxes(mask, mc, sub, out);
 			for (j = 0; j < nk; j++)
 				if (!box_place(S, cam, &out[j]))
 					out[j].lb = NAN;
@@ -425,7 +425,7 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 		sub = 0;     /* too many entries: whole macrocells */
 	}
 	free(off);
-	free(first);
+	free(brk);
 	if (rc != 0) {
 		free(box);
 		bins_free(S);
@@ -436,7 +436,7 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 nomem:
 	free(box);
 	free(off);
-	free(first);
+	free(brk);
 	bins_free(S);
 	return vx_err_set(e, VX_ENOMEM, "raycast: out of memory (bins)");
 }
