@@ -121,8 +121,12 @@ box_sort(vx_cellbox **bxp, int64_t n)
 /* box_place: bx's lb (t is world distance along the unit ray: from the
  * eye to the box, or the box's least depth for an orthographic camera;
  * lowered by far more than rounding) and its footprint, the pixels its
- * projection covers widened by two (the whole image when a corner is not
- * in front of the eye).  0: the box is off the image. */
+ * projection covers widened by one (the whole image when a corner is not
+ * in front of the eye).  A ray that enters the box passes through a point
+ * of it, whose projection is its own sample point (x, y) and lies in the
+ * hull of the corners' projections [lo, hi], up to rounding far below a
+ * pixel: so floor(lo) - 1 <= (int)x <= ceil(hi), whatever the rounding.
+ * 0: the box is off the image. */
 static int
 box_place(const rc_shared *S, const vx_camera *cam, vx_cellbox *bx)
 {
@@ -187,8 +191,8 @@ box_place(const rc_shared *S, const vx_camera *cam, vx_cellbox *bx)
 		bx->fp[2] = cam->w - 1;
 		bx->fp[3] = cam->h - 1;
 	} else {
-		double x0 = floor(lo[0]) - 2, x1 = ceil(hi[0]) + 2;
-		double y0 = floor(lo[1]) - 2, y1 = ceil(hi[1]) + 2;
+		double x0 = floor(lo[0]) - 1, x1 = ceil(hi[0]) + 1;
+		double y0 = floor(lo[1]) - 1, y1 = ceil(hi[1]) + 1;
 
 		if (x1 < 0 || y1 < 0 || x0 > cam->w || y0 > cam->h)
 			return 0;
