@@ -39,7 +39,8 @@ typedef struct rc_shared {
 	 * binlist[binoff[k] .. binoff[k + 1])); NULL: off */
 	int nbx, nby;
 	int bin_block;                /* SUB, or 0: whole macrocells */
-	int64_t bin_boxes;
+	int64_t bin_boxes;            /* boxes binned */
+	int64_t bin_whole;            /* of them whole macrocells */
 	int64_t *binoff;
 	vx_cellbox *binbox;           /* the boxes, sorted by lb */
 	uint32_t *binlist;            /* bins' entries: indices into binbox */
@@ -331,7 +332,7 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 {
 	const vx_macro *m = S->tr.m;
 	int64_t nb = m->dims[1][0] * m->dims[1][1] * m->dims[1][2], b, n, k;
-	int64_t nbr = 0, *brk = NULL, *off = NULL;
+	int64_t nbr = 0, *brk = NULL, *off = NULL, nwhole = 0;
 	int64_t cap = bins_cap(cam);
 	vx_cellbox *box = NULL;
 	int sub = mask != NULL && mask->ready ? SUB : 0, rc = 0, nthr;
@@ -359,17 +360,25 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 		/* 1: each bracketing macrocell in view: how many boxes (its
 		 * blocks that hold a bracketing leaf, building its bits, or
 		 * itself) */
+		nwhole = 0;
 #ifdef _OPENMP
-#pragma omp parallel for num_threads(nthr) schedule(dynamic, 8)
+#pragma omp parallel for num_threads(nthr) schedule(dynamic, 8) \
+    reduction(+:nwhole)
 #endif
 		for (k = 0; k < nbr; k++) {
 			const int64_t mc = brk[k];    /* the macrocell */
 			vx_cellbox whole;
 
 			vx_macro_cell_box(m, 1, mc, whole.lo, whole.hi);
-			off[k + 1] = !box_place(S, cam, &whole) ? 0 :
-			    sub && vx_cellmask_block_built(mask, mc) ?
-			    (int64_t)vx_cellmask_boxes(mask, mc, sub, NULL) : 1;
+			if (!box_place(S, cam, &whole))
+				off[k + 1] = 0;
+			else if (sub && vx_cellmask_block_built(mask, mc))
+				off[k + 1] = (int64_t)vx_cellmask_boxes(mask, mc,
+				    sub, NULL);
+			else {
+				off[k + 1] = 1;
+				nwhole++;
+			}
 		}
 		for (off[0] = 0, k = 0; k < nbr; k++)
 			off[k + 1] += off[k];
@@ -422,6 +431,7 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 			goto nomem;
 		S->bin_block = sub;
 		S->bin_boxes = n;
+		S->bin_whole = sub ? nwhole : n;
 		free(S->binlist);
 		S->binlist = NULL;
 		if ((rc = bins_fill(S, cam, box, n, nthr, e)) != 1 || !sub)
@@ -1043,6 +1053,7 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	st->bins = S.binoff != NULL;
 	st->bin_block = st->bins ? S.bin_block : 0;
 	st->bin_boxes = st->bins ? (uint64_t)S.bin_boxes : 0;
+	st->bin_whole = st->bins ? (uint64_t)S.bin_whole : 0;
 	st->mask_bytes = S.tr.mask ? vx_cellmask_bytes(mask) : 0;
 	st->mask_blocks = S.tr.mask ? (uint64_t)mask->nblock : 0;
 	st->mask_set = S.tr.mask ? (uint64_t)mask->nset : 0;

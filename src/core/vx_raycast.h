@@ -82,6 +82,9 @@ typedef struct vx_raycast_stats {
 	                            whole level-1 macrocells */
 	uint64_t bin_boxes;      /* boxes binned (the bins' entries are
 	                            more: a box is in each bin it covers) */
+	uint64_t bin_whole;      /* of them whole level-1 macrocells (with
+	                            bin_block: those whose bits no ray had
+	                            built) */
 	uint64_t binned;         /* primary rays that entered no binned box:
 	                            not walked */
 	double bin_seconds;      /* wall time of making the bins (the bits

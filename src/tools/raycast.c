@@ -185,10 +185,12 @@ print_stats(const vx_raycast_stats *st, const vx_macro *m, int w, int h,
 		    (double)st->mask_bytes / 1024);
 	if (!st->mesh && st->bins && st->bin_block)
 		fprintf(stderr, "raycast: binning: %llu boxes (blocks of "
-		    "%dx%dx%d leaves holding a bracketing leaf, %.1f ms); %llu of "
+		    "%dx%dx%d leaves holding a bracketing leaf, and %llu "
+		    "bracketing level-1 macrocells whole, %.1f ms); %llu of "
 		    "%llu primary rays enter none (not walked)\n",
 		    (unsigned long long)st->bin_boxes, st->bin_block,
-		    st->bin_block, st->bin_block, 1e3 * st->bin_seconds,
+		    st->bin_block, st->bin_block,
+		    (unsigned long long)st->bin_whole, 1e3 * st->bin_seconds,
 		    (unsigned long long)st->binned,
 		    (unsigned long long)st->primary);
 	else if (!st->mesh && st->bins)
