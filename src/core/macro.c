@@ -501,6 +501,18 @@ t_exit_of(const ray *r, int l, int a, int64_t c)
 	    plane_lo(r, l, a, c));
 }
 
+/* The walk's loops keep a cell's per-axis state in three variables (in
+ * registers: a step picks its axis with selects, no store and reload
+ * through an indexed array).  AXIS: the one of axis ax; SET_AXIS: it set
+ * to v. */
+#define AXIS(ax, v0, v1, v2) ((ax) == 0 ? (v0) : (ax) == 1 ? (v1) : (v2))
+#define SET_AXIS(ax, v0, v1, v2, v)                                      \
+	do {                                                             \
+		(v0) = (ax) == 0 ? (v) : (v0);                           \
+		(v1) = (ax) == 1 ? (v) : (v1);                           \
+		(v2) = (ax) == 2 ? (v) : (v2);                           \
+	} while (0)
+
 /* min_axis: the axis whose next crossing comes first (the lowest on a
  * tie, the walk's order), its time in *t */
 static inline int
@@ -783,19 +795,15 @@ leaves(const ray *r, const vx_grid *g, int64_t c[3], const int64_t lim[3],
 		}
 		if (!(texit < tb))
 			break;
-		nc = (ax == 0 ? c0 : ax == 1 ? c1 : c2) + r->s[ax];
+		nc = AXIS(ax, c0, c1, c2) + r->s[ax];
 		if (nc == lim[ax])
 			break;
 		/* the far plane of the next leaf, and its crossing time as
 		 * t_exit_of gives it at level 0 (inside the grid: no clamp) */
 		p = nc + up[ax];
 		tv = tcross(r, ax, p);
-		c0 = ax == 0 ? nc : c0;
-		c1 = ax == 1 ? nc : c1;
-		c2 = ax == 2 ? nc : c2;
-		n0 = ax == 0 ? tv : n0;
-		n1 = ax == 1 ? tv : n1;
-		n2 = ax == 2 ? tv : n2;
+		SET_AXIS(ax, c0, c1, c2, nc);
+		SET_AXIS(ax, n0, n1, n2, tv);
 		li += dl[ax];
 		t = texit;
 		e = ax;
@@ -1228,9 +1236,7 @@ vx_cellmask_boxes(vx_cellmask *k, int64_t b, int sub, vx_cellbox *out)
 	uint64_t full;
 	size_t n = 0;
 
-	if (!k->ready)
-		return 0;
-	if (k->slot[b] < 0)
+	if (!k->ready || k->slot[b] < 0)
 		return 0;
 	vx_macro_cell_box(m, 1, b, lo, hi);
 	if (sub < 1 || (bits = mask_get(k, m, k->g, b)) == NULL) {
@@ -1400,17 +1406,12 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 					ax = min_axis(n0, n1, n2, &texit);
 					if (!(texit < tb))
 						break;
-					nc = (ax == 0 ? x0 : ax == 1 ? x1 : x2) +
-					    r.s[ax];
+					nc = AXIS(ax, x0, x1, x2) + r.s[ax];
 					if (nc == lim[l][ax])
 						break;
 					tv = t_exit_of(&r, l, ax, nc);
-					x0 = ax == 0 ? nc : x0;
-					x1 = ax == 1 ? nc : x1;
-					x2 = ax == 2 ? nc : x2;
-					n0 = ax == 0 ? tv : n0;
-					n1 = ax == 1 ? tv : n1;
-					n2 = ax == 2 ? tv : n2;
+					SET_AXIS(ax, x0, x1, x2, nc);
+					SET_AXIS(ax, n0, n1, n2, tv);
 					q += dq[ax];
 					t = texit;
 					e = ax;

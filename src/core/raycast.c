@@ -241,8 +241,8 @@ foot_bits(const vx_cellbox *b, int bx, int by)
 /* bins_fill: the bins of boxes bx[0..n) (placed, sorted by lb): each box
  * in every bin its footprint overlaps, in order, and the bins' pixel bits.
  * Parallel over bands of rows of bins, one a thread (a thread owns its
- * rows' counts and lists: the same lists whatever the threads).  1: more entries than the bound
- * (no bins made), 0 done, or VX_ENOMEM. */
+ * rows' counts and lists: the same lists whatever the threads).  1: more
+ * entries than the bound (no bins made), 0 done, or VX_ENOMEM. */
 static int
 bins_fill(rc_shared *S, const vx_camera *cam, const vx_cellbox *bx,
     int64_t n, int nthr, vx_err *e)
@@ -408,18 +408,16 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 				continue;
 			out = box + off[k];
 			nk = off[k + 1] - off[k];
-			vx_macro_cell_box(m, 1, mc, whole.lo, whole.hi);
-			(void)box_place(S, cam, &whole);
-			if (!sub || !vx_cellmask_block_built(mask, mc) ||
-			    (nk == 1 && vx_cellmask_boxes(mask, mc, sub,
-			    out) == 1 && memcmp(out[0].lo, whole.lo,
-			    sizeof whole.lo) == 0 && memcmp(out[0].hi, whole.hi,
-			    sizeof whole.hi) == 0)) {
+			if (!sub || !vx_cellmask_block_built(mask, mc)) {
+				/* placed in pass 1 too: the same, on the image */
+				vx_macro_cell_box(m, 1, mc, whole.lo, whole.hi);
+				(void)box_place(S, cam, &whole);
 				out[0] = whole;
 				continue;
 			}
-			if (nk > 1)
-				(void)vx_cellmask_boxes(mask, mc, sub, out);
+			/* its bits are built and do not change: the nk boxes
+			 * pass 1 counted */
+			(void)vx_cellmask_boxes(mask, mc, sub, out);
 			for (j = 0; j < nk; j++)
 				if (!box_place(S, cam, &out[j]))
 					out[j].lb = NAN;
@@ -431,7 +429,7 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 			goto nomem;
 		S->bin_block = sub;
 		S->bin_boxes = n;
-		S->bin_whole = sub ? nwhole : n;
+		S->bin_whole = nwhole;
 		free(S->binlist);
 		S->binlist = NULL;
 		if ((rc = bins_fill(S, cam, box, n, nthr, e)) != 1 || !sub)
@@ -783,6 +781,7 @@ pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
     double *depth, double n[3])
 {
 	double ow[3], dw[3], oi[3], di[3];
+	int64_t bin = 0;
 	layer_ctx x;
 
 	memset(&x, 0, sizeof x);
@@ -794,14 +793,16 @@ pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
 	x.depth = INFINITY;
 	L->primary++;
 	if (S->binoff != NULL) {
-		/* no box's footprint holds the pixel: the ray would enter
-		 * none (vx_macro_boxes_entry), nothing to walk or even set up */
+		/* the pixel's bin; no box's footprint holds the pixel: the ray
+		 * would enter none (vx_macro_boxes_entry), nothing to walk or
+		 * even set up */
 		int bx = (int)px / BIN, by = (int)py / BIN;
 
 		bx = bx < 0 ? 0 : bx >= S->nbx ? S->nbx - 1 : bx;
 		by = by < 0 ? 0 : by >= S->nby ? S->nby - 1 : by;
-		if (!(S->binpix[(int64_t)by * S->nbx + bx] >> ((int)py - by *
-		    BIN) * BIN >> ((int)px - bx * BIN) & 1)) {
+		bin = (int64_t)by * S->nbx + bx;
+		if (!(S->binpix[bin] >> ((int)py - by * BIN) * BIN >>
+		    ((int)px - bx * BIN) & 1)) {
 			L->binned++;
 			goto out;
 		}
@@ -820,17 +821,12 @@ pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
 			/* start just before the first box the ray enters (none:
 			 * nothing to walk); the walk visits the same leaves
 			 * (vx_macro_boxes_entry) */
-			int bx = (int)px / BIN, by = (int)py / BIN;
 			const int32_t q[2] = { (int32_t)px, (int32_t)py };
-			int64_t k, t;
+			int64_t t = S->binoff[bin];
 			double te;
 
-			bx = bx < 0 ? 0 : bx >= S->nbx ? S->nbx - 1 : bx;
-			by = by < 0 ? 0 : by >= S->nby ? S->nby - 1 : by;
-			k = (int64_t)by * S->nbx + bx;
-			t = S->binoff[k];
 			te = vx_macro_boxes_entry(S->tr.m, S->binbox,
-			    S->binlist + t, (size_t)(S->binoff[k + 1] - t), oi,
+			    S->binlist + t, (size_t)(S->binoff[bin + 1] - t), oi,
 			    di, q);
 			if (te == INFINITY)
 				walk = 0;

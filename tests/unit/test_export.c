@@ -172,6 +172,22 @@ header_and_body(void **state)
 			}
 }
 
+/* nrrd_text: the NRRD file vx_export_nrrd_opts writes for g (the caller
+ * frees it) */
+static char *
+nrrd_text(const vx_grid *g, const vx_nrrd_opts *o)
+{
+	vx_err e = { 0, "" };
+	char *out = NULL;
+	size_t outn = 0;
+	FILE *f = open_memstream(&out, &outn);
+
+	assert_non_null(f);
+	assert_int_equal(vx_export_nrrd_opts(g, f, o, &e), 0);
+	fclose(f);
+	return out;
+}
+
 /* Comments and the content line cannot break the header: control
  * characters become '?'. */
 static void
@@ -179,11 +195,8 @@ comments(void **state)
 {
 	static const char *lines[] = { "vread 0.1.0 a\rb", "x\ty\x1b[31m" };
 	vx_nrrd_opts o;
-	vx_err e = { 0, "" };
 	vx_grid g;
-	char *out = NULL;
-	size_t outn = 0;
-	FILE *f;
+	char *out;
 
 	(void)state;
 	make_grid(&g, VX_U8, NULL);
@@ -191,9 +204,7 @@ comments(void **state)
 	memset(&o, 0, sizeof o);
 	o.comments = lines;
 	o.ncomments = 2;
-	f = open_memstream(&out, &outn);
-	assert_int_equal(vx_export_nrrd_opts(&g, f, &o, &e), 0);
-	fclose(f);
+	out = nrrd_text(&g, &o);
 	assert_non_null(strstr(out, "\n# vread 0.1.0 a?b\n# x?y?[31m\n"
 	    "content: a?b\ntype: uint8\n"));
 	free(out);
@@ -210,9 +221,7 @@ key_values(void **state)
 	vx_err e = { 0, "" };
 	vx_hdr h;
 	vx_grid g;
-	char *out = NULL;
-	size_t outn = 0;
-	FILE *f;
+	char *out;
 
 	(void)state;
 	make_grid(&g, VX_U8, NULL);
@@ -221,9 +230,7 @@ key_values(void **state)
 	assert_int_equal(vx_hdr_set_str(&h, "x-note", "a\\b\tc := d", &e), 0);
 	memset(&o, 0, sizeof o);
 	o.keys = &h;
-	f = open_memstream(&out, &outn);
-	assert_int_equal(vx_export_nrrd_opts(&g, f, &o, &e), 0);
-	fclose(f);
+	out = nrrd_text(&g, &o);
 	assert_non_null(strstr(out, ")\nunits:=HU\nx-note:=a\\\\b?c := d\n\n"));
 	free(out);
 	vx_hdr_free(&h);
