@@ -1320,7 +1320,7 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 	vx_trav_stats s;
 	vx_leaf_visit v;
 	double ta = tmin, tb = tmax, t, texit;
-	int a, l, e, ax, start, rc = 0;
+	int a, l, e, ax, start, cont = 0, rc = 0;
 	ray r;
 
 	memset(&s, 0, sizeof s);
@@ -1416,6 +1416,7 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 					t = texit;
 					e = ax;
 					start = 0;
+					cont = l;
 					s.macro[l]++;
 					if ((in = brackets(mm[2 * q], mm[2 * q + 1],
 					    vals, nvals)) != 0)
@@ -1428,10 +1429,29 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 				tn[l][1] = n1;
 				tn[l][2] = n2;
 			}
+			if (in && !start && l - 1 >= cont) {
+				/* the child the ray is in at t is where the last
+				 * step left level l - 1: its index along e is the
+				 * first in the new parent, the others and their
+				 * crossing times those of the cell it left */
+				int k = l - 1;
+				int64_t k0 = c[l][e] * m->size[l][e];
+				int64_t k1 = k0 + m->size[l][e];
+				int64_t dk = k ? m->dims[k][e] : n[e];
+
+				if (k1 > dk)
+					k1 = dk;
+				lim[k][e] = r.up[e] ? k1 : k0 - 1;
+				c[k][e] = r.up[e] ? k0 : k1 - 1;
+				tn[k][e] = t_exit_of(&r, k, e, c[k][e]);
+				l = k;
+				continue;
+			}
 			if (in) {
 				/* descend into the child the ray is in at t */
 				int k = l - 1;
 
+				cont = k;   /* what was below is left behind */
 				for (a = 0; a < 3; a++) {
 					int64_t k0 = c[l][a] * m->size[l][a];
 					int64_t k1 = k0 + m->size[l][a];
@@ -1461,6 +1481,8 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 		if (!(texit < tb))
 			break;
 		start = 0;
+		cont = l;   /* below l: left behind, unless l is 0; from l up
+		               to where the step stops: left through face ax */
 		for (;;) {
 			c[l][ax] += r.s[ax];
 			if (c[l][ax] != lim[l][ax])
