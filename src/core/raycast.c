@@ -775,6 +775,20 @@ tet_layer(void *ctx, const vx_tethit *h)
 	return composite(x, &sp, c0);
 }
 
+/* bin_of: the bin of sample point (px, py) in *bin; returns its bit in
+ * binpix (0: no box's footprint holds the pixel) */
+static inline int
+bin_of(const rc_shared *S, double px, double py, int64_t *bin)
+{
+	int bx = (int)px / BIN, by = (int)py / BIN;
+
+	bx = bx < 0 ? 0 : bx >= S->nbx ? S->nbx - 1 : bx;
+	by = by < 0 ? 0 : by >= S->nby ? S->nby - 1 : by;
+	*bin = (int64_t)by * S->nbx + bx;
+	return (int)(S->binpix[*bin] >> ((int)py - by * BIN) * BIN >>
+	    ((int)px - bx * BIN) & 1);
+}
+
 /* pixel: one camera sample; returns 1 if it hit a surface. */
 static int
 pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
@@ -792,20 +806,12 @@ pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
 	x.first = 1;
 	x.depth = INFINITY;
 	L->primary++;
-	if (S->binoff != NULL) {
-		/* the pixel's bin; no box's footprint holds the pixel: the ray
-		 * would enter none (vx_macro_boxes_entry), nothing to walk or
-		 * even set up */
-		int bx = (int)px / BIN, by = (int)py / BIN;
-
-		bx = bx < 0 ? 0 : bx >= S->nbx ? S->nbx - 1 : bx;
-		by = by < 0 ? 0 : by >= S->nby ? S->nby - 1 : by;
-		bin = (int64_t)by * S->nbx + bx;
-		if (!(S->binpix[bin] >> ((int)py - by * BIN) * BIN >>
-		    ((int)px - bx * BIN) & 1)) {
-			L->binned++;
-			goto out;
-		}
+	if (S->binoff != NULL && !bin_of(S, px, py, &bin)) {
+		/* no box's footprint holds the pixel: the ray would enter
+		 * none (vx_macro_boxes_entry), nothing to walk or even set
+		 * up */
+		L->binned++;
+		goto out;
 	}
 	vx_camera_ray(&S->s->camera, px, py, ow, dw);
 	if (S->mesh != NULL)
@@ -855,8 +861,23 @@ image_pixel(const rc_shared *S, rc_local *L, int x, int y, int aa,
 {
 	double acc[4] = { 0, 0, 0, 0 }, px[4], dep, n[3];
 	double best = INFINITY, bn[3] = { 0, 0, 0 };
+	int64_t bin;
 	int hit = 0;
 
+	if (aa == 1 && S->binoff != NULL && !bin_of(S, x + 0.5, y + 0.5,
+	    &bin)) {
+		/* what pixel() makes of a ray that enters no box, written
+		 * straight away: most of an image's pixels */
+		L->primary++;
+		L->binned++;
+		memset(vx_image_pixel(color, x, y), 0, 4 * sizeof(float));
+		if (depth != NULL)
+			*vx_image_pixel(depth, x, y) = INFINITY;
+		if (normal != NULL)
+			memset(vx_image_pixel(normal, x, y), 0,
+			    3 * sizeof(float));
+		return;
+	}
 	for (int sy = 0; sy < aa; sy++)
 		for (int sx = 0; sx < aa; sx++) {
 			if (pixel(S, L, x + (sx + 0.5) / aa, y + (sy + 0.5) / aa,
