@@ -1303,6 +1303,21 @@ leaf_bits(vx_cellmask *mk, const vx_macro *m, const vx_grid *g,
 	return bits;
 }
 
+/* children: the children [*k0, *k1) along axis a of level-l cell cl
+ * (l >= 1; n: leaf dims, for the last, partial cells of level 0) */
+static inline void
+children(const vx_macro *m, int l, int a, int64_t cl, const int64_t n[3],
+    int64_t *k0, int64_t *k1)
+{
+	int64_t dk = l > 1 ? m->dims[l - 1][a] : n[a];
+	int64_t lo = cl * m->size[l][a], hi = lo + m->size[l][a];
+
+	if (hi > dk)
+		hi = dk;
+	*k0 = lo;
+	*k1 = hi;
+}
+
 /* walk: the traversal behind both public entry points.  top is the level
  * whose DDA starts the walk (0: flat).  n: leaf dims.  g: the volume whose
  * cells are the leaves, or NULL; mm0: stored leaf ranges or NULL. */
@@ -1435,12 +1450,9 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 				 * first in the new parent, the others and their
 				 * crossing times those of the cell it left */
 				int k = l - 1;
-				int64_t k0 = c[l][e] * m->size[l][e];
-				int64_t k1 = k0 + m->size[l][e];
-				int64_t dk = k ? m->dims[k][e] : n[e];
+				int64_t k0, k1;
 
-				if (k1 > dk)
-					k1 = dk;
+				children(m, l, e, c[l][e], n, &k0, &k1);
 				lim[k][e] = r.up[e] ? k1 : k0 - 1;
 				c[k][e] = r.up[e] ? k0 : k1 - 1;
 				tn[k][e] = t_exit_of(&r, k, e, c[k][e]);
@@ -1453,12 +1465,9 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 
 				cont = k;   /* what was below is left behind */
 				for (a = 0; a < 3; a++) {
-					int64_t k0 = c[l][a] * m->size[l][a];
-					int64_t k1 = k0 + m->size[l][a];
-					int64_t dk = k ? m->dims[k][a] : n[a];
+					int64_t k0, k1;
 
-					if (k1 > dk)
-						k1 = dk;
+					children(m, l, a, c[l][a], n, &k0, &k1);
 					lim[k][a] = r.up[a] ? k1 : k0 - 1;
 					if (start)
 						;  /* c[k] set from the start leaf */
