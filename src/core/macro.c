@@ -1250,32 +1250,55 @@ vx_cellmask_boxes(vx_cellmask *k, int64_t b, int sub, vx_cellbox *out)
 	for (int a = 0; a < 3; a++)
 		nl[a] = hi[a] - lo[a];
 	full = sub < 64 ? ((uint64_t)1 << sub) - 1 : ~(uint64_t)0;
-	/* per row of blocks along x: the OR of its rows of leaf bits, then
-	 * each block's sub bits of it (a row is at most 63 leaves) */
+	/* per row of blocks along x: each block's sub bits of each of its
+	 * rows of leaf bits (a row is at most 64 leaves, so at most 64
+	 * blocks), OR-ed, and the rows and planes that have any */
 	for (jz = 0; jz < nl[2]; jz += sub)
 		for (jy = 0; jy < nl[1]; jy += sub) {
-			uint64_t r = 0;
+			uint64_t xm[64], any = 0;
+			int64_t y0[64], y1[64], z0[64], z1[64], nb;
 
+			nb = (nl[0] + sub - 1) / sub;
+			for (j = 0; j < nb; j++)
+				xm[j] = 0;
 			for (z = jz; z < jz + sub && z < nl[2]; z++)
-				for (y = jy; y < jy + sub && y < nl[1]; y++)
-					r |= row_bits(bits, w[0] * (y + w[1] * z),
-					    (int)nl[0]);
-			for (j = 0; r != 0 && j < nl[0]; j += sub) {
-				if ((r >> j & full) == 0)
+				for (y = jy; y < jy + sub && y < nl[1]; y++) {
+					uint64_t r = row_bits(bits, w[0] * (y +
+					    w[1] * z), (int)nl[0]);
+
+					for (j = 0; r != 0 && j < nb; j++) {
+						uint64_t v = r >> (j * sub) & full;
+
+						if (v == 0)
+							continue;
+						if (xm[j] == 0) {
+							y0[j] = y1[j] = y;
+							z0[j] = z1[j] = z;
+						}
+						xm[j] |= v;
+						y0[j] = y < y0[j] ? y : y0[j];
+						y1[j] = y > y1[j] ? y : y1[j];
+						z1[j] = z;   /* z ascending */
+					}
+					any |= r;
+				}
+			for (j = 0; any != 0 && j < nb; j++) {
+				int64_t x = j * sub;
+
+				if (xm[j] == 0)
 					continue;
 				if (out == NULL) {
 					n++;
 					continue;
 				}
-				out[n].lo[0] = lo[0] + j;
-				out[n].lo[1] = lo[1] + jy;
-				out[n].lo[2] = lo[2] + jz;
-				out[n].hi[0] = j + sub < nl[0] ? lo[0] + j + sub :
-				    hi[0];
-				out[n].hi[1] = jy + sub < nl[1] ? lo[1] + jy +
-				    sub : hi[1];
-				out[n].hi[2] = jz + sub < nl[2] ? lo[2] + jz +
-				    sub : hi[2];
+				/* the box of the block's set bits */
+				out[n].lo[0] = lo[0] + x + __builtin_ctzll(xm[j]);
+				out[n].hi[0] = lo[0] + x + 64 -
+				    __builtin_clzll(xm[j]);
+				out[n].lo[1] = lo[1] + y0[j];
+				out[n].hi[1] = lo[1] + y1[j] + 1;
+				out[n].lo[2] = lo[2] + z0[j];
+				out[n].hi[2] = lo[2] + z1[j] + 1;
 				n++;
 			}
 		}

@@ -327,11 +327,12 @@ double vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *box,
     const uint32_t *ix, size_t nbox, const double o[3], const double d[3],
     const int32_t q[2]);
 
-/* vx_cellmask_boxes: the boxes (lo, hi only) of level-1 macrocell b's
- * blocks of sub x sub x sub leaves (from its low corner; the last ones
- * along an axis may be shorter) that hold a leaf whose bit is set, into
- * out (room for one per block; NULL: only count them), building b's bits
- * if no one has.  Returns
+/* vx_cellmask_boxes: for each of level-1 macrocell b's blocks of sub x sub
+ * x sub leaves (from its low corner; the last ones along an axis may be
+ * shorter) that holds a leaf whose bit is set, the box (lo, hi only) of
+ * its leaves whose bits are set, the least box that holds them, into out
+ * (room for one per block; NULL: only count them), building b's bits if
+ * no one has.  Returns
  * their number: 0 when b brackets none of the values or k is not ready;
  * 1, b's whole box, when sub < 1 or another thread is building b's bits
  * (walks on k may run in other threads). */

@@ -53,8 +53,9 @@ typedef struct vx_raycast_opts {
 	                            change */
 } vx_raycast_opts;
 
-/* Primary rays are binned with the blocks of VX_RAYCAST_BLOCK^3 leaves that
- * hold a bracketing leaf (with a cell mask; else whole level-1 macrocells). */
+/* Primary rays are binned with the boxes of the bracketing leaves of each
+ * block of VX_RAYCAST_BLOCK^3 leaves (with a cell mask; else whole level-1
+ * macrocells). */
 #define VX_RAYCAST_BLOCK 4
 #define VX_RAYCAST_BLOCK_STR "4x4x4"
 
@@ -77,9 +78,9 @@ typedef struct vx_raycast_stats {
 	                                    cell mask's build included) */
 	uint64_t mask_bytes;             /* its memory, 0: none */
 	int bins;                /* 1: primary rays were binned */
-	int bin_block;           /* the binned boxes: blocks of bin_block^3
-	                            leaves holding a bracketing leaf, or 0:
-	                            whole level-1 macrocells */
+	int bin_block;           /* the binned boxes: those of the bracketing
+	                            leaves of each block of bin_block^3
+	                            leaves, or 0: whole level-1 macrocells */
 	uint64_t bin_boxes;      /* boxes binned (the bins' entries are
 	                            more: a box is in each bin it covers) */
 	uint64_t bin_whole;      /* of them whole level-1 macrocells (with

@@ -184,8 +184,8 @@ print_stats(const vx_raycast_stats *st, const vx_macro *m, int w, int h,
 		    (unsigned long long)st->mask_built,
 		    (double)st->mask_bytes / 1024);
 	if (!st->mesh && st->bins && st->bin_block)
-		fprintf(stderr, "raycast: binning: %llu boxes (blocks of "
-		    "%dx%dx%d leaves holding a bracketing leaf, and %llu "
+		fprintf(stderr, "raycast: binning: %llu boxes (of the "
+		    "bracketing leaves of each block of %dx%dx%d, and %llu "
 		    "bracketing level-1 macrocells whole, %.1f ms); %llu of "
 		    "%llu primary rays enter none (not walked)\n",
 		    (unsigned long long)st->bin_boxes, st->bin_block,
@@ -304,10 +304,10 @@ main(int argc, char **argv)
 			    "before the first box they enter (binned per 8x8 "
 			    "pixels) of ", o.nobin ? "" : o.nomask ? "the level-1 "
 			    "macrocells bracketing an isovalue; a ray that "
-			    "enters none is not walked" : "the blocks of "
-			    VX_RAYCAST_BLOCK_STR " leaves that hold a leaf "
-			    "bracketing an isovalue, in the macrocells whose "
-			    "cell mask bits are built (the centre pixel of each "
+			    "enters none is not walked" : "the boxes of the "
+			    "leaves bracketing an isovalue in each block of "
+			    VX_RAYCAST_BLOCK_STR " leaves, in the macrocells "
+			    "whose cell mask bits are built (the centre pixel of each "
 			    "8x8 bin is drawn first, to build those in sight; "
 			    "the other bracketing macrocells whole); a ray that "
 			    "enters none is not walked");

@@ -167,7 +167,7 @@ raycast --iso 0.5 --aa 2 --size 33x33 --set "$cam" --hdr --no-binning \
 check_eq "binning = no binning: 2x2 samples" "$(px same "$T/aa1.vx" "$T/aa2.vx")" same
 raycast --iso 0.5 --size 65x65 --set "$cam" --stats "$T/sph.vx" 2>"$T/bst" >/dev/null
 check "binning: --stats counts the rays not walked" \
-    grep -q 'binning: [1-9][0-9]* boxes (blocks of 4x4x4 leaves holding a bracketing leaf, and [0-9]* bracketing level-1 macrocells whole, [0-9.]* ms); [1-9][0-9]* of 4225 primary rays enter none' "$T/bst"
+    grep -q 'binning: [1-9][0-9]* boxes (of the bracketing leaves of each block of 4x4x4, and [0-9]* bracketing level-1 macrocells whole, [0-9.]* ms); [1-9][0-9]* of 4225 primary rays enter none' "$T/bst"
 # without a cell mask, whole level-1 macrocells: the same picture
 raycast --iso 0.5 --size 65x65 --set "$cam" --stats --no-cellmask --hdr \
     "$T/sph.vx" 2>"$T/bst3" >"$T/nm1.vx"

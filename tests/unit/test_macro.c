@@ -974,12 +974,13 @@ lb_cmp(const void *a, const void *b)
 }
 
 /* vx_cellmask_boxes: for random volumes, macrocell sizes, values and block
- * edges sub, the boxes of each level-1 macrocell are distinct aligned
- * blocks of it (sub^3 leaves from its low corner, shorter at its far
- * faces), each holding a leaf whose mask bit is set, and every set bit's
- * leaf lies in one of them (oracle: the bits, read leaf by leaf, as the
- * header lays them out); a macrocell that brackets nothing has none, sub
- * 0 gives the whole macrocell, an unready mask nothing. */
+ * edges sub, each box of a level-1 macrocell lies in one of its aligned
+ * blocks (sub^3 leaves from its low corner, shorter at its far faces), no
+ * two in the same, and is the least box holding that block's leaves whose
+ * mask bit is set; every set bit's leaf lies in one of them (oracle: the
+ * bits, read leaf by leaf, as the header lays them out); a macrocell that
+ * brackets nothing has none, sub 0 gives the whole macrocell, an unready
+ * mask nothing. */
 static void
 cellmask_boxes_cover_bits(void **state)
 {
@@ -1026,28 +1027,56 @@ cellmask_boxes_cover_bits(void **state)
 			const uint64_t *bits = mk.bits + mk.slot[b];
 
 			for (size_t i = 0; i < n; i++) {
-				int any = 0;
+				int64_t bj[3], blo[3], bhi[3];
 
+				/* one block, distinct from the others' */
 				for (int a = 0; a < 3; a++) {
-					assert_true(out[i].lo[a] >= lo[a]);
-					assert_int_equal((out[i].lo[a] - lo[a]) % sub, 0);
-					assert_int_equal(out[i].hi[a], out[i].lo[a] +
-					    sub < hi[a] ? out[i].lo[a] + sub : hi[a]);
+					assert_true(out[i].lo[a] >= lo[a] &&
+					    out[i].lo[a] < out[i].hi[a] &&
+					    out[i].hi[a] <= hi[a]);
+					bj[a] = (out[i].lo[a] - lo[a]) / sub;
+					assert_int_equal((out[i].hi[a] - 1 - lo[a]) / sub,
+					    bj[a]);
 					partial += out[i].hi[a] - out[i].lo[a] < sub;
 				}
-				for (size_t i2 = 0; i2 < i; i2++)
-					assert_false(memcmp(out[i].lo, out[i2].lo,
-					    sizeof out[i].lo) == 0);
-				for (int64_t z = out[i].lo[2]; z < out[i].hi[2]; z++)
-					for (int64_t y = out[i].lo[1]; y < out[i].hi[1]; y++)
-						for (int64_t x = out[i].lo[0]; x < out[i].hi[0];
-						    x++) {
+				for (size_t i2 = 0; i2 < i; i2++) {
+					int same = 1;
+
+					for (int a = 0; a < 3; a++)
+						same &= (out[i2].lo[a] - lo[a]) / sub ==
+						    bj[a];
+					assert_false(same);
+				}
+				/* oracle: the least box holding the block's set
+				 * bits, by looking at each of its leaves */
+				for (int a = 0; a < 3; a++) {
+					blo[a] = INT64_MAX;
+					bhi[a] = INT64_MIN;
+				}
+				for (int64_t z = lo[2] + bj[2] * sub; z < hi[2] &&
+				    z < lo[2] + (bj[2] + 1) * sub; z++)
+					for (int64_t y = lo[1] + bj[1] * sub; y < hi[1] &&
+					    y < lo[1] + (bj[1] + 1) * sub; y++)
+						for (int64_t x = lo[0] + bj[0] * sub;
+						    x < hi[0] && x < lo[0] + (bj[0] + 1) *
+						    sub; x++) {
 							int64_t li = (x - lo[0]) + w[0] * ((y -
 							    lo[1]) + w[1] * (z - lo[2]));
+							int64_t p[3] = { x, y, z };
 
-							any |= (int)(bits[li >> 6] >> (li & 63) & 1);
+							if (!(bits[li >> 6] >> (li & 63) & 1))
+								continue;
+							for (int a = 0; a < 3; a++) {
+								blo[a] = p[a] < blo[a] ? p[a] :
+								    blo[a];
+								bhi[a] = p[a] + 1 > bhi[a] ?
+								    p[a] + 1 : bhi[a];
+							}
 						}
-				assert_true(any);
+				for (int a = 0; a < 3; a++) {
+					assert_int_equal(out[i].lo[a], blo[a]);
+					assert_int_equal(out[i].hi[a], bhi[a]);
+				}
 			}
 			for (int64_t z = lo[2]; z < hi[2]; z++)
 				for (int64_t y = lo[1]; y < hi[1]; y++)
