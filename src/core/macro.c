@@ -1266,11 +1266,12 @@ vx_cellmask_boxes(vx_cellmask *k, int64_t b, int sub, vx_cellbox *out)
 					uint64_t r = row_bits(bits, w[0] * (y +
 					    w[1] * z), (int)nl[0]);
 
-					for (j = 0; r != 0 && j < nb; j++) {
-						uint64_t v = r >> (j * sub) & full;
+					for (uint64_t rr = r; rr != 0;
+					    rr &= ~(full << (j * sub))) {
+						uint64_t v;
 
-						if (v == 0)
-							continue;
+						j = __builtin_ctzll(rr) / sub;
+						v = r >> (j * sub) & full;
 						if (xm[j] == 0) {
 							y0[j] = y1[j] = y;
 							z0[j] = z1[j] = z;
