@@ -775,6 +775,19 @@ tet_layer(void *ctx, const vx_tethit *h)
 	return composite(x, &sp, c0);
 }
 
+/* below: the double just below x, finite and > 0 (nextafter(x, -Inf)
+ * without the call) */
+static inline double
+below(double x)
+{
+	uint64_t u;
+
+	memcpy(&u, &x, sizeof u);
+	u--;
+	memcpy(&x, &u, sizeof x);
+	return x;
+}
+
 /* bin_of: the bin of sample point (px, py) in *bin; returns its bit in
  * binpix (0: no box's footprint holds the pixel) */
 static inline int
@@ -837,7 +850,7 @@ pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
 			if (te == INFINITY)
 				walk = 0;
 			else if (te > 0)
-				t0 = nextafter(te, -INFINITY);
+				t0 = below(te);
 		}
 		if (walk)
 			vx_iso_trace(&S->tr, oi, di, t0, INFINITY, S->iso,
