@@ -853,22 +853,19 @@ ray_axes(ray *r, const int64_t n[3], const double o[3], const double d[3])
 	return 1;
 }
 
-/* ray_start: the ray's set-up for a walk from level top over n leaves:
- * r filled in, the segment [*ta, *tb] clipped to the grid, the start leaf
- * (the one the ray is in just after *ta) and its entry axis *e (-1: *ta is
- * on no face of it).  Returns 0 when nothing is to be walked (the ray
- * misses, is not finite, or the root range brackets none of the values). */
-static int
-ray_start(ray *r, const vx_macro *m, int top, const int64_t n[3],
-    const double o[3], const double d[3], const float *vals, int nvals,
-    double *tap, double *tbp, int64_t leaf[3], int *e)
+/* ray_finish: the set-up of ray r (ray_axes done, over n leaves) for a
+ * walk from level top: the segment [*ta, *tb] clipped to the grid, the
+ * start leaf (the one the ray is in just after *ta) and its entry axis *e
+ * (-1: *ta is on no face of it).  Returns 0 when nothing is to be walked
+ * (the ray misses, or the root range brackets none of the values). */
+static inline __attribute__((always_inline)) int
+ray_finish(ray *r, const vx_macro *m, int top, const float *vals,
+    int nvals, double *tap, double *tbp, int64_t leaf[3], int *e)
 {
+	const int64_t *n = r->n;
 	double ta = *tap, tb = *tbp;
 	int a;
 
-	if (n[0] <= 0 || n[1] <= 0 || n[2] <= 0 || !(ta <= tb) ||
-	    !ray_axes(r, n, o, d))
-		return 0;
 	for (a = 0; a < 3; a++) {
 		if (r->s[a] != 0) {
 			double t0 = tcross(r, a, r->s[a] > 0 ? 0 : n[a]);
@@ -931,18 +928,15 @@ vx_macro_cell_brackets(const vx_macro *m, int l, int64_t b,
 
 /* vx_macro_boxes_entry: see vx_macro.h.  The ray is set up as ray_start
  * sets it up (the same crossing-time function, so the same times). */
-double
-vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *box,
-    const uint32_t *ix, size_t nbox, const double o[3], const double d[3],
-    const int32_t q[2])
+/* boxes_first: vx_macro_boxes_entry for ray r (ray_axes done) */
+static inline double
+boxes_first(const ray *r, const vx_cellbox *box, const uint32_t *ix,
+    size_t nbox, const int32_t q[2])
 {
 	double best = INFINITY;
 	size_t k;
-	ray r;
 	int a;
 
-	if (!ray_axes(&r, m->dims[0], o, d))
-		return INFINITY;
 	for (k = 0; k < nbox; k++) {
 		const vx_cellbox *bx = ix != NULL ? box + ix[k] : box + k;
 		double tin = -INFINITY, tout = INFINITY;
@@ -957,12 +951,12 @@ vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *box,
 		for (a = 0; a < 3; a++) {
 			int64_t lo = bx->lo[a], hi = bx->hi[a];
 
-			if (r.s[a] == 0) {
-				if (r.fixed[a] < lo || r.fixed[a] >= hi)
+			if (r->s[a] == 0) {
+				if (r->fixed[a] < lo || r->fixed[a] >= hi)
 					break;
 			} else {
-				double tn = tcross(&r, a, r.up[a] ? lo : hi);
-				double tf = tcross(&r, a, r.up[a] ? hi : lo);
+				double tn = tcross(r, a, r->up[a] ? lo : hi);
+				double tf = tcross(r, a, r->up[a] ? hi : lo);
 
 				if (tn > tin)
 					tin = tn;
@@ -975,6 +969,18 @@ vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *box,
 	}
 	/* +0 for -0: the same time whatever the boxes' order */
 	return best + 0.0;
+}
+
+double
+vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *box,
+    const uint32_t *ix, size_t nbox, const double o[3], const double d[3],
+    const int32_t q[2])
+{
+	ray r;
+
+	if (!ray_axes(&r, m->dims[0], o, d))
+		return INFINITY;
+	return boxes_first(&r, box, ix, nbox, q);
 }
 
 /* ---- cell masks ----
@@ -1347,7 +1353,7 @@ children(const vx_macro *m, int l, int a, int64_t cl, const int64_t n[3],
  * cells are the leaves, or NULL; mm0: stored leaf ranges or NULL. */
 static int
 walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
-    const float *mm0, vx_cellmask *mk, const double o[3],
+    const float *mm0, vx_cellmask *mk, const ray *rp, const double o[3],
     const double d[3], double tmin, double tmax, const float *vals,
     int nvals, vx_visit_fn fn, void *ctx, vx_trav_stats *st)
 {
@@ -1364,7 +1370,14 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 
 	memset(&s, 0, sizeof s);
 	s.rays = 1;
-	if (!ray_start(&r, m, top, n, o, d, vals, nvals, &ta, &tb, leaf, &e))
+	/* the ray set up by the caller (rp, over these n leaves), or here */
+	if (n[0] <= 0 || n[1] <= 0 || n[2] <= 0 || !(ta <= tb))
+		goto done;
+	if (rp != NULL)
+		r = *rp;
+	else if (!ray_axes(&r, n, o, d))
+		goto done;
+	if (!ray_finish(&r, m, top, vals, nvals, &ta, &tb, leaf, &e))
 		goto done;
 	for (l = 0; l <= top; l++)
 		for (a = 0; a < 3; a++)
@@ -1559,7 +1572,7 @@ vx_macro_traverse(const vx_macro *m, const vx_grid *g, const double o[3],
 {
 	if (g != NULL && !fits(m, g))
 		return -1;
-	return walk(m, m->nlev, m->dims[0], g, g ? NULL : m->mm[0], NULL, o,
+	return walk(m, m->nlev, m->dims[0], g, g ? NULL : m->mm[0], NULL, NULL, o,
 	    d, tmin, tmax, vals, nvals, fn, ctx, st);
 }
 
@@ -1599,10 +1612,40 @@ vx_macro_traverse_masked(const vx_macro *m, const vx_grid *g,
 		if (!vx_cellmask_matches(k, m, vals, nvals))
 			k = NULL;
 	}
-	return walk(m, m->nlev, m->dims[0], g, NULL, k, o, d, tmin, tmax,
+	return walk(m, m->nlev, m->dims[0], g, NULL, k, NULL, o, d, tmin, tmax,
 	    vals, nvals, fn, ctx, st);
 }
 
+
+int
+vx_macro_traverse_boxes(const vx_macro *m, const vx_grid *g,
+    vx_cellmask *k, const vx_cellbox *box, const uint32_t *ix, size_t nbox,
+    const int32_t q[2], const double o[3], const double d[3],
+    const float *vals, int nvals, vx_visit_fn fn, void *ctx,
+    vx_trav_stats *st)
+{
+	double te, t0 = 0;
+	ray r;
+
+	if (g == NULL || m->nlev < 1 || !fits(m, g))
+		return -1;
+	if (!(vx_cellmask_matches(k, m, vals, nvals) && k->g == g))
+		k = NULL;
+	/* the ray set up once, for the boxes and the walk */
+	if (!ray_axes(&r, m->dims[0], o, d) ||
+	    (te = boxes_first(&r, box, ix, nbox, q)) == INFINITY)
+		return 0;
+	if (te > 0) {
+		/* just below te (nextafter(te, -Inf)) */
+		uint64_t u;
+
+		memcpy(&u, &te, sizeof u);
+		u--;
+		memcpy(&t0, &u, sizeof t0);
+	}
+	return walk(m, m->nlev, m->dims[0], g, NULL, k, &r, o, d, t0,
+	    INFINITY, vals, nvals, fn, ctx, st);
+}
 
 int
 vx_macro_traverse_flat(const vx_macro *m, const vx_grid *g,
@@ -1619,12 +1662,12 @@ vx_macro_traverse_flat(const vx_macro *m, const vx_grid *g,
 			n[a] = g->dims[a] > 1 ? g->dims[a] - 1 : 0;
 		if (n[0] == 0 || n[1] == 0 || n[2] == 0)
 			n[0] = n[1] = n[2] = 0;
-		return walk(NULL, 0, n, g, NULL, NULL, o, d, tmin, tmax, vals,
+		return walk(NULL, 0, n, g, NULL, NULL, NULL, o, d, tmin, tmax, vals,
 		    nvals, fn, ctx, st);
 	}
 	if (g != NULL && !fits(m, g))
 		return -1;
-	return walk(m, 0, m->dims[0], g, g ? NULL : m->mm[0], NULL, o, d,
+	return walk(m, 0, m->dims[0], g, g ? NULL : m->mm[0], NULL, NULL, o, d,
 	    tmin, tmax, vals, nvals, fn, ctx, st);
 }
 

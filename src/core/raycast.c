@@ -775,19 +775,6 @@ tet_layer(void *ctx, const vx_tethit *h)
 	return composite(x, &sp, c0);
 }
 
-/* below: the double just below x, finite and > 0 (nextafter(x, -Inf)
- * without the call) */
-static inline double
-below(double x)
-{
-	uint64_t u;
-
-	memcpy(&u, &x, sizeof u);
-	u--;
-	memcpy(&x, &u, sizeof x);
-	return x;
-}
-
 /* bin_of: the bin of sample point (px, py) in *bin; returns its bit in
  * binpix (0: no box's footprint holds the pixel) */
 static inline int
@@ -831,32 +818,23 @@ pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
 		vx_tetleaf_trace(S->lg, S->mesh, ow, dw, S->isod, S->niso, 0,
 		    INFINITY, tet_layer, &x, &L->tst);
 	else {
-		double t0 = 0;
-		int walk = 1;
-
 		vx_world_to_index(S->g, ow, oi);
 		vx_world_to_index_dir(S->g, dw, di);
 		if (S->binoff != NULL) {
-			/* start just before the first box the ray enters (none:
-			 * nothing to walk); the walk visits the same leaves
-			 * (vx_macro_boxes_entry) */
+			/* the walk starts just before the first box the ray
+			 * enters, and not at all when it enters none: the same
+			 * leaves (vx_macro_traverse_boxes) */
 			const int32_t q[2] = { (int32_t)px, (int32_t)py };
 			int64_t t = S->binoff[bin];
-			double te;
+			uint64_t walked = L->st.trav.rays;
 
-			te = vx_macro_boxes_entry(S->tr.m, S->binbox,
-			    S->binlist + t, (size_t)(S->binoff[bin + 1] - t), oi,
-			    di, q);
-			if (te == INFINITY)
-				walk = 0;
-			else if (te > 0)
-				t0 = below(te);
-		}
-		if (walk)
-			vx_iso_trace(&S->tr, oi, di, t0, INFINITY, S->iso,
+			vx_iso_trace_boxes(&S->tr, oi, di, S->binbox,
+			    S->binlist + t, (size_t)(S->binoff[bin + 1] - t), q,
+			    S->iso, S->niso, layer, &x, &L->st);
+			L->binned += L->st.trav.rays == walked;
+		} else
+			vx_iso_trace(&S->tr, oi, di, 0, INFINITY, S->iso,
 			    S->niso, layer, &x, &L->st);
-		else
-			L->binned++;
 	}
 out:
 	for (int i = 0; i < 3; i++)

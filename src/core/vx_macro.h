@@ -327,6 +327,21 @@ double vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *box,
     const uint32_t *ix, size_t nbox, const double o[3], const double d[3],
     const int32_t q[2]);
 
+/* vx_macro_traverse_boxes: the walk of vx_macro_traverse_masked (mask k)
+ * of the ray o + t d from t = 0, started just before the time it enters
+ * the first of the boxes (vx_macro_boxes_entry with box, ix, nbox, q) and
+ * not started at all when it enters none: the same leaves, data and
+ * order, on the conditions vx_macro_boxes_entry gives (every leaf that
+ * brackets the values lies in one of those boxes, and so on), with the
+ * ray set up once for both.  Returns the visitor's nonzero value, 0 (st
+ * counts the ray only when it was walked), or -1 when g does not fit m or
+ * m has no level 1.  Reentrant (k's lazy bits as for the walk). */
+int vx_macro_traverse_boxes(const vx_macro *m, const vx_grid *g,
+    vx_cellmask *k, const vx_cellbox *box, const uint32_t *ix, size_t nbox,
+    const int32_t q[2], const double o[3], const double d[3],
+    const float *vals, int nvals, vx_visit_fn fn, void *ctx,
+    vx_trav_stats *st);
+
 /* vx_cellmask_boxes: for each of level-1 macrocell b's blocks of sub x sub
  * x sub leaves (from its low corner; the last ones along an axis may be
  * shorter) that holds a leaf whose bit is set, the box (lo, hi only) of

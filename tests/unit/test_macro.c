@@ -1115,10 +1115,12 @@ cellmask_boxes_cover_bits(void **state)
  * every level-1 macrocell that brackets the values, the walk started just
  * before the earliest entry visits exactly the leaves (same data, same
  * order) of the walk from the segment's start, and none when there is no
- * entry; boxes in any order with lb -Inf give the same time as sorted
- * ones with true lower bounds.  Rays: random, through macrocell corners
- * and edges along axes (ties), and from inside the volume.  Oracle: the
- * walk from 0. */
+ * entry; so does vx_macro_traverse_boxes in one call, over the blocks with
+ * and without footprints; boxes in any order with lb -Inf give the same
+ * time as sorted ones with true lower bounds.  Rays: random, through
+ * macrocell corners and edges along axes (ties), and from inside the
+ * volume.  Oracle: the walk from 0 (from just before the entry where
+ * footprints leave boxes out). */
 static void
 boxes_entry_keeps_visits(void **state)
 {
@@ -1250,6 +1252,22 @@ boxes_entry_keeps_visits(void **state)
 				ok &= h.n == 0 || h.v[0].t0 >= te || h.v[0].t0 == 0;
 				entered += h.n > 0;
 			}
+			/* all the blocks (every bracketing leaf in one), in
+			 * one call: the visits of the walk from 0 */
+			{
+				rec h4;
+
+				rec_init(&h4, m.dims[0]);
+				ok &= vx_macro_traverse_boxes(&m, &g, &mk, sbx, NULL,
+				    nsbx, NULL, o, d, vals, nv, collect, &h4,
+				    NULL) == 0;
+				ok &= h4.n == h.n;
+				for (int i = 0; ok && i < h.n; i++)
+					ok &= same_visit(&h4.v[i], &h.v[i]) &&
+					    memcmp(h4.v[i].c, h.v[i].c,
+					    sizeof h.v[i].c) == 0;
+				free(h4.v);
+			}
 			/* from the entry into the blocks: the same visits */
 			double tb = vx_macro_boxes_entry(&m, sbx, NULL, nsbx, o, d,
 			    NULL);
@@ -1286,6 +1304,26 @@ boxes_entry_keeps_visits(void **state)
 				tq = vx_macro_boxes_entry(&m, fb, NULL, nf, o, d, NULL);
 				ok &= memcmp(&tq, &(double){ vx_macro_boxes_entry(&m,
 				    sbx, NULL, nsbx, o, d, q) }, sizeof tq) == 0;
+				/* vx_macro_traverse_boxes: in one call, the walk
+				 * from just before that entry (oracle: the walk
+				 * started there), none when there is none */
+				rec h5, h6;
+
+				rec_init(&h5, m.dims[0]);
+				rec_init(&h6, m.dims[0]);
+				ok &= vx_macro_traverse_boxes(&m, &g, &mk, sbx, NULL,
+				    nsbx, q, o, d, vals, nv, collect, &h5, NULL) == 0;
+				if (tq < INFINITY)
+					ok &= vx_macro_traverse(&m, &g, o, d, tq > 0 ?
+					    nextafter(tq, -INFINITY) : 0, INFINITY,
+					    vals, nv, collect, &h6, NULL) == 0;
+				ok &= h5.n == h6.n;
+				for (int i = 0; ok && i < h5.n; i++)
+					ok &= same_visit(&h5.v[i], &h6.v[i]) &&
+					    memcmp(h5.v[i].c, h6.v[i].c,
+					    sizeof h5.v[i].c) == 0;
+				free(h5.v);
+				free(h6.v);
 				/* the same boxes through an index list, in
 				 * reverse (lb all -Inf: any order is sorted) */
 				uint32_t *ix = malloc(nsbx * sizeof *ix);
