@@ -1348,6 +1348,27 @@ children(const vx_macro *m, int l, int a, int64_t cl, const int64_t n[3],
 	*k1 = hi;
 }
 
+/* up_level: the walk's state of level l (top: the walk's start level):
+ * the range of its cell c[l] among its siblings (lim, in walking order;
+ * from the parent c[l + 1]) and the cell's exit time per axis (tn) */
+static void
+up_level(const ray *r, const vx_macro *m, int top, const int64_t n[3],
+    int l, int64_t c[][3], int64_t lim[][3], double tn[][3])
+{
+	for (int a = 0; a < 3; a++) {
+		if (l == top)
+			lim[l][a] = r->up[a] ? (top ? m->dims[top][a] : n[a]) :
+			    -1;
+		else {
+			int64_t k0, k1;
+
+			children(m, l + 1, a, c[l + 1][a], n, &k0, &k1);
+			lim[l][a] = r->up[a] ? k1 : k0 - 1;
+		}
+		tn[l][a] = t_exit_of(r, l, a, c[l][a]);
+	}
+}
+
 /* walk: the traversal behind both public entry points.  top is the level
  * whose DDA starts the walk (0: flat).  n: leaf dims.  g: the volume whose
  * cells are the leaves, or NULL; mm0: stored leaf ranges or NULL. */
@@ -1365,7 +1386,7 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 	vx_trav_stats s;
 	vx_leaf_visit v;
 	double ta = tmin, tb = tmax, t, texit;
-	int a, l, e, ax, start, cont = 0, rc = 0;
+	int a, l, e, ax, start, cont = 0, made, rc = 0;
 	ray r;
 
 	memset(&s, 0, sizeof s);
@@ -1382,11 +1403,12 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 	for (l = 0; l <= top; l++)
 		for (a = 0; a < 3; a++)
 			c[l][a] = leaf[a] / r.w[l][a];
-	for (a = 0; a < 3; a++) {
-		lim[top][a] = r.up[a] ? (top ? m->dims[top][a] : n[a]) : -1;
-		tn[top][a] = t_exit_of(&r, top, a, c[top][a]);
-	}
-	l = top;
+	/* a ray set up by the caller starts in its level-1 macrocell: the
+	 * levels above are made when it first leaves into them (up_level;
+	 * they only cull) */
+	l = rp != NULL && top > 1 ? 1 : top;
+	up_level(&r, m, top, n, l, c, lim, tn);
+	made = l;
 	t = ta;
 	start = 1;
 
@@ -1536,6 +1558,8 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 			if (l == top)
 				goto done;
 			l++;   /* left the parent too, through the same face */
+			if (l > made)
+				up_level(&r, m, top, n, made = l, c, lim, tn);
 		}
 		tn[l][ax] = t_exit_of(&r, l, ax, c[l][ax]);
 		t = texit;

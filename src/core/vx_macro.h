@@ -333,9 +333,12 @@ double vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *box,
  * not started at all when it enters none: the same leaves, data and
  * order, on the conditions vx_macro_boxes_entry gives (every leaf that
  * brackets the values lies in one of those boxes, and so on), with the
- * ray set up once for both.  Returns the visitor's nonzero value, 0 (st
- * counts the ray only when it was walked), or -1 when g does not fit m or
- * m has no level 1.  Reentrant (k's lazy bits as for the walk). */
+ * ray set up once for both.  The walk starts in its level-1 macrocell and
+ * looks at the levels above only when it leaves into them (they only cull:
+ * st's macrocell counts differ, the visits do not).  Returns the visitor's
+ * nonzero value, 0 (st counts the ray only when it was walked), or -1 when
+ * g does not fit m or m has no level 1.  Reentrant (k's lazy bits as for
+ * the walk). */
 int vx_macro_traverse_boxes(const vx_macro *m, const vx_grid *g,
     vx_cellmask *k, const vx_cellbox *box, const uint32_t *ix, size_t nbox,
     const int32_t q[2], const double o[3], const double d[3],
