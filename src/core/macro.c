@@ -926,9 +926,9 @@ vx_macro_cell_brackets(const vx_macro *m, int l, int64_t b,
 	return brackets(m->mm[l][2 * b], m->mm[l][2 * b + 1], vals, nvals);
 }
 
-/* vx_macro_boxes_entry: see vx_macro.h.  The ray is set up as ray_start
- * sets it up (the same crossing-time function, so the same times). */
-/* boxes_first: vx_macro_boxes_entry for ray r (ray_axes done) */
+/* boxes_first: vx_macro_boxes_entry (see vx_macro.h) for ray r, set up by
+ * ray_axes as for the walk: the same crossing-time function, so the same
+ * times */
 static inline double
 boxes_first(const ray *r, const vx_cellbox *box, const uint32_t *ix,
     size_t nbox, const int32_t q[2])
@@ -1369,9 +1369,11 @@ up_level(const ray *r, const vx_macro *m, int top, const int64_t n[3],
 	}
 }
 
-/* walk: the traversal behind both public entry points.  top is the level
+/* walk: the traversal behind the public entry points.  top is the level
  * whose DDA starts the walk (0: flat).  n: leaf dims.  g: the volume whose
- * cells are the leaves, or NULL; mm0: stored leaf ranges or NULL. */
+ * cells are the leaves, or NULL; mm0: stored leaf ranges or NULL.  rp: the
+ * ray set up by ray_axes over n leaves (o, d unused), whose walk starts at
+ * level 1, or NULL: set up here from o, d. */
 static int
 walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
     const float *mm0, vx_cellmask *mk, const ray *rp, const double o[3],
