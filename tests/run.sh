@@ -6,19 +6,29 @@
 #   VX_UNIT_DIR  directory of the unit test binaries (default build/tests)
 #   VX_ONLY      "unit" or "cli" to run just one kind
 #   VX_FILTER    run only files whose name contains this string
+#   VX_TEST_TIMEOUT  seconds a file may run (default 900; where timeout(1)
+#                is there): past it, the file counts as failed, so a hang
+#                (a walk that never ends) fails instead of stalling the run
 set -u
 : "${VX_BIN:=bin}" "${VX_UNIT_DIR:=build/tests}" "${VX_ONLY:=}" "${VX_FILTER:=}"
+: "${VX_TEST_TIMEOUT:=900}"
 VX_BIN=$(cd "$VX_BIN" && pwd); export VX_BIN
 CMOCKA_MESSAGE_OUTPUT=TAP; export CMOCKA_MESSAGE_OUTPUT
 top=$(pwd)
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT INT TERM
 pass=0; fail=0; failed_files=""
+lim=""
+if command -v timeout >/dev/null 2>&1; then lim="timeout $VX_TEST_TIMEOUT"; fi
 
 run_one() { # name, command...
 	name=$1; shift
 	case "$name" in *"$VX_FILTER"*) ;; *) return ;; esac
 	log="$tmp/log"
-	"$@" >"$log" 2>&1; rc=$?
+	$lim "$@" >"$log" 2>&1; rc=$?
+	note=""
+	if [ -n "$lim" ] && [ "$rc" -eq 124 ]; then
+		note=", timed out after $VX_TEST_TIMEOUT s"
+	fi
 	# cmocka writes a skipped test as "not ok N # SKIP name": a skip
 	p=$(grep -c '^ok ' "$log"); f=$(grep -v '^not ok [0-9]* # SKIP' "$log" | grep -c '^not ok ')
 	s=$(grep -c '^not ok [0-9]* # SKIP' "$log")
@@ -26,7 +36,8 @@ run_one() { # name, command...
 	pass=$((pass + p)); fail=$((fail + f))
 	if [ "$f" -gt 0 ]; then
 		failed_files="$failed_files $name"
-		printf '%-36s %4d passed, %d FAILED (exit %d)\n' "$name" "$p" "$f" "$rc"
+		printf '%-36s %4d passed, %d FAILED (exit %d%s)\n' "$name" "$p" \
+		    "$f" "$rc" "$note"
 		grep -v '^ok ' "$log" | sed 's/^/    /' | head -40
 	elif [ "$s" -gt 0 ]; then
 		printf '%-36s %4d passed, %d skipped:\n' "$name" "$p" "$s"
