@@ -15,12 +15,11 @@ A=$1
 B=$2
 R=${3:-5}
 S=../scenes/iso-headlight.scn
-CH="camera perspective eye 295 495 123 look 0 -17 19 up 0 0 1 fov 30"
-CT="camera perspective eye 560 -480 330 look 260 295 117 up 0 0 1 fov 30"
+. "$(dirname "$0")/cameras.sh"
 run() {
 	case $2 in
-	ch2:*) cam=$CH; f=out/ch2-b.vx ;;
-	*) cam=$CT; f=out/vhf-b.vx ;;
+	ch2:*) cam=$CAM_CH2; f=out/ch2-b.vx ;;
+	*) cam=$CAM_VHF; f=out/vhf-b.vx ;;
 	esac
 	"$1" --scene $S --set "$cam" --iso "${2#*:}" -j "${J:-1}" -n 9 --warm 1 \
 	    "$f" | awk '$1 == "frame_ms_min" { print $2 }'

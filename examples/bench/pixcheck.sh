@@ -43,8 +43,9 @@ fi
 
 S=examples/scenes
 HL=$S/iso-headlight.scn
-CAM="camera perspective eye 295 495 123 look 0 -17 19 up 0 0 1 fov 30"
-VCAM="camera perspective eye 560 -480 330 look 260 295 117 up 0 0 1 fov 30"
+. "$(dirname "$0")/cameras.sh"
+CAM=$CAM_CH2
+VCAM=$CAM_VHF
 n=0
 rc() {   # rc NAME STREAM ARGS...: raycast colour, depth, normals
 	name=$1 stream=$2

@@ -1624,20 +1624,31 @@ vx_cellmask_matches(const vx_cellmask *k, const vx_macro *m,
 	return 1;
 }
 
+/* mask_walk: -1 when volume g does not fit m; else 0, with *k NULL when
+ * the mask is not for m and these values (the walk then tests samples) */
+static int
+mask_walk(const vx_macro *m, const vx_grid *g, vx_cellmask **k,
+    const float *vals, int nvals)
+{
+	/* a mask built over this very m and g has checked that g fits m */
+	if (g != NULL && vx_cellmask_matches(*k, m, vals, nvals) &&
+	    (*k)->g == g)
+		return 0;
+	if (g == NULL || !fits(m, g))
+		return -1;
+	if (!vx_cellmask_matches(*k, m, vals, nvals))
+		*k = NULL;
+	return 0;
+}
+
 int
 vx_macro_traverse_masked(const vx_macro *m, const vx_grid *g,
     vx_cellmask *k, const double o[3], const double d[3], double tmin,
     double tmax, const float *vals, int nvals, vx_visit_fn fn, void *ctx,
     vx_trav_stats *st)
 {
-	/* a mask built over this very m and g has checked that g fits m */
-	if (!(g != NULL && vx_cellmask_matches(k, m, vals, nvals) &&
-	    k->g == g)) {
-		if (g == NULL || !fits(m, g))
-			return -1;
-		if (!vx_cellmask_matches(k, m, vals, nvals))
-			k = NULL;
-	}
+	if (mask_walk(m, g, &k, vals, nvals) != 0)
+		return -1;
 	return walk(m, m->nlev, m->dims[0], g, NULL, k, NULL, o, d, tmin, tmax,
 	    vals, nvals, fn, ctx, st);
 }
@@ -1653,10 +1664,8 @@ vx_macro_traverse_boxes(const vx_macro *m, const vx_grid *g,
 	double te, t0 = 0;
 	ray r;
 
-	if (g == NULL || m->nlev < 1 || !fits(m, g))
+	if (m->nlev < 1 || mask_walk(m, g, &k, vals, nvals) != 0)
 		return -1;
-	if (!(vx_cellmask_matches(k, m, vals, nvals) && k->g == g))
-		k = NULL;
 	/* the ray set up once, for the boxes and the walk */
 	if (!ray_axes(&r, m->dims[0], o, d) ||
 	    (te = boxes_first(&r, box, ix, nbox, q)) == INFINITY)
