@@ -119,6 +119,21 @@ box_sort(vx_cellbox **bxp, int64_t n)
 	return 0;
 }
 
+/* floor_fin: floor(x) for finite x, but +0 for -0 (callers add or take 1,
+ * which makes either zero the same number), without a library call: below
+ * 2^52 in magnitude a conversion to int64_t truncates, above x is an
+ * integer.  ceil(x) is -floor_fin(-x), up to the sign of zero. */
+static inline double
+floor_fin(double x)
+{
+	double t;
+
+	if (!(fabs(x) < 0x1p52))
+		return x;
+	t = (double)(int64_t)x;
+	return t > x ? t - 1 : t;
+}
+
 /* box_place: bx's lb (t is world distance along the unit ray: from the
  * eye to the box, or the box's least depth for an orthographic camera;
  * lowered by far more than rounding) and its footprint, the pixels its
@@ -127,14 +142,22 @@ box_sort(vx_cellbox **bxp, int64_t n)
  * of it, whose projection is its own sample point (x, y) and lies in the
  * hull of the corners' projections [lo, hi], up to rounding far below a
  * pixel: so floor(lo) - 1 <= (int)x <= ceil(hi), whatever the rounding.
- * 0: the box is off the image. */
+ * The corners' pixel coordinates px = 0.5 w (1 + q / half_w), q = u / z
+ * (u for orthographic), and py = 0.5 h (1 - r / half_h), are made of
+ * correctly rounded steps, each monotone in q (r) as half_w, half_h, w
+ * and h are > 0: so the least and greatest px are those of the least and
+ * greatest q, and only those are converted (the same numbers as
+ * converting all eight; a NaN q, whose px is not finite, is caught on its
+ * own, and an infinite px is one of the extremes).  0: the box is off the
+ * image. */
 static int
 box_place(const rc_shared *S, const vx_camera *cam, vx_cellbox *bx)
 {
-	double lo[2] = { INFINITY, INFINITY }, hi[2] = { -INFINITY,
-	    -INFINITY }, dist2 = 0, depth = INFINITY;
-	double vz[3][2], va[3][2], vb[3][2];
-	int front = 1, persp = cam->projection != VX_ORTHOGRAPHIC, a, i;
+	double q0 = INFINITY, q1 = -INFINITY, r0 = INFINITY, r1 = -INFINITY;
+	double dist2 = 0, depth = INFINITY, lo[2] = { 0, 0 }, hi[2] = { 0, 0 };
+	double vz[3][2], va[3][2], vb[3][2], z01[4], u01[4], v01[4];
+	int front = 1, nan = 0, persp = cam->projection != VX_ORTHOGRAPHIC;
+	int a, i;
 
 	/* world = origin + index * spacing, axis by axis: a corner's
 	 * camera coordinates are sums of one term per axis (vx_camera_project's
@@ -157,43 +180,48 @@ box_place(const rc_shared *S, const vx_camera *cam, vx_cellbox *bx)
 		vb[a][0] = w0 * cam->upv[a];
 		vb[a][1] = w1 * cam->upv[a];
 	}
+	/* corner i's sums (x + y) + z, the x + y shared by two corners */
+	for (i = 0; i < 4; i++) {
+		z01[i] = vz[0][i & 1] + vz[1][i >> 1];
+		u01[i] = va[0][i & 1] + va[1][i >> 1];
+		v01[i] = vb[0][i & 1] + vb[1][i >> 1];
+	}
 	for (i = 0; i < 8; i++) {
-		int i0 = i & 1, i1 = i >> 1 & 1, i2 = i >> 2 & 1;
-		double z = vz[0][i0] + vz[1][i1] + vz[2][i2];
-		double u = va[0][i0] + va[1][i1] + va[2][i2];
-		double v = vb[0][i0] + vb[1][i1] + vb[2][i2];
-		double px, py;
+		double z = z01[i & 3] + vz[2][i >> 2];
+		double u = u01[i & 3] + va[2][i >> 2];
+		double v = v01[i & 3] + vb[2][i >> 2];
 
 		depth = z < depth ? z : depth;
-		if (!(z > 0)) {
-			front = 0;
-			continue;
-		}
+		front &= z > 0;
 		if (persp) {
+			/* z <= 0: any u, v (the footprint is the image) */
 			u /= z;
 			v /= z;
 		}
-		px = 0.5 * cam->w * (1 + u / cam->half_w);
-		py = 0.5 * cam->h * (1 - v / cam->half_h);
-		if (!isfinite(px) || !isfinite(py))
-			front = 0;
-		else {
-			lo[0] = px < lo[0] ? px : lo[0];
-			hi[0] = px > hi[0] ? px : hi[0];
-			lo[1] = py < lo[1] ? py : lo[1];
-			hi[1] = py > hi[1] ? py : hi[1];
-		}
+		nan |= (u != u) | (v != v);
+		q0 = u < q0 ? u : q0;
+		q1 = u > q1 ? u : q1;
+		r0 = v < r0 ? v : r0;
+		r1 = v > r1 ? v : r1;
 	}
 	bx->lb = persp ? sqrt(dist2) : depth;
 	bx->lb -= 0x1p-30 * (fabs(bx->lb) + 1);
-	if (!front) {
+	if (front && !nan) {
+		lo[0] = 0.5 * cam->w * (1 + q0 / cam->half_w);
+		hi[0] = 0.5 * cam->w * (1 + q1 / cam->half_w);
+		lo[1] = 0.5 * cam->h * (1 - r1 / cam->half_h);
+		hi[1] = 0.5 * cam->h * (1 - r0 / cam->half_h);
+		front = isfinite(lo[0]) && isfinite(hi[0]) &&
+		    isfinite(lo[1]) && isfinite(hi[1]);
+	}
+	if (!front || nan) {
 		bx->fp[0] = 0;
 		bx->fp[1] = 0;
 		bx->fp[2] = cam->w - 1;
 		bx->fp[3] = cam->h - 1;
 	} else {
-		double x0 = floor(lo[0]) - 1, x1 = ceil(hi[0]) + 1;
-		double y0 = floor(lo[1]) - 1, y1 = ceil(hi[1]) + 1;
+		double x0 = floor_fin(lo[0]) - 1, x1 = -floor_fin(-hi[0]) + 1;
+		double y0 = floor_fin(lo[1]) - 1, y1 = -floor_fin(-hi[1]) + 1;
 
 		if (x1 < 0 || y1 < 0 || x0 > cam->w || y0 > cam->h)
 			return 0;
