@@ -245,27 +245,6 @@ bins_cap(const vx_camera *cam)
 	return cap < (int64_t)UINT32_MAX ? cap : (int64_t)UINT32_MAX;
 }
 
-/* foot_bits: the pixels of bin (bx, by) that box b's footprint holds, as
- * binpix lays them out */
-static uint64_t
-foot_bits(const vx_cellbox *b, int bx, int by)
-{
-	int x0 = b->fp[0] - bx * BIN, x1 = b->fp[2] - bx * BIN;
-	int y0 = b->fp[1] - by * BIN, y1 = b->fp[3] - by * BIN;
-	uint64_t row, out = 0;
-
-	x0 = x0 < 0 ? 0 : x0;
-	x1 = x1 > BIN - 1 ? BIN - 1 : x1;
-	y0 = y0 < 0 ? 0 : y0;
-	y1 = y1 > BIN - 1 ? BIN - 1 : y1;
-	if (x0 > x1 || y0 > y1)
-		return 0;
-	row = ((uint64_t)2 << x1) - ((uint64_t)1 << x0);
-	for (int y = y0; y <= y1; y++)
-		out |= row << (BIN * y);
-	return out;
-}
-
 /* bins_fill: the bins of boxes bx[0..n) (placed, sorted by lb): each box
  * in every bin its footprint overlaps, in order, and the bins' pixel bits.
  * Parallel over bands of rows of bins, one a thread (a thread owns its
@@ -287,25 +266,48 @@ bins_fill(rc_shared *S, const vx_camera *cam, const vx_cellbox *bx,
 		for (t = 0; t < nband; t++) {
 			int r0 = (int)((int64_t)S->nby * t / nband);
 			int r1 = (int)((int64_t)S->nby * (t + 1) / nband);
+			int64_t *cnt = S->binoff + 1, *cur = S->binoff;
+			uint64_t *pix = S->binpix;
+			uint32_t *list = S->binlist;
 
 			for (int64_t b = 0; b < n; b++) {
-				int y0 = bx[b].fp[1] / BIN, y1 = bx[b].fp[3] / BIN;
+				const uint32_t *fp = (const uint32_t *)bx[b].fp;
+				int fy0 = (int)(fp[1] / BIN), fy1 = (int)(fp[3] / BIN);
+				int x0 = (int)(fp[0] / BIN), x1 = (int)(fp[2] / BIN);
+				int y0 = fy0 > r0 ? fy0 : r0;
+				int y1 = fy1 < r1 - 1 ? fy1 : r1 - 1;
+				/* the footprint's pixels of a bin, as binpix
+				 * lays them out: those of its columns (all but
+				 * the first and last bins' columns: all of
+				 * them) in each of its rows, one byte a row: a
+				 * row's bits times a 1 in each of those rows'
+				 * bytes (no carries: the bits fit a byte) */
+				uint64_t xlo = (uint64_t)1 << fp[0] % BIN;
+				uint64_t xhi = (uint64_t)2 << fp[2] % BIN;
 
-				y0 = y0 > r0 ? y0 : r0;
-				y1 = y1 < r1 - 1 ? y1 : r1 - 1;
-				for (int r = y0; r <= y1; r++)
-					for (int x = bx[b].fp[0] / BIN; x <=
-					    bx[b].fp[2] / BIN; x++) {
-						int64_t k = (int64_t)r * S->nbx + x;
+				for (int r = y0; r <= y1; r++) {
+					int64_t k0 = (int64_t)r * S->nbx;
+					unsigned ya = r == fy0 ? fp[1] % BIN : 0;
+					unsigned yb = r == fy1 ? fp[3] % BIN : BIN - 1;
+					uint64_t col;
 
-						if (pass == 0) {
-							S->binoff[k + 1]++;
-							S->binpix[k] |= foot_bits(
-							    &bx[b], x, r);
-						} else
-							S->binlist[S->binoff[k]++] =
+					if (pass == 1) {
+						for (int x = x0; x <= x1; x++)
+							list[cur[k0 + x]++] =
 							    (uint32_t)b;
+						continue;
 					}
+					col = (UINT64_C(0x0101010101010101) >>
+					    BIN * (BIN - 1 - (yb - ya))) << BIN * ya;
+					for (int x = x0; x <= x1; x++) {
+						uint64_t row = (x == x1 ? xhi :
+						    (uint64_t)1 << BIN) -
+						    (x == x0 ? xlo : 1);
+
+						cnt[k0 + x]++;
+						pix[k0 + x] |= row * col;
+					}
+				}
 			}
 		}
 		if (pass == 1)
