@@ -6,6 +6,7 @@
 #include "vx_raycast.h"
 
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -344,6 +345,12 @@ bins_free(rc_shared *S)
 	S->binlist = NULL;
 }
 
+/* bin_buf: a thread's boxes in bins_build (on cache lines of its own) */
+typedef struct bin_buf {
+	_Alignas(64) vx_cellbox *b;
+	int64_t n, cap;
+} bin_buf;
+
 /* bins_build: S->binoff / binbox / binlist / binpix: the primary rays'
  * bins of BIN x BIN pixels, each listing, by a lower bound of their entry
  * time, the boxes a ray of the bin may enter among those that hold every
@@ -353,19 +360,24 @@ bins_free(rc_shared *S)
  * their lists would pass the bound of bins_fill) those macrocells whole.
  * Conservative: a primary ray that enters such a box lies in its
  * footprint.  More than the bound with whole macrocells too: no bins
- * (S->binoff NULL; the rays walk from the eye).  The work is two parallel
- * passes over the macrocells (count, then fill at known offsets), so the
- * order, and the memory, are those of the boxes, whatever the threads.
- * Returns 0, or VX_ENOMEM. */
+ * (S->binoff NULL; the rays walk from the eye).  The work is one parallel
+ * pass over the macrocells, each thread keeping the placed boxes on the
+ * image of the macrocells it takes (and counting all of them, for the
+ * bound: it stops keeping them once the count passes the bound), then
+ * the macrocells' boxes gathered in their order: so the order, and the
+ * memory, are those of the boxes, whatever the threads.  Returns 0, or
+ * VX_ENOMEM. */
 static int
 bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 {
 	const vx_macro *m = S->tr.m;
 	int64_t nb = m->dims[1][0] * m->dims[1][1] * m->dims[1][2], b, n, k;
-	int64_t nbr = 0, *brk = NULL, *off = NULL, nwhole = 0;
-	int64_t cap = bins_cap(cam);
+	int64_t nbr = 0, *brk = NULL, *off = NULL, *keep = NULL, *at = NULL;
+	int64_t cap = bins_cap(cam), nwhole = 0, nblk = 1;
+	int *thr = NULL;
+	bin_buf *buf = NULL;
 	vx_cellbox *box = NULL;
-	int sub = mask != NULL && mask->ready ? SUB : 0, rc = 0, nthr;
+	int sub = mask != NULL && mask->ready ? SUB : 0, rc = 0, nthr, t;
 
 #ifdef _OPENMP
 	nthr = S->o->nthreads > 0 ? S->o->nthreads : omp_get_num_procs();
@@ -378,38 +390,99 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 	    sizeof *S->binoff)) == NULL ||
 	    (S->binpix = calloc((size_t)S->nbx * S->nby,
 	    sizeof *S->binpix)) == NULL ||
-	    (brk = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *brk)) == NULL)
+	    (brk = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *brk)) == NULL ||
+	    (buf = calloc((size_t)nthr, sizeof *buf)) == NULL)
 		goto nomem;
-	/* the bracketing macrocells: the parallel loops run over them */
+	/* the bracketing macrocells: the parallel loop runs over them */
 	for (b = 0; b < nb; b++)
 		if (vx_macro_cell_brackets(m, 1, b, S->iso, S->niso))
 			brk[nbr++] = b;
-	if ((off = malloc((size_t)(nbr + 1) * sizeof *off)) == NULL)
+	if ((off = malloc((size_t)(nbr + 1) * sizeof *off)) == NULL ||
+	    (keep = malloc((size_t)(nbr > 0 ? nbr : 1) * sizeof *keep)) ==
+	    NULL || (at = malloc((size_t)(nbr > 0 ? nbr : 1) * sizeof *at)) ==
+	    NULL || (thr = malloc((size_t)(nbr > 0 ? nbr : 1) * sizeof *thr)) ==
+	    NULL)
 		goto nomem;
+	/* the most blocks a macrocell has */
+	for (int a = 0; a < 3 && sub; a++)
+		nblk *= (m->width[1][a] + sub - 1) / sub;
 	for (;;) {
-		/* 1: each bracketing macrocell in view: how many boxes (its
+		_Atomic int64_t total = 0;
+		int oom = 0;
+
+		/* each bracketing macrocell in view: how many boxes (its
 		 * blocks that hold a bracketing leaf, building its bits, or
-		 * itself) */
+		 * itself), and those on the image, placed */
 		nwhole = 0;
+		for (t = 0; t < nthr; t++)
+			buf[t].n = 0;
 #ifdef _OPENMP
 #pragma omp parallel for num_threads(nthr) schedule(dynamic, 8) \
-    reduction(+:nwhole)
+    reduction(+:nwhole) reduction(|:oom)
 #endif
 		for (k = 0; k < nbr; k++) {
 			const int64_t mc = brk[k];    /* the macrocell */
-			vx_cellbox whole;
+#ifdef _OPENMP
+			bin_buf *B = &buf[omp_get_thread_num()];
+#else
+			bin_buf *B = &buf[0];
+#endif
+			int blocks = sub && vx_cellmask_block_built(mask, mc);
+			int64_t room = blocks ? nblk : 1, c, j, kept;
+			vx_cellbox whole, *out;
 
+			off[k + 1] = keep[k] = 0;
 			vx_macro_cell_box(m, 1, mc, whole.lo, whole.hi);
 			if (!box_place(S, cam, &whole))
-				off[k + 1] = 0;
-			else if (sub && vx_cellmask_block_built(mask, mc))
-				off[k + 1] = (int64_t)vx_cellmask_boxes(mask, mc,
-				    sub, NULL);
-			else {
-				off[k + 1] = 1;
+				continue;
+			if (!blocks)
 				nwhole++;
+			/* past the bound: counted only (made again) */
+			if (atomic_load_explicit(&total, memory_order_relaxed) >
+			    cap) {
+				off[k + 1] = blocks ? (int64_t)vx_cellmask_boxes(
+				    mask, mc, sub, NULL) : 1;
+				continue;
 			}
+			if (B->n + room > B->cap) {
+				int64_t nc = 2 * B->cap > B->n + room ? 2 *
+				    B->cap : B->n + room + 1024;
+				vx_cellbox *nbuf = realloc(B->b, (size_t)nc *
+				    sizeof *nbuf);
+
+				if (nbuf == NULL) {
+					oom = 1;
+					continue;
+				}
+				B->b = nbuf;
+				B->cap = nc;
+			}
+			out = B->b + B->n;
+			if (!blocks) {
+				/* placed: on the image */
+				out[0] = whole;
+				c = kept = 1;
+			} else {
+				/* its bits are built and do not change */
+				c = (int64_t)vx_cellmask_boxes(mask, mc, sub, out);
+				for (j = 0, kept = 0; j < c; j++)
+					if (box_place(S, cam, &out[j]))
+						out[kept++] = out[j];
+			}
+			off[k + 1] = c;
+			keep[k] = kept;
+			at[k] = B->n;
+#ifdef _OPENMP
+			thr[k] = omp_get_thread_num();
+#else
+			thr[k] = 0;
+#endif
+			B->n += kept;
+			atomic_fetch_add_explicit(&total, c,
+			    memory_order_relaxed);
 		}
+		if (oom)
+			goto nomem;
 		for (off[0] = 0, k = 0; k < nbr; k++)
 			off[k + 1] += off[k];
 		if (off[nbr] > cap && sub) {
@@ -420,41 +493,19 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 			rc = 1;
 			break;
 		}
+		/* the boxes on the image, in the macrocells' order */
+		for (n = 0, k = 0; k < nbr; k++)
+			n += keep[k];
 		free(box);
-		if ((box = malloc((size_t)(off[nbr] > 0 ? off[nbr] : 1) *
-		    sizeof *box)) == NULL)
+		if ((box = malloc((size_t)(n > 0 ? n : 1) * sizeof *box)) ==
+		    NULL)
 			goto nomem;
-		/* 2: the boxes, placed (off the image: lb NaN), at their
-		 * macrocell's offset */
-#ifdef _OPENMP
-#pragma omp parallel for num_threads(nthr) schedule(dynamic, 8)
-#endif
-		for (k = 0; k < nbr; k++) {
-			const int64_t mc = brk[k];    /* the macrocell */
-			vx_cellbox whole, *out;
-			int64_t nk, j;
-
-			if (off[k + 1] == off[k])
-				continue;
-			out = box + off[k];
-			nk = off[k + 1] - off[k];
-			if (!sub || !vx_cellmask_block_built(mask, mc)) {
-				/* placed in pass 1 too: the same, on the image */
-				vx_macro_cell_box(m, 1, mc, whole.lo, whole.hi);
-				(void)box_place(S, cam, &whole);
-				out[0] = whole;
-				continue;
+		for (n = 0, k = 0; k < nbr; k++)
+			if (keep[k] > 0) {
+				memcpy(box + n, buf[thr[k]].b + at[k],
+				    (size_t)keep[k] * sizeof *box);
+				n += keep[k];
 			}
-			/* its bits are built and do not change: the nk boxes
-			 * pass 1 counted */
-			(void)vx_cellmask_boxes(mask, mc, sub, out);
-			for (j = 0; j < nk; j++)
-				if (!box_place(S, cam, &out[j]))
-					out[j].lb = NAN;
-		}
-		for (n = 0, k = 0; k < off[nbr]; k++)
-			if (box[k].lb == box[k].lb)
-				box[n++] = box[k];
 		if (box_sort(&box, n) != 0)
 			goto nomem;
 		S->bin_block = sub;
@@ -466,6 +517,12 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 			break;
 		sub = 0;     /* too many entries: whole macrocells */
 	}
+	for (t = 0; t < nthr; t++)
+		free(buf[t].b);
+	free(buf);
+	free(thr);
+	free(at);
+	free(keep);
 	free(off);
 	free(brk);
 	if (rc != 0) {
@@ -476,6 +533,12 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 	S->binbox = box;
 	return 0;
 nomem:
+	for (t = 0; buf != NULL && t < nthr; t++)
+		free(buf[t].b);
+	free(buf);
+	free(thr);
+	free(at);
+	free(keep);
 	free(box);
 	free(off);
 	free(brk);
