@@ -1239,7 +1239,7 @@ vx_cellmask_boxes(vx_cellmask *k, int64_t b, int sub, vx_cellbox *out)
 	const uint64_t *bits;
 	const int64_t *w;
 	int64_t lo[3], hi[3], nl[3], jy, jz, j, y, z;
-	uint64_t full;
+	uint64_t full, ry[VX_MACRO_MAXSIZE], rz[VX_MACRO_MAXSIZE];
 	size_t n = 0;
 
 	if (!k->ready || k->slot[b] < 0)
@@ -1256,56 +1256,58 @@ vx_cellmask_boxes(vx_cellmask *k, int64_t b, int sub, vx_cellbox *out)
 	for (int a = 0; a < 3; a++)
 		nl[a] = hi[a] - lo[a];
 	full = sub < 64 ? ((uint64_t)1 << sub) - 1 : ~(uint64_t)0;
-	/* per row of blocks along x: each block's sub bits of each of its
-	 * rows of leaf bits (a row is at most 64 leaves, so at most 64
-	 * blocks), OR-ed, and the rows and planes that have any */
+	/* per row of blocks along x: the rows of leaf bits of its planes
+	 * of leaves OR-ed per y (ry) and per z (rz), and all of them (rx):
+	 * a block's leaves whose bits are set span, along x, its sub bits
+	 * of rx and along y (z), the first to the last ry (rz) that has any
+	 * of those bits (a row is at most 64 leaves, so at most 64 blocks) */
 	for (jz = 0; jz < nl[2]; jz += sub)
 		for (jy = 0; jy < nl[1]; jy += sub) {
-			uint64_t xm[64], any = 0;
-			int64_t y0[64], y1[64], z0[64], z1[64], nb;
+			uint64_t rx = 0;
+			int64_t ny = nl[1] - jy < sub ? nl[1] - jy : sub;
+			int64_t nz = nl[2] - jz < sub ? nl[2] - jz : sub;
 
-			nb = (nl[0] + sub - 1) / sub;
-			for (j = 0; j < nb; j++)
-				xm[j] = 0;
-			for (z = jz; z < jz + sub && z < nl[2]; z++)
-				for (y = jy; y < jy + sub && y < nl[1]; y++) {
-					uint64_t r = row_bits(bits, w[0] * (y +
-					    w[1] * z), (int)nl[0]);
+			for (z = 0; z < nz; z++) {
+				uint64_t oz = 0;
 
-					for (uint64_t rr = r; rr != 0;
-					    rr &= ~(full << (j * sub))) {
-						uint64_t v;
+				for (y = 0; y < ny; y++) {
+					uint64_t r = row_bits(bits, w[0] * (jy + y +
+					    w[1] * (jz + z)), (int)nl[0]);
 
-						j = __builtin_ctzll(rr) / sub;
-						v = r >> (j * sub) & full;
-						if (xm[j] == 0) {
-							y0[j] = y1[j] = y;
-							z0[j] = z1[j] = z;
-						}
-						xm[j] |= v;
-						y0[j] = y < y0[j] ? y : y0[j];
-						y1[j] = y > y1[j] ? y : y1[j];
-						z1[j] = z;   /* z ascending */
-					}
-					any |= r;
+					ry[y] = z > 0 ? ry[y] | r : r;
+					oz |= r;
 				}
-			for (j = 0; any != 0 && j < nb; j++) {
-				int64_t x = j * sub;
+				rz[z] = oz;
+				rx |= oz;
+			}
+			for (uint64_t rr = rx; rr != 0;
+			    rr &= ~(full << (j * sub))) {
+				uint64_t bm, xm;
+				int64_t y0 = 0, y1 = ny - 1, z0 = 0, z1 = nz - 1;
 
-				if (xm[j] == 0)
-					continue;
+				j = __builtin_ctzll(rr) / sub;
 				if (out == NULL) {
 					n++;
 					continue;
 				}
+				bm = full << (j * sub);
+				xm = rx >> (j * sub) & full;
+				while (!(ry[y0] & bm))
+					y0++;
+				while (!(ry[y1] & bm))
+					y1--;
+				while (!(rz[z0] & bm))
+					z0++;
+				while (!(rz[z1] & bm))
+					z1--;
 				/* the box of the block's set bits */
-				out[n].lo[0] = lo[0] + x + __builtin_ctzll(xm[j]);
-				out[n].hi[0] = lo[0] + x + 64 -
-				    __builtin_clzll(xm[j]);
-				out[n].lo[1] = lo[1] + y0[j];
-				out[n].hi[1] = lo[1] + y1[j] + 1;
-				out[n].lo[2] = lo[2] + z0[j];
-				out[n].hi[2] = lo[2] + z1[j] + 1;
+				out[n].lo[0] = lo[0] + j * sub + __builtin_ctzll(xm);
+				out[n].hi[0] = lo[0] + j * sub + 64 -
+				    __builtin_clzll(xm);
+				out[n].lo[1] = lo[1] + jy + y0;
+				out[n].hi[1] = lo[1] + jy + y1 + 1;
+				out[n].lo[2] = lo[2] + jz + z0;
+				out[n].hi[2] = lo[2] + jz + z1 + 1;
 				n++;
 			}
 		}
