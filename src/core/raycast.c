@@ -63,47 +63,60 @@ typedef struct rc_local {
 } rc_local;
 
 /* box_sort: *bx[0..n) in order of lb, ties in their given order (a stable
- * radix sort of lb's bits made monotone, 8 bits a pass, passes over a byte
- * all keys share skipped); *bx is replaced by the sorted copy.  0, or
- * VX_ENOMEM (*bx unchanged). */
+ * radix sort of lb's bits made monotone, RDX bits a pass, the passes'
+ * counts made in one sweep, passes over a digit all keys share skipped);
+ * *bx is replaced by the sorted copy.  0, or VX_ENOMEM (*bx unchanged). */
+#define RDX 11
+#define NDIG ((64 + RDX - 1) / RDX)
 static int
 box_sort(vx_cellbox **bxp, int64_t n)
 {
 	size_t nn = (size_t)(n > 0 ? n : 1);
 	uint64_t *key = malloc(nn * 2 * sizeof *key);
 	uint32_t *ix = malloc(nn * 2 * sizeof *ix);
+	uint32_t *cnt = calloc((size_t)NDIG << RDX, sizeof *cnt);
 	vx_cellbox *bx = *bxp, *out = malloc(nn * sizeof *out);
 	uint64_t *k0 = key, *k1 = key + n;
 	uint32_t *i0 = ix, *i1 = ix + n;
+	const uint64_t dm = ((uint64_t)1 << RDX) - 1;
 	int64_t i;
 
-	if (key == NULL || ix == NULL || out == NULL) {
+	if (key == NULL || ix == NULL || cnt == NULL || out == NULL) {
 		free(key);
 		free(ix);
+		free(cnt);
 		free(out);
 		return VX_ENOMEM;
 	}
+	/* n < 2^32 (bins_cap): the counts fit */
 	for (i = 0; i < n; i++) {
 		uint64_t u;
 
 		memcpy(&u, &bx[i].lb, sizeof u);
 		/* negative: all bits flipped; else the sign bit set */
-		k0[i] = u >> 63 ? ~u : u | (uint64_t)1 << 63;
+		u = u >> 63 ? ~u : u | (uint64_t)1 << 63;
+		k0[i] = u;
 		i0[i] = (uint32_t)i;
+		for (int d = 0; d < NDIG; d++)
+			cnt[(d << RDX) + (u >> (RDX * d) & dm)]++;
 	}
-	for (int sh = 0; sh < 64; sh += 8) {
-		int64_t cnt[257] = { 0 };
+	for (int d = 0; d < NDIG && n > 0; d++) {
+		uint32_t *c = cnt + (d << RDX), sum = 0;
+		int sh = RDX * d;
 		uint64_t *kt;
 		uint32_t *it;
 
-		for (i = 0; i < n; i++)
-			cnt[(k0[i] >> sh & 255) + 1]++;
-		if (n == 0 || cnt[(k0[0] >> sh & 255) + 1] == n)
+		if (c[k0[0] >> sh & dm] == (uint64_t)n)
 			continue;
-		for (i = 0; i < 256; i++)
-			cnt[i + 1] += cnt[i];
+		/* counts -> each digit's first place */
+		for (i = 0; i <= (int64_t)dm; i++) {
+			uint32_t t = c[i];
+
+			c[i] = sum;
+			sum += t;
+		}
 		for (i = 0; i < n; i++) {
-			int64_t p = cnt[k0[i] >> sh & 255]++;
+			uint32_t p = c[k0[i] >> sh & dm]++;
 
 			k1[p] = k0[i];
 			i1[p] = i0[i];
@@ -115,10 +128,13 @@ box_sort(vx_cellbox **bxp, int64_t n)
 		out[i] = bx[i0[i]];
 	free(key);
 	free(ix);
+	free(cnt);
 	free(bx);
 	*bxp = out;
 	return 0;
 }
+#undef RDX
+#undef NDIG
 
 /* floor_fin: floor(x) for finite x, but +0 for -0 (callers add or take 1,
  * which makes either zero the same number), without a library call: below
@@ -156,8 +172,9 @@ box_place(const rc_shared *S, const vx_camera *cam, vx_cellbox *bx)
 {
 	double q0 = INFINITY, q1 = -INFINITY, r0 = INFINITY, r1 = -INFINITY;
 	double dist2 = 0, depth = INFINITY, lo[2] = { 0, 0 }, hi[2] = { 0, 0 };
+	double su = 0, sv = 0;
 	double vz[3][2], va[3][2], vb[3][2], z01[4], u01[4], v01[4];
-	int front = 1, nan = 0, persp = cam->projection != VX_ORTHOGRAPHIC;
+	int front = 1, nan, persp = cam->projection != VX_ORTHOGRAPHIC;
 	int a, i;
 
 	/* world = origin + index * spacing, axis by axis: a corner's
@@ -187,6 +204,7 @@ box_place(const rc_shared *S, const vx_camera *cam, vx_cellbox *bx)
 		u01[i] = va[0][i & 1] + va[1][i >> 1];
 		v01[i] = vb[0][i & 1] + vb[1][i >> 1];
 	}
+#pragma GCC unroll 8
 	for (i = 0; i < 8; i++) {
 		double z = z01[i & 3] + vz[2][i >> 2];
 		double u = u01[i & 3] + va[2][i >> 2];
@@ -199,12 +217,16 @@ box_place(const rc_shared *S, const vx_camera *cam, vx_cellbox *bx)
 			u /= z;
 			v /= z;
 		}
-		nan |= (u != u) | (v != v);
+		su += u;
+		sv += v;
 		q0 = u < q0 ? u : q0;
 		q1 = u > q1 ? u : q1;
 		r0 = v < r0 ? v : r0;
 		r1 = v > r1 ? v : r1;
 	}
+	/* a NaN u (v) makes su (sv) NaN, and so does a NaN sum of others,
+	 * which needs an infinite u (v): a px (py) not finite either way */
+	nan = su != su || sv != sv;
 	bx->lb = persp ? sqrt(dist2) : depth;
 	bx->lb -= 0x1p-30 * (fabs(bx->lb) + 1);
 	if (front && !nan) {
