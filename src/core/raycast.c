@@ -48,6 +48,11 @@ typedef struct rc_shared {
 	uint64_t *binpix;             /* per bin: bit (y % BIN) BIN + x % BIN
 	                                 set where a box's footprint holds
 	                                 pixel (x, y) (BIN 8: one word) */
+	/* bins_build's, kept from one build to the next (the same view and
+	 * macrocells): the bracketing level-1 macrocells and their whole
+	 * boxes, placed (lb NaN: off the image); NULL: none yet */
+	int64_t binnbr, *binbrk;
+	vx_cellbox *binmc;
 } rc_shared;
 
 #define BIN 8
@@ -353,9 +358,10 @@ bins_fill(rc_shared *S, const vx_camera *cam, const vx_cellbox *bx,
 	return 0;
 }
 
-/* bins_free: no bins (S's lists freed, their pointers NULL) */
+/* bins_drop: no bins (S's lists freed, their pointers NULL; what
+ * bins_build keeps from one build to the next stays) */
 static void
-bins_free(rc_shared *S)
+bins_drop(rc_shared *S)
 {
 	free(S->binoff);
 	free(S->binpix);
@@ -365,6 +371,18 @@ bins_free(rc_shared *S)
 	S->binpix = NULL;
 	S->binbox = NULL;
 	S->binlist = NULL;
+}
+
+/* bins_free: no bins, and nothing kept for the next build */
+static void
+bins_free(rc_shared *S)
+{
+	bins_drop(S);
+	free(S->binbrk);
+	free(S->binmc);
+	S->binbrk = NULL;
+	S->binmc = NULL;
+	S->binnbr = 0;
 }
 
 /* bin_buf: a thread's boxes in bins_build (on cache lines of its own) */
@@ -387,14 +405,16 @@ typedef struct bin_buf {
  * image of the macrocells it takes (and counting all of them, for the
  * bound: it stops keeping them once the count passes the bound), then
  * the macrocells' boxes gathered in their order: so the order, and the
- * memory, are those of the boxes, whatever the threads.  Returns 0, or
- * VX_ENOMEM. */
+ * memory, are those of the boxes, whatever the threads.  The bracketing
+ * macrocells, and their whole boxes placed, are kept in S for the next
+ * build of the same frame (after bins_drop; bins_free frees them).
+ * Returns 0, or VX_ENOMEM. */
 static int
 bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 {
 	const vx_macro *m = S->tr.m;
 	int64_t nb = m->dims[1][0] * m->dims[1][1] * m->dims[1][2], b, n, k;
-	int64_t nbr = 0, *brk = NULL, *off = NULL, *keep = NULL, *at = NULL;
+	int64_t nbr, *brk, *off = NULL, *keep = NULL, *at = NULL;
 	int64_t cap = bins_cap(cam), nwhole = 0, nblk = 1;
 	int *thr = NULL;
 	bin_buf *buf = NULL;
@@ -412,13 +432,34 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 	    sizeof *S->binoff)) == NULL ||
 	    (S->binpix = calloc((size_t)S->nbx * S->nby,
 	    sizeof *S->binpix)) == NULL ||
-	    (brk = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *brk)) == NULL ||
 	    (buf = calloc((size_t)nthr, sizeof *buf)) == NULL)
 		goto nomem;
-	/* the bracketing macrocells: the parallel loop runs over them */
-	for (b = 0; b < nb; b++)
-		if (vx_macro_cell_brackets(m, 1, b, S->iso, S->niso))
-			brk[nbr++] = b;
+	/* the bracketing macrocells (the parallel loop runs over them) and
+	 * their whole boxes, placed: made by the first build */
+	if (S->binbrk == NULL) {
+		if ((S->binbrk = malloc((size_t)(nb > 0 ? nb : 1) *
+		    sizeof *S->binbrk)) == NULL)
+			goto nomem;
+		for (nbr = 0, b = 0; b < nb; b++)
+			if (vx_macro_cell_brackets(m, 1, b, S->iso, S->niso))
+				S->binbrk[nbr++] = b;
+		if ((S->binmc = malloc((size_t)(nbr > 0 ? nbr : 1) *
+		    sizeof *S->binmc)) == NULL)
+			goto nomem;
+		S->binnbr = nbr;
+#ifdef _OPENMP
+#pragma omp parallel for num_threads(nthr) schedule(dynamic, 8)
+#endif
+		for (k = 0; k < nbr; k++) {
+			vx_cellbox *w = &S->binmc[k];
+
+			vx_macro_cell_box(m, 1, S->binbrk[k], w->lo, w->hi);
+			if (!box_place(S, cam, w))
+				w->lb = NAN;
+		}
+	}
+	brk = S->binbrk;
+	nbr = S->binnbr;
 	if ((off = malloc((size_t)(nbr + 1) * sizeof *off)) == NULL ||
 	    (keep = malloc((size_t)(nbr > 0 ? nbr : 1) * sizeof *keep)) ==
 	    NULL || (at = malloc((size_t)(nbr > 0 ? nbr : 1) * sizeof *at)) ==
@@ -451,12 +492,12 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 #endif
 			int blocks = sub && vx_cellmask_block_built(mask, mc);
 			int64_t room = blocks ? nblk : 1, c, j, kept;
-			vx_cellbox whole, *out;
+			const vx_cellbox *whole = &S->binmc[k];
+			vx_cellbox *out;
 
 			off[k + 1] = keep[k] = 0;
-			vx_macro_cell_box(m, 1, mc, whole.lo, whole.hi);
-			if (!box_place(S, cam, &whole))
-				continue;
+			if (whole->lb != whole->lb)
+				continue;     /* off the image */
 			if (!blocks)
 				nwhole++;
 			/* past the bound: counted only (made again) */
@@ -482,7 +523,7 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 			out = B->b + B->n;
 			if (!blocks) {
 				/* placed: on the image */
-				out[0] = whole;
+				out[0] = *whole;
 				c = kept = 1;
 			} else {
 				/* its bits are built and do not change */
@@ -546,7 +587,6 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 	free(at);
 	free(keep);
 	free(off);
-	free(brk);
 	if (rc != 0) {
 		free(box);
 		bins_free(S);
@@ -563,7 +603,6 @@ nomem:
 	free(keep);
 	free(box);
 	free(off);
-	free(brk);
 	bins_free(S);
 	return vx_err_set(e, VX_ENOMEM, "raycast: out of memory (bins)");
 }
@@ -1165,7 +1204,7 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 		if (vx_cellmask_built(mask) > before) {
 			/* the bins' time: the first pass's rays are not in it */
 			clock_gettime(CLOCK_MONOTONIC, &tb0);
-			bins_free(&S);
+			bins_drop(&S);
 			if ((rc = bins_build(&S, cam, mask, e)) != 0)
 				goto fail;
 			clock_gettime(CLOCK_MONOTONIC, &tb1);
