@@ -403,7 +403,7 @@ typedef struct bin_buf {
  * (S->binoff NULL; the rays walk from the eye).  The work is one parallel
  * pass over the macrocells, each thread keeping the placed boxes on the
  * image of the macrocells it takes (and counting all of them, for the
- * bound: it stops keeping them once the count passes the bound), then
+ * bound, until the count passes it: then no more are looked at), then
  * the macrocells' boxes gathered in their order: so the order, and the
  * memory, are those of the boxes, whatever the threads.  The bracketing
  * macrocells, and their whole boxes placed, are kept in S for the next
@@ -500,13 +500,11 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 				continue;     /* off the image */
 			if (!blocks)
 				nwhole++;
-			/* past the bound: counted only (made again) */
+			/* past the bound: the rest need not be counted (the
+			 * count passes it whatever they hold) */
 			if (atomic_load_explicit(&total, memory_order_relaxed) >
-			    cap) {
-				off[k + 1] = blocks ? (int64_t)vx_cellmask_boxes(
-				    mask, mc, sub, NULL) : 1;
+			    cap)
 				continue;
-			}
 			if (B->n + room > B->cap) {
 				int64_t nc = 2 * B->cap > B->n + room ? 2 *
 				    B->cap : B->n + room + 1024;

@@ -439,6 +439,83 @@ binning_modes(void **state)
 	vx_grid_free(&g);
 }
 
+/* More blocks of 4^3 cells in view than the bins take (8 a pixel and
+ * 65536: a field of small surfaces filling a 200 x 200 x 136 volume,
+ * about 85,000 blocks, every mask bit built, a 40 x 30 picture): the
+ * bins fall back to whole macrocells, and the picture, depth, normals and
+ * cells visited are those of rays walked from the eye, at 1 and 2
+ * threads.  Oracle: o.no_binning. */
+static void
+binning_block_bound(void **state)
+{
+	int64_t d[3] = { 200, 200, 136 };
+	int sizes[VX_MACRO_MAXLEV][3] = { { 16, 16, 16 }, { 4, 4, 4 } };
+	float iso = 0.05f;
+	double sx[200], sy[200], sz[136], lo[3], hi[3];
+	vx_grid g;
+	vx_macro m;
+	vx_scene s;
+	vx_plan p;
+	vx_cellmask full;
+	vx_err e = { 0, "" };
+	vx_image c[3], dd[3], nn[3];
+	vx_raycast_stats st[3];
+
+	(void)state;
+	assert_int_equal(vx_grid_alloc(&g, d, VX_F32, NULL, &e), 0);
+	for (int i = 0; i < 200; i++) {
+		sx[i] = sin(0.9 * i);
+		sy[i] = sin(0.7 * i);
+		if (i < 136)
+			sz[i] = sin(0.8 * i);
+	}
+	for (int z = 0; z < 136; z++)
+		for (int y = 0; y < 200; y++)
+			for (int x = 0; x < 200; x++)
+				vx_grid_set(&g, x, y, z, sx[x] * sy[y] * sz[z]);
+	vx_grid_range(&g);
+	assert_int_equal(vx_macro_build(&m, &g, 2, (const int (*)[3])sizes, 1,
+	    &e), 0);
+	base_scene(&s, 40, 30, iso);
+	vx_grid_box(&g, lo, hi);
+	assert_int_equal(vx_camera_resolve(&s.camera, lo, hi, &e), 0);
+	vx_scene_plan_isosurface(&s, &p);
+	assert_int_equal(vx_cellmask_build(&full, &m, &g, &iso, 1, 0, 2, &e),
+	    0);
+	for (int k = 0; k < 3; k++) {
+		vx_raycast_opts o;
+
+		vx_raycast_opts_init(&o);
+		o.nthreads = k == 2 ? 1 : 2;
+		o.no_binning = k == 0;
+		o.mask_keep = k > 0 ? &full : NULL;
+		vx_image_init(&c[k]);
+		vx_image_init(&dd[k]);
+		vx_image_init(&nn[k]);
+		memset(&st[k], 0, sizeof st[k]);
+		assert_int_equal(vx_raycast_render(&s, &p, &g, &m, NULL, &o,
+		    &c[k], &dd[k], &nn[k], &st[k], &e), 0);
+	}
+	assert_int_equal(st[0].bins, 0);
+	for (int k = 1; k < 3; k++) {
+		assert_int_equal(st[k].bins, 1);
+		assert_int_equal(st[k].bin_block, 0);
+		assert_true(st[k].bin_boxes > 1000);
+		assert_int_equal(st[k].bin_boxes, st[k].bin_whole);
+		assert_true(same(&c[0], &c[k]));
+		assert_true(same(&dd[0], &dd[k]));
+		assert_true(same(&nn[0], &nn[k]));
+		assert_int_equal(st[0].cells, st[k].cells);
+		assert_int_equal(st[0].roots, st[k].roots);
+	}
+	assert_true(st[0].covered > 500);
+	for (int k = 0; k < 3; k++)
+		free3(&c[k], &dd[k], &nn[k]);
+	vx_cellmask_free(&full);
+	vx_macro_free(&m);
+	vx_grid_free(&g);
+}
+
 int
 main(void)
 {
@@ -450,6 +527,7 @@ main(void)
 		cmocka_unit_test(transparent_shell),
 		cmocka_unit_test(no_self_shadow_any_solver),
 		cmocka_unit_test(binning_modes),
+		cmocka_unit_test(binning_block_bound),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
