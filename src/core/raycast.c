@@ -325,8 +325,11 @@ bins_fill(rc_shared *S, const vx_camera *cam, const vx_cellbox *bx,
 							    (uint32_t)b;
 						continue;
 					}
-					col = (UINT64_C(0x0101010101010101) >>
-					    BIN * (BIN - 1 - (yb - ya))) << BIN * ya;
+					/* rows ya..yb (none: an empty footprint,
+					 * one row past the image) */
+					col = UINT64_C(0x0101010101010101) >>
+					    BIN * (BIN - 1 - yb) &
+					    UINT64_C(0x0101010101010101) << BIN * ya;
 					for (int x = x0; x <= x1; x++) {
 						uint64_t row = (x == x1 ? xhi :
 						    (uint64_t)1 << BIN) -
@@ -432,8 +435,10 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 	    sizeof *S->binoff)) == NULL ||
 	    (S->binpix = calloc((size_t)S->nbx * S->nby,
 	    sizeof *S->binpix)) == NULL ||
-	    (buf = calloc((size_t)nthr, sizeof *buf)) == NULL)
+	    (buf = aligned_alloc(_Alignof(bin_buf), (size_t)nthr *
+	    sizeof *buf)) == NULL)
 		goto nomem;
+	memset(buf, 0, (size_t)nthr * sizeof *buf);
 	/* the bracketing macrocells (the parallel loop runs over them) and
 	 * their whole boxes, placed: made by the first build */
 	if (S->binbrk == NULL) {
