@@ -338,17 +338,55 @@ int
 vx_iso_normal(const vx_grid *g, const vx_iso_hit *h, const double dw[3],
     double n[3])
 {
-	double p[3], di[3], ni[3], len;
-	int a, path;
+	double p[3], gr[3], w[3], lo = h->c[0], hi = h->c[0], thresh, m, mw, len;
+	int a, i;
 
 	for (a = 0; a < 3; a++)
 		p[a] = h->p[a] - (double)h->cell[a];
-	vx_world_to_index_dir(g, dw, di);
-	path = vx_cell_normal(h->c, p, di, ni);
-	vx_index_to_world_normal(g, ni, n);
-	len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-	if (len > 0 && isfinite(len))
-		for (a = 0; a < 3; a++)
-			n[a] /= len;
-	return path;
+	for (i = 1; i < 8; i++) {
+		double x = h->c[i];
+
+		lo = x < lo || lo != lo ? x : lo;
+		hi = x > hi || hi != hi ? x : hi;
+	}
+	thresh = 0x1p-40 * (hi - lo);
+	vx_cell_gradient(h->c, p, gr);
+	m = fabs(gr[0]);
+	m = fabs(gr[1]) > m ? fabs(gr[1]) : m;
+	m = fabs(gr[2]) > m ? fabs(gr[2]) : m;
+	for (a = 0; a < 3; a++)
+		w[a] = gr[a] / g->spacing[a];
+	mw = fabs(w[0]);
+	mw = fabs(w[1]) > mw ? fabs(w[1]) : mw;
+	mw = fabs(w[2]) > mw ? fabs(w[2]) : mw;
+	if (!(m > thresh) || !(mw >= 0x1p-500 && mw <= 0x1p500)) {
+		/* vanishing or extreme: the careful path */
+		double di[3], ni[3];
+		int path;
+
+		vx_world_to_index_dir(g, dw, di);
+		path = vx_cell_normal(h->c, p, di, ni);
+		if (path == VX_NORMAL_RAY) {
+			/* no gradient: against the world ray itself (scaled
+			 * by its largest component first: no overflow) */
+			double s = fabs(dw[0]);
+
+			s = fabs(dw[1]) > s ? fabs(dw[1]) : s;
+			s = fabs(dw[2]) > s ? fabs(dw[2]) : s;
+			for (a = 0; a < 3; a++)
+				n[a] = -dw[a] / s;
+		} else
+			vx_index_to_world_normal(g, ni, n);
+		len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+		if (len > 0 && isfinite(len))
+			for (a = 0; a < 3; a++)
+				n[a] /= len;
+		return path;
+	}
+	len = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+	if (w[0] * dw[0] + w[1] * dw[1] + w[2] * dw[2] > 0)
+		len = -len;
+	for (a = 0; a < 3; a++)
+		n[a] = w[a] / len;
+	return VX_NORMAL_GRADIENT;
 }

@@ -89,7 +89,13 @@ int vx_iso_first(const vx_iso_tracer *tr, const double o[3],
     vx_iso_hit *hit, vx_iso_stats *st);
 
 /* vx_iso_normal: the unit world-space normal at a hit, facing against the
- * world ray direction dw; returns the vx_cell_normal path. */
+ * world ray direction dw; returns the vx_cell_normal path.  The analytic
+ * gradient at the hit, divided by the spacing and normalized once (one
+ * square root and one division per component after the spacing's: its
+ * latency is a large part of a hit's cost); where that gradient vanishes
+ * (vx_cell_normal's threshold) or its world components fall outside
+ * [2^-500, 2^500], vx_cell_normal's fallbacks (the centre's gradient, then
+ * -dw) with scaling against overflow. */
 int vx_iso_normal(const vx_grid *g, const vx_iso_hit *h, const double dw[3],
     double n[3]);
 

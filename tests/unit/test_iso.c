@@ -422,6 +422,115 @@ scale_invariance(void **state)
 	vx_grid_free(&g);
 }
 
+/* normal_oracle: the unit world normal of the trilinear field of corners c
+ * at index point p (cell-local), spacing sp, facing against dw, in long
+ * double from the field's partial derivatives written out (not
+ * vx_cell_gradient); *ok 0 when the gradient is 0 */
+static void
+normal_oracle(const float c[8], const double p[3], const double sp[3],
+    const double dw[3], double n[3], int *ok)
+{
+	long double g[3] = { 0, 0, 0 }, len = 0, dot = 0;
+
+	for (int i = 0; i < 8; i++) {
+		long double wx = (i & 1) ? p[0] : 1 - p[0];
+		long double wy = (i >> 1 & 1) ? p[1] : 1 - p[1];
+		long double wz = (i >> 2 & 1) ? p[2] : 1 - p[2];
+		long double sx = (i & 1) ? 1 : -1, sy = (i >> 1 & 1) ? 1 : -1;
+		long double sz = (i >> 2 & 1) ? 1 : -1;
+
+		g[0] += c[i] * sx * wy * wz;
+		g[1] += c[i] * wx * sy * wz;
+		g[2] += c[i] * wx * wy * sz;
+	}
+	for (int a = 0; a < 3; a++) {
+		g[a] /= sp[a];
+		len += g[a] * g[a];
+		dot += g[a] * dw[a];
+	}
+	len = sqrtl(len);
+	*ok = len > 0;
+	for (int a = 0; a < 3; a++)
+		n[a] = (double)(g[a] / (dot > 0 ? -len : len));
+}
+
+/* vx_iso_normal against the oracle: random cells and points, isotropic,
+ * anisotropic and extreme spacings (world gradients near 2^+-1000: the
+ * careful path), values scaled by 2^k (the same normal); a vanishing
+ * gradient takes the centre's, a flat cell the ray's */
+static void
+iso_normal_table(void **state)
+{
+	static const double sps[][3] = {
+		{ 1, 1, 1 }, { 0.5, 2, 1.25 }, { 0.9375, 0.9375, 3 },
+		{ 1e-300, 1, 1 }, { 1, 1e300, 1e-300 }, { 1e300, 1e300, 1e300 },
+	};
+	static const int ks[] = { 0, -60, 60 };
+	(void)state;
+	for (size_t si = 0; si < sizeof sps / sizeof sps[0]; si++) {
+		vx_grid g;
+
+		memset(&g, 0, sizeof g);
+		memcpy(g.spacing, sps[si], sizeof g.spacing);
+		for (int k = 0; k < 300; k++) {
+			vx_iso_hit h;
+			double dw[3], n[3], want[3], wk[3];
+			int ok;
+
+			memset(&h, 0, sizeof h);
+			for (int a = 0; a < 3; a++) {
+				h.cell[a] = 3 + a;
+				h.p[a] = h.cell[a] + hash01(20, 3 * k + a);
+				dw[a] = hash01(21, 3 * k + a) - 0.5;
+			}
+			for (int i = 0; i < 8; i++)
+				h.c[i] = (float)(255 * hash01(22, 8 * k + i));
+			double pl[3] = { h.p[0] - 3, h.p[1] - 4, h.p[2] - 5 };
+			normal_oracle(h.c, pl, g.spacing, dw, want, &ok);
+			assert_true(ok);
+			for (size_t ki = 0; ki < sizeof ks / sizeof ks[0]; ki++) {
+				vx_iso_hit hk = h;
+
+				for (int i = 0; i < 8; i++)
+					hk.c[i] = ldexpf(h.c[i], ks[ki]);
+				assert_int_equal(vx_iso_normal(&g, &hk, dw, n),
+				    VX_NORMAL_GRADIENT);
+				if (ki == 0)
+					memcpy(wk, n, sizeof wk);
+				for (int a = 0; a < 3; a++) {
+					assert_true(fabs(n[a] - want[a]) < 1e-14);
+					/* 2^k scales the gradient exactly */
+					assert_true(n[a] == wk[a]);
+				}
+			}
+		}
+		/* a flat cell: no gradient anywhere, the normal faces the
+		 * ray */
+		vx_iso_hit h;
+		double dw[3] = { 0.3, -0.4, 1.2 }, n[3], l;
+
+		memset(&h, 0, sizeof h);
+		for (int i = 0; i < 8; i++)
+			h.c[i] = 5;
+		h.p[0] = h.p[1] = h.p[2] = 0.5;
+		assert_int_equal(vx_iso_normal(&g, &h, dw, n), VX_NORMAL_RAY);
+		l = sqrt(dw[0] * dw[0] + dw[1] * dw[1] + dw[2] * dw[2]);
+		for (int a = 0; a < 3; a++)
+			assert_true(fabs(n[a] + dw[a] / l) < 1e-15);
+		/* c = x y z: no gradient at corner 0, the centre's is
+		 * (1/4, 1/4, 1/4) */
+		memset(&h, 0, sizeof h);
+		h.c[7] = 1;
+		assert_int_equal(vx_iso_normal(&g, &h, dw, n),
+		    VX_NORMAL_CENTER);
+		double pc[3] = { 0.5, 0.5, 0.5 }, wc[3];
+		int ok;
+		normal_oracle(h.c, pc, g.spacing, dw, wc, &ok);
+		for (int a = 0; a < 3; a++)
+			assert_true(fabs(n[a] - wc[a]) < 1e-14);
+	}
+}
+
 int
 main(void)
 {
@@ -432,6 +541,7 @@ main(void)
 		cmocka_unit_test(double_root_volume),
 		cmocka_unit_test(nonfinite_voxels),
 		cmocka_unit_test(scale_invariance),
+		cmocka_unit_test(iso_normal_table),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
