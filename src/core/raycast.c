@@ -786,8 +786,16 @@ light_at(const rc_shared *S, int k, const double P[3], double L[3],
 		}
 		break;
 	}
-	*dist = point ? sqrt(dot3(L, L)) : INFINITY;
-	normalize3(L);
+	/* normalize3(L), with the length it would compute taken from dist
+	 * (the same expression: the same bits) */
+	{
+		double l = sqrt(dot3(L, L));
+
+		*dist = point ? l : INFINITY;
+		if (l > 0 && isfinite(l))
+			for (a = 0; a < 3; a++)
+				L[a] /= l;
+	}
 	if (point && lt->falloff == VX_FALLOFF_INVERSE_SQUARE && *dist > 0)
 		scale /= *dist * *dist;
 	for (a = 0; a < 3; a++)
@@ -805,11 +813,15 @@ shade(const rc_shared *S, rc_local *L, const rc_surf *h,
 	int k = S->surf[h->iso], a, l;
 	const vx_material *m = &s->surface[k].m;
 	const double *n = h->n, *P = h->P;
-	double V[3], alb[3], amb[3];
+	double V[3] = { 0, 0, 0 }, alb[3], amb[3];
 
-	for (a = 0; a < 3; a++)
-		V[a] = -dw[a];
-	normalize3(V);
+	/* the view direction only for a highlight (its square root and
+	 * divisions are in each hit's chain of dependent operations) */
+	if (p->specular && m->ks > 0) {
+		for (a = 0; a < 3; a++)
+			V[a] = -dw[a];
+		normalize3(V);
+	}
 	if (p->texture_on[k] && S->tex[k] != NULL) {
 		double v = sample(S->tex[k], P);
 		double t = (v - S->tex_lo[k]) / (S->tex_hi[k] - S->tex_lo[k]);
