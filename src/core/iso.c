@@ -301,7 +301,7 @@ vx_iso_trace(const vx_iso_tracer *tr, const double o[3], const double d[3],
 int
 vx_iso_trace_boxes(const vx_iso_tracer *tr, const double o[3],
     const double d[3], const vx_cellbox *box, const uint32_t *ix,
-    size_t nbox, const int32_t q[2], const float *iso, int niso,
+    size_t nbox, const vx_boxpick *pk, const float *iso, int niso,
     vx_iso_hit_fn fn, void *ctx, vx_iso_stats *st)
 {
 	iso_ctx x = { tr, o, d, iso, niso > VX_ISO_MAX ? VX_ISO_MAX : niso,
@@ -315,7 +315,7 @@ vx_iso_trace_boxes(const vx_iso_tracer *tr, const double o[3],
 	if (x.niso <= 0)
 		return 0;
 	return vx_macro_traverse_boxes(tr->m, tr->g, tr->mask, box, ix, nbox,
-	    q, o, d, iso, x.niso, visit, &x, st ? &st->trav : NULL);
+	    pk, o, d, iso, x.niso, visit, &x, st ? &st->trav : NULL);
 }
 
 static int

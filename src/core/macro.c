@@ -929,25 +929,36 @@ vx_macro_cell_brackets(const vx_macro *m, int l, int64_t b,
 /* boxes_first: vx_macro_boxes_entry (see vx_macro.h) for ray r, set up by
  * ray_axes as for the walk: the same crossing-time function, so the same
  * times */
-static inline double
+static inline __attribute__((always_inline)) double
 boxes_first(const ray *r, const vx_cellbox *box, const uint32_t *ix,
-    size_t nbox, const int32_t q[2])
+    size_t nbox, const int32_t *q, const double *lbs, const uint64_t *pix,
+    int bit)
 {
 	double best = INFINITY;
 	size_t k;
 	int a;
 
 	for (k = 0; k < nbox; k++) {
-		const vx_cellbox *bx = ix != NULL ? box + ix[k] : box + k;
+		const vx_cellbox *bx;
 		double tin = -INFINITY, tout = INFINITY;
 
-		if (bx->lb > best)
-			break;
-
-		if (q != NULL && (q[0] < bx->fp[0] || q[0] > bx->fp[2] ||
-		    q[1] < bx->fp[1] || q[1] > bx->fp[3]))
-			continue;
-
+		if (pix != NULL) {
+			/* the entries in order; a box only when it may
+			 * hold the query */
+			if (lbs[k] > best)
+				break;
+			if (!(pix[k] >> bit & 1))
+				continue;
+			bx = box + ix[k];
+		} else {
+			bx = ix != NULL ? box + ix[k] : box + k;
+			if (bx->lb > best)
+				break;
+			if (q != NULL && (q[0] < bx->fp[0] ||
+			    q[0] > bx->fp[2] || q[1] < bx->fp[1] ||
+			    q[1] > bx->fp[3]))
+				continue;
+		}
 		for (a = 0; a < 3; a++) {
 			int64_t lo = bx->lo[a], hi = bx->hi[a];
 
@@ -980,7 +991,7 @@ vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *box,
 
 	if (!ray_axes(&r, m->dims[0], o, d))
 		return INFINITY;
-	return boxes_first(&r, box, ix, nbox, q);
+	return boxes_first(&r, box, ix, nbox, q, NULL, NULL, 0);
 }
 
 /* ---- cell masks ----
@@ -1659,7 +1670,7 @@ vx_macro_traverse_masked(const vx_macro *m, const vx_grid *g,
 int
 vx_macro_traverse_boxes(const vx_macro *m, const vx_grid *g,
     vx_cellmask *k, const vx_cellbox *box, const uint32_t *ix, size_t nbox,
-    const int32_t q[2], const double o[3], const double d[3],
+    const vx_boxpick *pk, const double o[3], const double d[3],
     const float *vals, int nvals, vx_visit_fn fn, void *ctx,
     vx_trav_stats *st)
 {
@@ -1670,7 +1681,10 @@ vx_macro_traverse_boxes(const vx_macro *m, const vx_grid *g,
 		return -1;
 	/* the ray set up once, for the boxes and the walk */
 	if (!ray_axes(&r, m->dims[0], o, d) ||
-	    (te = boxes_first(&r, box, ix, nbox, q)) == INFINITY)
+	    (te = pk != NULL && pk->pix != NULL && ix != NULL ?
+	    boxes_first(&r, box, ix, nbox, NULL, pk->lb, pk->pix, pk->bit) :
+	    boxes_first(&r, box, ix, nbox, pk != NULL ? pk->q : NULL, NULL,
+	    NULL, 0)) == INFINITY)
 		return 0;
 	if (te > 0) {
 		/* just below te (nextafter(te, -Inf)) */

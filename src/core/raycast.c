@@ -45,6 +45,9 @@ typedef struct rc_shared {
 	int64_t *binoff;
 	vx_cellbox *binbox;           /* the boxes, sorted by lb */
 	uint32_t *binlist;            /* bins' entries: indices into binbox */
+	double *binlb;                /* per entry: its box's lb */
+	uint64_t *binmk;              /* per entry: the pixels of its bin its
+	                                 box's footprint holds, as binpix */
 	uint64_t *binpix;             /* per bin: bit (y % BIN) BIN + x % BIN
 	                                 set where a box's footprint holds
 	                                 pixel (x, y) (BIN 8: one word) */
@@ -297,6 +300,8 @@ bins_fill(rc_shared *S, const vx_camera *cam, const vx_cellbox *bx,
 			int64_t *cnt = S->binoff + 1, *cur = S->binoff;
 			uint64_t *pix = S->binpix;
 			uint32_t *list = S->binlist;
+			double *lbs = S->binlb;
+			uint64_t *mks = S->binmk;
 
 			for (int64_t b = 0; b < n; b++) {
 				const uint32_t *fp = (const uint32_t *)bx[b].fp;
@@ -319,12 +324,6 @@ bins_fill(rc_shared *S, const vx_camera *cam, const vx_cellbox *bx,
 					unsigned yb = r == fy1 ? fp[3] % BIN : BIN - 1;
 					uint64_t col;
 
-					if (pass == 1) {
-						for (int x = x0; x <= x1; x++)
-							list[cur[k0 + x]++] =
-							    (uint32_t)b;
-						continue;
-					}
 					/* rows ya..yb (none: an empty footprint,
 					 * one row past the image) */
 					col = UINT64_C(0x0101010101010101) >>
@@ -335,6 +334,14 @@ bins_fill(rc_shared *S, const vx_camera *cam, const vx_cellbox *bx,
 						    (uint64_t)1 << BIN) -
 						    (x == x0 ? xlo : 1);
 
+						if (pass == 1) {
+							int64_t p = cur[k0 + x]++;
+
+							list[p] = (uint32_t)b;
+							lbs[p] = bx[b].lb;
+							mks[p] = row * col;
+							continue;
+						}
 						cnt[k0 + x]++;
 						pix[k0 + x] |= row * col;
 					}
@@ -349,8 +356,11 @@ bins_fill(rc_shared *S, const vx_camera *cam, const vx_cellbox *bx,
 		 * macrocells: boxes spanning the image) */
 		if (S->binoff[nbin] > bins_cap(cam))
 			return 1;
-		if ((S->binlist = malloc((size_t)(S->binoff[nbin] > 0 ?
-		    S->binoff[nbin] : 1) * sizeof *S->binlist)) == NULL)
+		i = S->binoff[nbin] > 0 ? S->binoff[nbin] : 1;
+		if ((S->binlist = malloc((size_t)i * sizeof *S->binlist)) ==
+		    NULL ||
+		    (S->binlb = malloc((size_t)i * sizeof *S->binlb)) == NULL ||
+		    (S->binmk = malloc((size_t)i * sizeof *S->binmk)) == NULL)
 			return vx_err_set(e, VX_ENOMEM, "raycast: out of memory "
 			    "(bins)");
 		/* binoff[k], bin k's start, is its cursor as it fills */
@@ -370,10 +380,14 @@ bins_drop(rc_shared *S)
 	free(S->binpix);
 	free(S->binbox);
 	free(S->binlist);
+	free(S->binlb);
+	free(S->binmk);
 	S->binoff = NULL;
 	S->binpix = NULL;
 	S->binbox = NULL;
 	S->binlist = NULL;
+	S->binlb = NULL;
+	S->binmk = NULL;
 }
 
 /* bins_free: no bins, and nothing kept for the next build */
@@ -578,7 +592,11 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 		S->bin_boxes = n;
 		S->bin_whole = nwhole;
 		free(S->binlist);
+		free(S->binlb);
+		free(S->binmk);
 		S->binlist = NULL;
+		S->binlb = NULL;
+		S->binmk = NULL;
 		if ((rc = bins_fill(S, cam, box, n, nthr, e)) != 1 || !sub)
 			break;
 		sub = 0;     /* too many entries: whole macrocells */
@@ -993,12 +1011,16 @@ pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
 			/* the walk starts just before the first box the ray
 			 * enters, and not at all when it enters none: the same
 			 * leaves (vx_macro_traverse_boxes) */
-			const int32_t q[2] = { (int32_t)px, (int32_t)py };
 			int64_t t = S->binoff[bin];
+			int bx = (int)(bin % S->nbx), by = (int)(bin / S->nbx);
 			uint64_t walked = L->st.trav.rays;
+			/* the entries' pixel bits and lbs, read in order */
+			const vx_boxpick pk = { { (int32_t)px, (int32_t)py },
+			    S->binlb + t, S->binmk + t,
+			    ((int)py - by * BIN) * BIN + (int)px - bx * BIN };
 
 			vx_iso_trace_boxes(&S->tr, oi, di, S->binbox,
-			    S->binlist + t, (size_t)(S->binoff[bin + 1] - t), q,
+			    S->binlist + t, (size_t)(S->binoff[bin + 1] - t), &pk,
 			    S->iso, S->niso, layer, &x, &L->st);
 			L->binned += L->st.trav.rays == walked;
 		} else

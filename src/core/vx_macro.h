@@ -307,6 +307,21 @@ typedef struct vx_cellbox {
 	int32_t fp[4];
 } vx_cellbox;
 
+/* vx_boxpick: which boxes of a list a query looks at beyond lb: those whose
+ * footprint holds the query point q, tested either against each box's fp,
+ * or (pix non-NULL) by one bit of a set of 64 query points kept per entry of
+ * the list (raycast: a bin of 8 x 8 pixels, bit (y % 8) 8 + x % 8 where the
+ * entry's footprint holds pixel (x, y); the same answer as the fp test for
+ * q in the bin).  lb (with pix): the entries' lb in the list's order, so
+ * that a query reads its list front to back and each box only when its
+ * footprint holds q. */
+typedef struct vx_boxpick {
+	int32_t q[2];
+	const double *lb;        /* lb[k] = the k-th entry's box's lb */
+	const uint64_t *pix;     /* NULL, or the k-th entry's query points */
+	int bit;                 /* q's bit in pix */
+} vx_boxpick;
+
 /* vx_macro_boxes_entry: the earliest time the ray o + t d (leaf
  * coordinates, as for the walk) enters one of the boxes box[0..nbox) (or,
  * with ix non-NULL, box[ix[0..nbox)]), sorted by lb, in the walk's own
@@ -329,7 +344,8 @@ double vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *box,
 
 /* vx_macro_traverse_boxes: the walk of vx_macro_traverse_masked (mask k)
  * of the ray o + t d from t = 0, started just before the time it enters
- * the first of the boxes (vx_macro_boxes_entry with box, ix, nbox, q) and
+ * the first of the boxes (vx_macro_boxes_entry with box, ix, nbox and pk's
+ * q, or its bits: pk NULL looks at every box) and
  * not started at all when it enters none: the same leaves, data and
  * order, on the conditions vx_macro_boxes_entry gives (every leaf that
  * brackets the values lies in one of those boxes, and so on), with the
@@ -341,7 +357,7 @@ double vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *box,
  * the walk). */
 int vx_macro_traverse_boxes(const vx_macro *m, const vx_grid *g,
     vx_cellmask *k, const vx_cellbox *box, const uint32_t *ix, size_t nbox,
-    const int32_t q[2], const double o[3], const double d[3],
+    const vx_boxpick *pk, const double o[3], const double d[3],
     const float *vals, int nvals, vx_visit_fn fn, void *ctx,
     vx_trav_stats *st);
 

@@ -1311,8 +1311,10 @@ boxes_entry_keeps_visits(void **state)
 
 				rec_init(&h5, m.dims[0]);
 				rec_init(&h6, m.dims[0]);
+				vx_boxpick pk = { { q[0], q[1] }, NULL, NULL, 0 };
+
 				ok &= vx_macro_traverse_boxes(&m, &g, &mk, sbx, NULL,
-				    nsbx, q, o, d, vals, nv, collect, &h5, NULL) == 0;
+				    nsbx, &pk, o, d, vals, nv, collect, &h5, NULL) == 0;
 				if (tq < INFINITY)
 					ok &= vx_macro_traverse(&m, &g, o, d, tq > 0 ?
 					    nextafter(tq, -INFINITY) : 0, INFINITY,
@@ -1322,6 +1324,45 @@ boxes_entry_keeps_visits(void **state)
 					ok &= same_visit(&h5.v[i], &h6.v[i]) &&
 					    memcmp(h5.v[i].c, h6.v[i].c,
 					    sizeof h5.v[i].c) == 0;
+				/* the same with the footprints as bits of the
+				 * 8 x 8 pixels around q and the lbs kept per
+				 * entry (raycast's bins): the same walk */
+				{
+					int32_t x0 = q[0] < 0 ? -8 : q[0] / 8 * 8;
+					int32_t y0 = q[1] < 0 ? -8 : q[1] / 8 * 8;
+					uint64_t *pix = calloc(nsbx, sizeof *pix);
+					double *lbs = malloc(nsbx * sizeof *lbs);
+					uint32_t *id = malloc(nsbx * sizeof *id);
+					rec h7;
+
+					assert_true(pix && lbs && id);
+					for (size_t i = 0; i < nsbx; i++) {
+						id[i] = (uint32_t)i;
+						lbs[i] = sbx[i].lb;
+						for (int y = 0; y < 8; y++)
+							for (int x = 0; x < 8; x++)
+								if (x0 + x >= sbx[i].fp[0] &&
+								    x0 + x <= sbx[i].fp[2] &&
+								    y0 + y >= sbx[i].fp[1] &&
+								    y0 + y <= sbx[i].fp[3])
+									pix[i] |= (uint64_t)1 <<
+									    (8 * y + x);
+					}
+					pk.lb = lbs;
+					pk.pix = pix;
+					pk.bit = 8 * (q[1] - y0) + q[0] - x0;
+					rec_init(&h7, m.dims[0]);
+					ok &= vx_macro_traverse_boxes(&m, &g, &mk, sbx,
+					    id, nsbx, &pk, o, d, vals, nv, collect,
+					    &h7, NULL) == 0;
+					ok &= h7.n == h5.n;
+					for (int i = 0; ok && i < h7.n; i++)
+						ok &= same_visit(&h7.v[i], &h5.v[i]);
+					free(h7.v);
+					free(pix);
+					free(lbs);
+					free(id);
+				}
 				free(h5.v);
 				free(h6.v);
 				/* the same boxes through an index list, in
