@@ -727,6 +727,13 @@ leaves(const ray *r, const vx_grid *g, int64_t c[3], const int64_t lim[3],
 	 * with selects, not a store and reload through an indexed array */
 	int64_t c0 = c[0], c1 = c[1], c2 = c[2];
 	double n0 = tn[0], n1 = tn[1], n2 = tn[2];
+	/* the crossing after the next one per axis, computed a step ahead:
+	 * a step then only selects it, and the next step's choice of axis
+	 * does not wait for a conversion, a subtraction and a product (the
+	 * same tcross of the same plane: the same bits) */
+	double m0 = r->s[0] ? tcross(r, 0, c0 + r->s[0] + up[0]) : INFINITY;
+	double m1 = r->s[1] ? tcross(r, 1, c1 + r->s[1] + up[1]) : INFINITY;
+	double m2 = r->s[2] ? tcross(r, 2, c2 + r->s[2] + up[2]) : INFINITY;
 	int flip = r->flip, isf = g->type == VX_F32, ithr = 0;
 	double t = *tp, texit;
 	int ax, e = *ep, rc = 0;
@@ -800,10 +807,11 @@ leaves(const ray *r, const vx_grid *g, int64_t c[3], const int64_t lim[3],
 			break;
 		/* the far plane of the next leaf, and its crossing time as
 		 * t_exit_of gives it at level 0 (inside the grid: no clamp) */
-		p = nc + up[ax];
-		tv = tcross(r, ax, p);
+		p = nc + r->s[ax] + up[ax];
+		tv = AXIS(ax, m0, m1, m2);
 		SET_AXIS(ax, c0, c1, c2, nc);
 		SET_AXIS(ax, n0, n1, n2, tv);
+		SET_AXIS(ax, m0, m1, m2, tcross(r, ax, p));
 		li += dl[ax];
 		t = texit;
 		e = ax;
