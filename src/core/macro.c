@@ -1022,11 +1022,26 @@ vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *box,
  * there instead: the same decisions, so the result never depends on which
  * thread built what. */
 
-/* Four samples adjacent in memory (o[x + k] == o[x] + k, as in a row of a
- * brick or of a linear layout) are tested at once where SSE2 is there
- * (every x86-64): integer samples widened to 32 bits, where the tests
- * v <= fl and v >= ce (v > ce - 1) are exact; floats with the same
- * finiteness test as one at a time.  The bits are the same either way. */
+/* Where SSE2 is there (every x86-64), a block whose rows' x offsets let it
+ * (the usual case: a linear layout, or bricks whose edge along x is 4 bytes
+ * or more and divides the block's) tests a row W samples at a time (f32 8,
+ * the others 16), in chunks of W samples from the row's start, each chunk
+ * a few loads (runs of 16, 8 or 4 bytes adjacent in memory: the plan is
+ * made once per block, the x offsets being the same for every row) and
+ * one compare per test and 16 bytes.  u8 in bricks 4 samples wide reads
+ * four rows at once, 16 bytes holding a run of each (tile_u8).  Integer
+ * tests are exact in the type's own width: u8 v <= fl as min(v, fl) == v
+ * and v >= ce as max(v, ce) == v; u16 and i16 as not v > fl and not ce > v
+ * (u16 made signed by flipping its top bit), fl and ce clamped into the
+ * type's range (a value that no sample can be below, or none above,
+ * brackets nothing and was skipped before).  Floats: the same finiteness
+ * test as one at a time.  The row's last samples after the chunks are
+ * read as a chunk where they are adjacent and 16 or 32 bytes from them lie
+ * within the volume's samples (the bits past the row are never used), else
+ * one at a time.  Other blocks test four samples adjacent in memory at
+ * once where they are (integers widened to 32 bits, where v <= fl and
+ * v >= ce as v > ce - 1 are exact), else one at a time.  The bits are the
+ * same every way. */
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #define MASK_SIMD 1
@@ -1034,10 +1049,12 @@ vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *box,
 typedef struct quad_k {
 	__m128i fl, cm1;          /* integer thresholds: fl, ce - 1 */
 	__m128 val, fmax, abs;    /* f32: the value, FLT_MAX, ~sign */
+	__m128i f8, c8;           /* u8: fl, ce (each in 0..255) */
+	__m128i f16, c16;         /* u16 (biased), i16: fl, ce in 16 bits */
 } quad_k;
 
 static inline void
-quad_keys(quad_k *k, int64_t fl, int64_t ce, float val)
+quad_keys(quad_k *k, vx_type t, int64_t fl, int64_t ce, float val)
 {
 	/* integer samples lie within 16 bits: clamping far outside keeps
 	 * every answer */
@@ -1045,12 +1062,198 @@ quad_keys(quad_k *k, int64_t fl, int64_t ce, float val)
 	    0x40000000 : fl;
 	int64_t c = ce < -0x40000000 ? -0x40000000 : ce > 0x40000000 ?
 	    0x40000000 : ce;
+	/* the type's range (fl below it or ce above it: skipped), and the
+	 * bias that makes u16 signed */
+	int64_t tlo = t == VX_I16 ? -32768 : 0;
+	int64_t thi = t == VX_U8 ? 255 : t == VX_I16 ? 32767 : 65535;
+	int64_t bias = t == VX_U16 ? 32768 : 0;
+	int64_t f1 = f > thi ? thi : f < tlo ? tlo : f;
+	int64_t c1 = c < tlo ? tlo : c > thi ? thi : c;
 
 	k->fl = _mm_set1_epi32((int)f);
 	k->cm1 = _mm_set1_epi32((int)(c - 1));
 	k->val = _mm_set1_ps(val);
 	k->fmax = _mm_set1_ps(FLT_MAX);
 	k->abs = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+	k->f8 = _mm_set1_epi8((char)(f1 & 255));
+	k->c8 = _mm_set1_epi8((char)(c1 & 255));
+	k->f16 = _mm_set1_epi16((short)(f1 - bias));
+	k->c16 = _mm_set1_epi16((short)(c1 - bias));
+}
+
+static inline __m128i
+load_u32(const char *p)
+{
+	uint32_t w;
+
+	memcpy(&w, p, sizeof w);
+	return _mm_cvtsi32_si128((int)w);
+}
+
+static inline __m128i
+load_u64(const char *p)
+{
+	return _mm_loadl_epi64((const __m128i *)(const void *)p);
+}
+
+/* load16: 16 bytes in runs of run bytes (16, 8 or 4) at p + ro[0],
+ * p + ro[1], ... */
+static inline __m128i
+load16(const char *p, const int64_t *ro, int run)
+{
+	if (run == 16)
+		return _mm_loadu_si128((const __m128i *)(const void *)(p +
+		    ro[0]));
+	if (run == 8)
+		return _mm_unpacklo_epi64(load_u64(p + ro[0]),
+		    load_u64(p + ro[1]));
+	return _mm_unpacklo_epi64(_mm_unpacklo_epi32(load_u32(p + ro[0]),
+	    load_u32(p + ro[1])), _mm_unpacklo_epi32(load_u32(p + ro[2]),
+	    load_u32(p + ro[3])));
+}
+
+/* test_u8: v's 16 samples' below bits (*b, v <= fl) and above bits
+ * (*a, v >= ce) */
+static inline void
+test_u8(__m128i v, const quad_k *k, unsigned *b, unsigned *a)
+{
+	*b = (unsigned)_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_min_epu8(v,
+	    k->f8), v));
+	*a = (unsigned)_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_max_epu8(v,
+	    k->c8), v));
+}
+
+/* chunk_*: the below bits (*b) and above bits (*a) of a chunk of W samples
+ * at row p, in runs of run bytes at byte offsets ro */
+static inline void
+chunk_u8(const char *p, const int64_t *ro, int run, const quad_k *k,
+    unsigned *b, unsigned *a)
+{
+	test_u8(load16(p, ro, run), k, b, a);
+}
+
+/* test_s16: the same for v0, v1 (16 signed samples): not above fl, not
+ * below ce */
+static inline void
+test_s16(__m128i v0, __m128i v1, const quad_k *k, unsigned *b,
+    unsigned *a)
+{
+	*b = (unsigned)_mm_movemask_epi8(_mm_packs_epi16(_mm_cmpgt_epi16(v0,
+	    k->f16), _mm_cmpgt_epi16(v1, k->f16))) ^ 0xffffu;
+	*a = (unsigned)_mm_movemask_epi8(_mm_packs_epi16(_mm_cmpgt_epi16(k->c16,
+	    v0), _mm_cmpgt_epi16(k->c16, v1))) ^ 0xffffu;
+}
+
+/* test_s16_8: the same for 8 samples v */
+static inline void
+test_s16_8(__m128i v, const quad_k *k, unsigned *b, unsigned *a)
+{
+	unsigned m = (unsigned)_mm_movemask_epi8(_mm_packs_epi16(
+	    _mm_cmpgt_epi16(v, k->f16), _mm_cmpgt_epi16(k->c16, v))) ^ 0xffffu;
+
+	*b = m & 255u;
+	*a = m >> 8;
+}
+
+static inline void
+chunk_u16(const char *p, const int64_t *ro, int run, const quad_k *k,
+    unsigned *b, unsigned *a)
+{
+	const __m128i top = _mm_set1_epi16(-0x8000);
+
+	test_s16(_mm_xor_si128(load16(p, ro, run), top),
+	    _mm_xor_si128(load16(p, ro + 16 / run, run), top), k, b, a);
+}
+
+static inline void
+chunk_i16(const char *p, const int64_t *ro, int run, const quad_k *k,
+    unsigned *b, unsigned *a)
+{
+	test_s16(load16(p, ro, run), load16(p, ro + 16 / run, run), k, b, a);
+}
+
+/* tail_*: as chunk_* with runs of 16 bytes at ro[0], ro[1], only n samples
+ * wanted: 16 bytes when they hold those */
+static inline void
+tail_u8(const char *p, const int64_t *ro, int n, const quad_k *k,
+    unsigned *b, unsigned *a)
+{
+	(void)n;
+	chunk_u8(p, ro, 16, k, b, a);
+}
+
+static inline void
+tail_u16(const char *p, const int64_t *ro, int n, const quad_k *k,
+    unsigned *b, unsigned *a)
+{
+	if (n > 8)
+		chunk_u16(p, ro, 16, k, b, a);
+	else
+		test_s16_8(_mm_xor_si128(load16(p, ro, 16),
+		    _mm_set1_epi16(-0x8000)), k, b, a);
+}
+
+static inline void
+tail_i16(const char *p, const int64_t *ro, int n, const quad_k *k,
+    unsigned *b, unsigned *a)
+{
+	if (n > 8)
+		chunk_i16(p, ro, 16, k, b, a);
+	else
+		test_s16_8(load16(p, ro, 16), k, b, a);
+}
+
+static inline void
+chunk_f32(const char *p, const int64_t *ro, int run, const quad_k *k,
+    unsigned *b, unsigned *a)
+{
+	__m128 v0 = _mm_castsi128_ps(load16(p, ro, run));
+	__m128 v1 = _mm_castsi128_ps(load16(p, ro + 16 / run, run));
+	__m128 f0 = _mm_cmple_ps(_mm_and_ps(v0, k->abs), k->fmax);
+	__m128 f1 = _mm_cmple_ps(_mm_and_ps(v1, k->abs), k->fmax);
+	__m128i b01 = _mm_packs_epi32(
+	    _mm_castps_si128(_mm_and_ps(_mm_cmple_ps(v0, k->val), f0)),
+	    _mm_castps_si128(_mm_and_ps(_mm_cmple_ps(v1, k->val), f1)));
+	__m128i a01 = _mm_packs_epi32(
+	    _mm_castps_si128(_mm_and_ps(_mm_cmpge_ps(v0, k->val), f0)),
+	    _mm_castps_si128(_mm_and_ps(_mm_cmpge_ps(v1, k->val), f1)));
+	unsigned m = (unsigned)_mm_movemask_epi8(_mm_packs_epi16(b01, a01));
+
+	*b = m & 255u;
+	*a = m >> 8;
+}
+
+/* chunk_plan: whether a block's rows can be read in chunks of w samples of
+ * sz bytes, the row's ns samples at x offsets o: the longest runs (16, 8
+ * or 4 bytes, at least one sample) that every chunk's samples come in, and
+ * their byte offsets from the row's start into ro; 0 when there is no
+ * chunk or one has no such runs */
+static int
+chunk_plan(const int64_t *o, int64_t ns, int w, int sz, int64_t *ro)
+{
+	int n = (int)(ns / w), c, r, best = 16, i;
+
+	for (c = 0; c < n; c++) {
+		const int64_t *q = o + (int64_t)c * w;
+
+		for (r = best; r >= 4 && r >= sz; r /= 2) {
+			int step = r / sz;
+
+			for (i = 0; i < w; i++)
+				if (q[i] != q[i - i % step] + i % step)
+					break;
+			if (i == w)
+				break;
+		}
+		if (r < 4 || r < sz)
+			return 0;
+		best = r;
+	}
+	if (n == 0)
+		return 0;
+	for (i = 0; i < n * w * sz / best; i++)
+		ro[i] = o[i * best / sz] * sz;
+	return best;
 }
 
 static inline void
@@ -1100,6 +1303,16 @@ quad_f32(const float *p, const quad_k *k, unsigned *b, unsigned *a)
 	*a = (unsigned)_mm_movemask_ps(_mm_and_ps(_mm_cmpge_ps(v, k->val), fin));
 }
 
+static inline void
+tail_f32(const char *p, const int64_t *ro, int n, const quad_k *k,
+    unsigned *b, unsigned *a)
+{
+	if (n > 4)
+		chunk_f32(p, ro, 16, k, b, a);
+	else
+		quad_f32((const float *)(const void *)(p + ro[0]), k, b, a);
+}
+
 #define QUAD_RUN(T, QUAD)                                                \
 	if (x + 4 <= ns[0] && o[x + 1] == o[x] + 1 &&                    \
 	    o[x + 2] == o[x] + 2 && o[x + 3] == o[x] + 3) {              \
@@ -1110,10 +1323,176 @@ quad_f32(const float *p, const quad_k *k, unsigned *b, unsigned *a)
 		x += 4;                                                  \
 		continue;                                                \
 	}
+
+/* a block's plan for reading a plane's rows in chunks */
+typedef struct chunk_rows {
+	const quad_k *k;
+	int64_t fl, ce;           /* integer thresholds (the last samples) */
+	float val;
+	const int64_t *oy;        /* the rows' offsets, in samples */
+	const int64_t *ro;        /* the chunks' runs' byte offsets in a row */
+	int nch;                  /* chunks in a row, >= 1 */
+	int nt;                   /* samples after them, at byte offsets ot */
+	const int64_t *ot;
+	int tv;                   /* 1: those samples are one chunk's first,
+	                             at ot[0], ot[1] in runs of 16 bytes
+	                             (the rest read, in bounds, not used) */
+} chunk_rows;
+
+/* CHUNK_PLANE: NAME(r, pl, y0, y1, pb, pa, ub, ua) reads rows y0 to y1 - 1
+ * of the plane at pl as r plans, chunks of W samples of type T in runs of
+ * R bytes, into below and above bits: a row's bits OR-ed with the previous
+ * plane's row (pb, pa: in) into ub, ua, and its own into pb, pa */
+#define CHUNK_PLANE(NAME, T, CHUNK, TAIL, W, R, BELOW, ABOVE)                  \
+static void                                                              \
+NAME(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,        \
+    uint64_t *restrict pb, uint64_t *restrict pa, uint64_t *restrict ub, \
+    uint64_t *restrict ua)                                               \
+{                                                                        \
+	const quad_k k = *r->k;                                          \
+	const int64_t fl = r->fl, ce = r->ce;                            \
+	const int64_t *oy = r->oy, *ro = r->ro, *ot = r->ot;             \
+	const float val = r->val;                                        \
+	const int nch = r->nch, nt = r->nt, tv = r->tv;                  \
+	const int stride = (W) * (int)sizeof(T) / (R);                   \
+	const unsigned tm = (1u << nt) - 1;                              \
+	int64_t y;                                                       \
+	int ch, t;                                                       \
+									 \
+	(void)fl;                                                        \
+	(void)ce;                                                        \
+	(void)val;                                                       \
+	for (y = y0; y < y1; y++) {                                      \
+		const char *row = pl + oy[y] * (int64_t)sizeof(T);       \
+		uint64_t bb, aa;                                         \
+		unsigned bw, aw;                                         \
+									 \
+		CHUNK(row, ro, R, &k, &bw, &aw);                         \
+		bb = bw;                                                 \
+		aa = aw;                                                 \
+		for (ch = 1; ch < nch; ch++) {                           \
+			CHUNK(row, ro + ch * stride, R, &k, &bw, &aw);   \
+			bb |= (uint64_t)bw << (ch * (W));                \
+			aa |= (uint64_t)aw << (ch * (W));                \
+		}                                                        \
+		if (tv) {                                                \
+			TAIL(row, ot, nt, &k, &bw, &aw);                 \
+			bb |= (uint64_t)(bw & tm) << (nch * (W));        \
+			aa |= (uint64_t)(aw & tm) << (nch * (W));        \
+		} else                                                   \
+			for (t = 0; t < nt; t++) {                       \
+				T v;                                     \
+									 \
+				memcpy(&v, row + ot[t], sizeof v);       \
+				bb |= (uint64_t)(BELOW) << (nch * (W) + t); \
+				aa |= (uint64_t)(ABOVE) << (nch * (W) + t); \
+			}                                                \
+		ub[y] = pb[y] | bb;                                      \
+		ua[y] = pa[y] | aa;                                      \
+		pb[y] = bb;                                              \
+		pa[y] = aa;                                              \
+	}                                                                \
+}
+
+#define CHUNK_PLANES(T, CHUNK, TAIL, W, BELOW, ABOVE)                    \
+	CHUNK_PLANE(CHUNK##_16, T, CHUNK, TAIL, W, 16, BELOW, ABOVE)     \
+	CHUNK_PLANE(CHUNK##_8, T, CHUNK, TAIL, W, 8, BELOW, ABOVE)       \
+	CHUNK_PLANE(CHUNK##_4, T, CHUNK, TAIL, W, 4, BELOW, ABOVE)
+CHUNK_PLANES(uint8_t, chunk_u8, tail_u8, 16, v <= fl, v >= ce)
+CHUNK_PLANES(uint16_t, chunk_u16, tail_u16, 16, v <= fl, v >= ce)
+CHUNK_PLANES(int16_t, chunk_i16, tail_i16, 16, v <= fl, v >= ce)
+CHUNK_PLANES(float, chunk_f32, tail_f32, 8, fabsf(v) <= FLT_MAX && v <= val,
+    fabsf(v) <= FLT_MAX && v >= val)
+
+typedef void chunk_plane_fn(const chunk_rows *, const char *, int64_t,
+    int64_t, uint64_t *, uint64_t *, uint64_t *, uint64_t *);
+
+/* chunk_plane_for: the plane reader for type t and runs of run bytes */
+static chunk_plane_fn *
+chunk_plane_for(vx_type t, int run)
+{
+	static chunk_plane_fn *const fn[4][3] = {
+		{ chunk_u8_16, chunk_u8_8, chunk_u8_4 },
+		{ chunk_u16_16, chunk_u16_8, chunk_u16_4 },
+		{ chunk_i16_16, chunk_i16_8, chunk_i16_4 },
+		{ chunk_f32_16, chunk_f32_8, chunk_f32_4 },
+	};
+
+	return fn[t - VX_U8][run == 16 ? 0 : run == 8 ? 1 : 2];
+}
+
+/* tile_u8: as chunk_u8_4, rows y0 to y1 - 1 (y1 - y0 a multiple of 4) of
+ * u8 samples in runs of 4 bytes, where each four rows from y0 on lie 4
+ * bytes apart (a bricked layout's bricks 4 samples wide), so that 16 bytes
+ * hold a run of each of the four: read as such tiles, turned into rows,
+ * the last samples too (r->tv; nt <= 4) */
+static void
+tile_u8(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,
+    uint64_t *restrict pb, uint64_t *restrict pa, uint64_t *restrict ub,
+    uint64_t *restrict ua)
+{
+	const quad_k k = *r->k;
+	const int64_t *oy = r->oy, *ro = r->ro;
+	const int nch = r->nch, sh = nch * 16;
+	const int64_t t0 = r->ot[0];
+	const unsigned tm = (1u << r->nt) - 1;
+	int64_t y;
+	int ch, i;
+
+	for (y = y0; y < y1; y += 4) {
+		const char *row = pl + oy[y];
+		uint64_t bb[4] = { 0, 0, 0, 0 }, aa[4] = { 0, 0, 0, 0 };
+		unsigned bw, aw;
+
+		for (ch = 0; ch < nch; ch++) {
+			const int64_t *q = ro + ch * 4;
+			__m128i v0 = _mm_loadu_si128((const __m128i *)(const
+			    void *)(row + q[0]));
+			__m128i v1 = _mm_loadu_si128((const __m128i *)(const
+			    void *)(row + q[1]));
+			__m128i v2 = _mm_loadu_si128((const __m128i *)(const
+			    void *)(row + q[2]));
+			__m128i v3 = _mm_loadu_si128((const __m128i *)(const
+			    void *)(row + q[3]));
+			__m128i l01 = _mm_unpacklo_epi32(v0, v1);
+			__m128i l23 = _mm_unpacklo_epi32(v2, v3);
+			__m128i h01 = _mm_unpackhi_epi32(v0, v1);
+			__m128i h23 = _mm_unpackhi_epi32(v2, v3);
+			__m128i rw[4];
+
+			rw[0] = _mm_unpacklo_epi64(l01, l23);
+			rw[1] = _mm_unpackhi_epi64(l01, l23);
+			rw[2] = _mm_unpacklo_epi64(h01, h23);
+			rw[3] = _mm_unpackhi_epi64(h01, h23);
+			for (i = 0; i < 4; i++) {
+				test_u8(rw[i], &k, &bw, &aw);
+				bb[i] |= (uint64_t)bw << (ch * 16);
+				aa[i] |= (uint64_t)aw << (ch * 16);
+			}
+		}
+		if (tm != 0) {
+			test_u8(_mm_loadu_si128((const __m128i *)(const void *)
+			    (row + t0)), &k, &bw, &aw);
+			for (i = 0; i < 4; i++) {
+				bb[i] |= (uint64_t)(bw >> 4 * i & tm) << sh;
+				aa[i] |= (uint64_t)(aw >> 4 * i & tm) << sh;
+			}
+		}
+		for (i = 0; i < 4; i++) {
+			ub[y + i] = pb[y + i] | bb[i];
+			ua[y + i] = pa[y + i] | aa[i];
+			pb[y + i] = bb[i];
+			pa[y + i] = aa[i];
+		}
+	}
+}
 #else
 #define QUAD_RUN(T, QUAD)
 #endif
 
+/* MASK_ROWS: plane z's rows' below and above bits, four samples at once
+ * where they are adjacent, each row's OR-ed with the previous plane's row
+ * (pb, pa: in) into ub, ua, and its own into pb, pa */
 #define MASK_ROWS(T, QUAD, BELOW, ABOVE)                                 \
 	do {                                                             \
 		const T *dd = (const T *)g->data;                        \
@@ -1129,21 +1508,35 @@ quad_f32(const float *p, const quad_k *k, unsigned *b, unsigned *a)
 				aa |= (uint64_t)(ABOVE) << x;            \
 				x++;                                     \
 			}                                                \
-			pb[cur][y] = bb | bb >> 1;                       \
-			pa[cur][y] = aa | aa >> 1;                       \
+			ub[y] = pb[y] | bb;                              \
+			ua[y] = pa[y] | aa;                              \
+			pb[y] = bb;                                      \
+			pa[y] = aa;                                      \
 		}                                                        \
 	} while (0)
 
-/* or_bits: OR the low n bits of v into bit array out at bit position p */
-static inline void
-or_bits(uint64_t *out, int64_t p, uint64_t v, int n)
+/* leaf_rows: a plane of leaves' bits into out, n rows of nx leaves from
+ * bit p, step bits apart: a leaf row's corners are samples x and x + 1 of
+ * rows y and y + 1 of two planes of samples, whose rows' bits, OR-ed over
+ * the two planes, are ub (below) and ua (above) */
+static void
+leaf_rows(uint64_t *restrict out, const uint64_t *ub, const uint64_t *ua,
+    int64_t n, int64_t p, int64_t step, int nx)
 {
-	int sh = (int)(p & 63);
+	const uint64_t keep = nx >= 64 ? ~(uint64_t)0 :
+	    ((uint64_t)1 << nx) - 1;
+	int64_t y;
 
-	v &= n >= 64 ? ~(uint64_t)0 : ((uint64_t)1 << n) - 1;
-	out[p >> 6] |= v << sh;
-	if (sh + n > 64)
-		out[(p >> 6) + 1] |= v >> (64 - sh);
+	for (y = 0; y < n; y++, p += step) {
+		uint64_t bb = ub[y] | ub[y + 1];
+		uint64_t aa = ua[y] | ua[y + 1];
+		uint64_t v = (bb | bb >> 1) & (aa | aa >> 1) & keep;
+		int sh = (int)(p & 63);
+
+		out[p >> 6] |= v << sh;
+		if (sh + nx > 64)
+			out[(p >> 6) + 1] |= v >> (64 - sh);
+	}
 }
 
 /* mask_block: the bits of level-1 macrocell c (linear index) into out
@@ -1152,11 +1545,22 @@ static void
 mask_block(const vx_macro *m, const vx_grid *g, int64_t c,
     const float *vals, int nvals, uint64_t *out)
 {
-	uint64_t pb[2][VX_MACRO_MAXSIZE + 1], pa[2][VX_MACRO_MAXSIZE + 1];
+	/* a plane's rows' bits, and those OR-ed with the previous plane's */
+	uint64_t pb[VX_MACRO_MAXSIZE + 1], pa[VX_MACRO_MAXSIZE + 1];
+	uint64_t ub[VX_MACRO_MAXSIZE + 1], ua[VX_MACRO_MAXSIZE + 1];
 	const int64_t *ox = g->lay.off[0];
 	const int64_t *w = m->width[1];
 	int64_t b[3], lo[3], nl[3], ns[3], x, y, z;
-	int a, j, cur;
+	int a, j;
+#ifdef MASK_SIMD
+	/* the chunks' runs' byte offsets in a row (at most
+	 * VX_CELLMASK_MAXROW + 1 samples in runs of 4 bytes or more), the
+	 * last samples' */
+	int64_t ro[VX_CELLMASK_MAXROW + 1], ot[16];
+	chunk_plane_fn *plane = NULL;
+	chunk_rows cr;
+	int64_t ntile = 0;        /* rows read as tiles (tile_u8) */
+#endif
 
 	b[0] = c % m->dims[1][0];
 	b[1] = c / m->dims[1][0] % m->dims[1][1];
@@ -1167,6 +1571,61 @@ mask_block(const vx_macro *m, const vx_grid *g, int64_t c,
 		    w[a];
 		ns[a] = nl[a] + 1;
 	}
+#ifdef MASK_SIMD
+	if (ns[0] <= VX_CELLMASK_MAXROW + 1 && g->type >= VX_U8 &&
+	    g->type <= VX_F32) {
+		int cw = g->type == VX_F32 ? 8 : 16;
+		int sz = (int)vx_type_size(g->type);
+		int run = chunk_plan(ox + lo[0], ns[0], cw, sz, ro);
+
+		if (run != 0) {
+			const int64_t *oy = g->lay.off[1] + lo[1];
+			const int64_t *oz = g->lay.off[2] + lo[2];
+			const int64_t *o = ox + lo[0];
+			int64_t xt, top = 0, yt = 0, zt = 0;
+
+			plane = chunk_plane_for(g->type, run);
+			cr.oy = oy;
+			cr.ro = ro;
+			cr.nch = (int)(ns[0] / cw);
+			cr.nt = (int)(ns[0] % cw);
+			cr.ot = ot;
+			xt = (int64_t)cr.nch * cw;
+			/* the last samples as a chunk: adjacent, and the
+			 * chunk's bytes (32 for f32) within the samples from
+			 * every row of the block */
+			for (y = 0; y < ns[1]; y++)
+				yt = oy[y] > yt ? oy[y] : yt;
+			for (z = 0; z < ns[2]; z++)
+				zt = oz[z] > zt ? oz[z] : zt;
+			for (a = 1; a < cr.nt && o[xt + a] == o[xt] + a; a++)
+				;
+			if (cr.nt > 0)
+				top = (yt + zt + o[xt]) * sz +
+				    (cr.nt * sz > 16 ? 32 : 16);
+			cr.tv = cr.nt > 0 && a == cr.nt && top > 0 &&
+			    (uint64_t)top <= (uint64_t)g->nsample *
+			    (uint64_t)sz;
+			if (cr.tv) {
+				ot[0] = o[xt] * sz;
+				ot[1] = ot[0] + 16;
+			} else
+				for (a = 0; a < cr.nt; a++)
+					ot[a] = o[xt + a] * sz;
+			/* u8 in runs of 4 bytes: tiles of four rows 4 bytes
+			 * apart (the last samples as a tile too) */
+			if (g->type == VX_U8 && run == 4 && (cr.nt == 0 ||
+			    (cr.tv && cr.nt <= 4))) {
+				for (y = 0; y + 4 <= ns[1]; y += 4)
+					if (oy[y + 1] != oy[y] + 4 ||
+					    oy[y + 2] != oy[y] + 8 ||
+					    oy[y + 3] != oy[y] + 12)
+						break;
+				ntile = y + 4 <= ns[1] ? 0 : y;
+			}
+		}
+	}
+#endif
 	for (j = 0; j < nvals; j++) {
 		float val = vals[j];
 		double cv;
@@ -1180,19 +1639,42 @@ mask_block(const vx_macro *m, const vx_grid *g, int64_t c,
 		    (double)val;
 		fl = (int64_t)floor(cv);
 		ce = (int64_t)ceil(cv);
+		/* no sample below, or none above: no leaf brackets */
+		if ((g->type == VX_U8 && (fl < 0 || ce > 255)) ||
+		    (g->type == VX_U16 && (fl < 0 || ce > 65535)) ||
+		    (g->type == VX_I16 && (fl < -32768 || ce > 32767)))
+			continue;
+		for (y = 0; y < ns[1]; y++)
+			pb[y] = pa[y] = 0;
 #ifdef MASK_SIMD
 		quad_k qk;
 
-		quad_keys(&qk, fl, ce, val);
+		quad_keys(&qk, g->type, fl, ce, val);
+		cr.k = &qk;
+		cr.fl = fl;
+		cr.ce = ce;
+		cr.val = val;
 #endif
 		for (z = 0; z < ns[2]; z++) {
-			cur = (int)(z & 1);
+#ifdef MASK_SIMD
+			if (plane != NULL) {
+				const char *pl = (const char *)g->data +
+				    g->lay.off[2][lo[2] + z] *
+				    (int64_t)vx_type_size(g->type);
+
+				if (ntile > 0)
+					tile_u8(&cr, pl, 0, ntile, pb, pa, ub,
+					    ua);
+				plane(&cr, pl, ntile, ns[1], pb, pa, ub, ua);
+			} else
+#endif
 			switch (g->type) {
 			case VX_U8:
 				MASK_ROWS(uint8_t, quad_u8, v <= fl, v >= ce);
 				break;
 			case VX_U16:
-				MASK_ROWS(uint16_t, quad_u16, v <= fl, v >= ce);
+				MASK_ROWS(uint16_t, quad_u16, v <= fl,
+				    v >= ce);
 				break;
 			case VX_I16:
 				MASK_ROWS(int16_t, quad_i16, v <= fl, v >= ce);
@@ -1206,15 +1688,8 @@ mask_block(const vx_macro *m, const vx_grid *g, int64_t c,
 			}
 			if (z == 0)
 				continue;
-			for (y = 0; y < nl[1]; y++) {
-				uint64_t bb = pb[0][y] | pb[0][y + 1] |
-				    pb[1][y] | pb[1][y + 1];
-				uint64_t aa = pa[0][y] | pa[0][y + 1] |
-				    pa[1][y] | pa[1][y + 1];
-
-				or_bits(out, w[0] * (y + w[1] * (z - 1)),
-				    bb & aa, (int)nl[0]);
-			}
+			leaf_rows(out, ub, ua, nl[1], w[0] * w[1] * (z - 1),
+			    w[0], (int)nl[0]);
 		}
 	}
 }

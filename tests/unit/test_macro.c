@@ -851,6 +851,189 @@ cellmask_bits_brute_force(void **state)
 	}
 }
 
+/* check_mask_bits: every bit of eager mask em over m and g against the
+ * leaf's corner range read one corner at a time (leaf_range, the oracle),
+ * for values vals[0..nv); returns the number of set bits */
+static int64_t
+check_mask_bits(const vx_cellmask *em, const vx_macro *m, const vx_grid *g,
+    const float *vals, int nv)
+{
+	int64_t nb[3] = { m->dims[1][0], m->dims[1][1], m->dims[1][2] };
+	int64_t w[3] = { m->width[1][0], m->width[1][1], m->width[1][2] };
+	int64_t ones = 0;
+
+	for (int64_t b = 0; b < nb[0] * nb[1] * nb[2]; b++) {
+		int64_t bx = b % nb[0], by = b / nb[0] % nb[1];
+		int64_t bz = b / nb[0] / nb[1];
+
+		if (em->slot[b] < 0)
+			continue;
+		for (int64_t z = 0; z < w[2]; z++)
+			for (int64_t y = 0; y < w[1]; y++)
+				for (int64_t x = 0; x < w[0]; x++) {
+					int64_t X = bx * w[0] + x;
+					int64_t Y = by * w[1] + y;
+					int64_t Z = bz * w[2] + z;
+					int64_t i = x + w[0] * (y + w[1] * z);
+					int bit = (int)(em->bits[em->slot[b] +
+					    (i >> 6)] >> (i & 63) & 1);
+					int want = 0;
+					float lo, hi;
+
+					if (X < m->dims[0][0] &&
+					    Y < m->dims[0][1] &&
+					    Z < m->dims[0][2]) {
+						leaf_range(g, X, Y, Z, &lo,
+						    &hi);
+						for (int q = 0; q < nv; q++)
+							want |= lo <= vals[q] &&
+							    vals[q] <= hi;
+					}
+					if (bit != want)
+						fail_msg("block %lld leaf "
+						    "%lld %lld %lld: bit %d, "
+						    "oracle %d", (long long)b,
+						    (long long)x, (long long)y,
+						    (long long)z, bit, want);
+					ones += bit;
+				}
+	}
+	return ones;
+}
+
+/* cluster_grid: samples of type ty around centre c (c - 4 .. c + 4; f32
+ * anywhere within 4 of c), one in 40 the type's lowest tlo, one in 40 its
+ * highest thi, f32 one in 40 each NaN or +Inf, -Inf, +-FLT_MAX */
+static void
+cluster_grid(vx_grid *g, vx_type ty, double c, double tlo, double thi,
+    uint64_t *s)
+{
+	const int64_t *n = g->dims;
+
+	for (int64_t i = 0; i < n[0] * n[1] * n[2]; i++) {
+		int r = irand(s, 40);
+		double v = c + irand(s, 9) - 4;
+
+		if (ty == VX_F32)
+			v = c + (urand(s) - 0.5) * 8;
+		if (r == 0 || r == 1)
+			v = r == 0 ? tlo : thi;
+		if (ty == VX_F32 && r == 2)
+			v = irand(s, 2) ? NAN : INFINITY;
+		if (ty == VX_F32 && r == 3)
+			v = -INFINITY;
+		if (ty == VX_F32 && r == 4)
+			v = irand(s, 2) ? FLT_MAX : -FLT_MAX;
+		if (ty != VX_F32)
+			v = v < tlo ? tlo : v > thi ? thi : v;
+		vx_grid_set(g, i % n[0], i / n[0] % n[1], i / n[0] / n[1], v);
+	}
+}
+
+/* Cell masks over the layouts whose rows the mask reads many samples at a
+ * time (runs of 4, 8 and 16 bytes, four-row tiles of u8 bricks 4 wide, the
+ * last samples of a row read with the chunk; and rows it reads four or one
+ * at a time: u8 bricks 2 wide), every type, level-1 macrocells whose rows
+ * are one chunk and more, partial ones (dims that do not divide), rows
+ * that cross brick edges and macrocells not aligned with the bricks
+ * (oracle: check_mask_bits, each leaf's corners read one by one).  Samples
+ * cluster around a centre so values bracket often, with the type's
+ * extremes; values: samples, halves, the type's extremes and beyond it
+ * (no sample below, or none above), NaN; f32 with NaN, infinities and
+ * +-FLT_MAX samples. */
+static void
+cellmask_chunks_brute_force(void **state)
+{
+	static const vx_type types[] = { VX_U8, VX_U16, VX_I16, VX_F32 };
+	static const char *const lays[] = { "linear", NULL,
+		"bricked 8x2x2 2x2x2", "bricked 2x2x2 2x2x2",
+		"bricked 16x4x2" };
+	static const int sz1[][3] = {
+		{ 16, 16, 8 }, { 16, 8, 8 }, { 8, 8, 8 }, { 32, 4, 2 },
+		{ 15, 5, 3 }, { 31, 12, 2 }, { 63, 4, 1 }, { 47, 3, 4 },
+		{ 12, 6, 2 }, { 3, 8, 2 }, { 16, 5, 2 }, { 32, 6, 3 },
+		{ 24, 4, 2 }, { 40, 3, 2 },
+	};
+	uint64_t s = 11;
+	int64_t ones = 0, zeros = 0;
+
+	(void)state;
+	/* every type and layout; the default bricks with every size */
+	for (int cs = 0; cs < 4 * 5 * 14; cs++) {
+		int t = cs / 70, l = cs / 14 % 5, q = cs % 14;
+		vx_type ty = types[t];
+		double tlo = ty == VX_I16 ? -32768 : ty == VX_F32 ? -1e6 : 0;
+		double thi = ty == VX_U8 ? 255 : ty == VX_I16 ? 32767 :
+		    ty == VX_F32 ? 1e6 : 65535;
+		int bricks[VX_LAYOUT_MAXLEV][3], sz[2][3];
+		int nv = 2 + irand(&s, 3);
+		int64_t dims[3], n;
+		char lay[64];
+		double c;
+		float vals[6];
+		vx_grid g;
+		vx_macro m;
+		vx_cellmask em;
+		vx_err e = { 0, "" };
+
+		if (l != 1 && q % 2)
+			continue;
+		for (int a = 0; a < 3; a++) {
+			sz[0][a] = sz1[(q + t) % 14][a];
+			sz[1][a] = 2;
+			/* one or two macrocells and a part */
+			dims[a] = sz[0][a] * (1 + irand(&s, 2)) + 1 +
+			    irand(&s, sz[0][a] + 1);
+		}
+		if (lays[l] == NULL) {
+			vx_layout bl = { .nlev = vx_layout_default_bricks(ty,
+			    bricks) };
+
+			memcpy(bl.brick, bricks, 2 * sizeof bricks[0]);
+			vx_layout_string(&bl, lay, sizeof lay);
+		} else
+			snprintf(lay, sizeof lay, "%s", lays[l]);
+		assert_int_equal(vx_grid_alloc(&g, dims, ty, lay, &e), 0);
+		/* the centre: anywhere, the type's ends too */
+		c = irand(&s, 4) == 0 ? (irand(&s, 2) ? tlo : thi) :
+		    tlo + urand(&s) * (thi - tlo);
+		if (ty != VX_F32)
+			c = floor(c);
+		cluster_grid(&g, ty, c, tlo, thi, &s);
+		for (int k = 0; k < nv; k++) {
+			int r = irand(&s, 12);
+
+			vals[k] = (float)(c + irand(&s, 7) - 3 +
+			    (irand(&s, 2) ? 0.5 : 0));
+			if (r == 0 || r == 1)
+				vals[k] = (float)(r == 0 ? tlo : thi);
+			else if (r == 2 || r == 3)
+				vals[k] = (float)(r == 2 ? tlo - 0.5 :
+				    thi + 0.5);
+			else if (r == 4)
+				vals[k] = (float)(thi - 0.5);
+			else if (r == 5 && ty == VX_F32)
+				vals[k] = irand(&s, 2) ? FLT_MAX : -FLT_MAX;
+			else if (r == 6)
+				vals[k] = NAN;
+		}
+		assert_int_equal(vx_macro_build(&m, &g, 2,
+		    (const int (*)[3])sz, 1, &e), 0);
+		assert_int_equal(vx_cellmask_build(&em, &m, &g, vals, nv, 0, 1,
+		    &e), 0);
+		assert_true(em.ready);
+		n = check_mask_bits(&em, &m, &g, vals, nv);
+		ones += n;
+		zeros += m.dims[0][0] * m.dims[0][1] * m.dims[0][2] - n;
+		vx_cellmask_free(&em);
+		vx_macro_free(&m);
+		vx_grid_free(&g);
+	}
+	/* both answers, plenty of each */
+	assert_true(ones > 20000);
+	assert_true(zeros > 20000);
+}
+
 /* The masked walk makes the plain walk's visits, bit for bit (oracle: the
  * plain hierarchical walk, itself checked against the filtered flat walk
  * above), over random grids of every type, layouts, hierarchies, values
@@ -1836,6 +2019,7 @@ main(void)
 		cmocka_unit_test(nonfinite_policy),
 		cmocka_unit_test(hierarchy_equals_filtered_flat),
 		cmocka_unit_test(cellmask_bits_brute_force),
+		cmocka_unit_test(cellmask_chunks_brute_force),
 		cmocka_unit_test(cellmask_equals_plain_walk),
 		cmocka_unit_test(cellmask_boxes_cover_bits),
 		cmocka_unit_test(boxes_entry_keeps_visits),
