@@ -1355,7 +1355,6 @@ NAME(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,        \
 	const float val = r->val;                                        \
 	const int nch = r->nch, nt = r->nt, tv = r->tv;                  \
 	const int stride = (W) * (int)sizeof(T) / (R);                   \
-	const unsigned tm = (1u << nt) - 1;                              \
 	int64_t y;                                                       \
 	int ch, t;                                                       \
 									 \
@@ -1377,8 +1376,8 @@ NAME(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,        \
 		}                                                        \
 		if (tv) {                                                \
 			TAIL(row, ot, nt, &k, &bw, &aw);                 \
-			bb |= (uint64_t)(bw & tm) << (nch * (W));        \
-			aa |= (uint64_t)(aw & tm) << (nch * (W));        \
+			bb |= (uint64_t)bw << (nch * (W));               \
+			aa |= (uint64_t)aw << (nch * (W));               \
 		} else                                                   \
 			for (t = 0; t < nt; t++) {                       \
 				T v;                                     \
@@ -1425,17 +1424,18 @@ chunk_plane_for(vx_type t, int run)
  * u8 samples in runs of 4 bytes, where each four rows from y0 on lie 4
  * bytes apart (a bricked layout's bricks 4 samples wide), so that 16 bytes
  * hold a run of each of the four: read as such tiles, turned into rows,
- * the last samples too (r->tv; nt <= 4) */
-static void
-tile_u8(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,
+ * the last samples too (r->tv; nt <= 4; the bits past them, garbage, go
+ * past the row's end, where no leaf reads them).  tile_rows: its body,
+ * nch the chunks per row (a constant for one chunk, the usual) */
+static inline __attribute__((always_inline)) void
+tile_rows(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,
     uint64_t *restrict pb, uint64_t *restrict pa, uint64_t *restrict ub,
-    uint64_t *restrict ua)
+    uint64_t *restrict ua, const int nch)
 {
 	const quad_k k = *r->k;
 	const int64_t *oy = r->oy, *ro = r->ro;
-	const int nch = r->nch, sh = nch * 16;
+	const int sh = nch * 16, nt = r->nt;
 	const int64_t t0 = r->ot[0];
-	const unsigned tm = (1u << r->nt) - 1;
 	int64_t y;
 	int ch, i;
 
@@ -1470,12 +1470,12 @@ tile_u8(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,
 				aa[i] |= (uint64_t)aw << (ch * 16);
 			}
 		}
-		if (tm != 0) {
+		if (nt != 0) {
 			test_u8(_mm_loadu_si128((const __m128i *)(const void *)
 			    (row + t0)), &k, &bw, &aw);
 			for (i = 0; i < 4; i++) {
-				bb[i] |= (uint64_t)(bw >> 4 * i & tm) << sh;
-				aa[i] |= (uint64_t)(aw >> 4 * i & tm) << sh;
+				bb[i] |= (uint64_t)(bw >> 4 * i) << sh;
+				aa[i] |= (uint64_t)(aw >> 4 * i) << sh;
 			}
 		}
 		for (i = 0; i < 4; i++) {
@@ -1485,6 +1485,109 @@ tile_u8(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,
 			pa[y + i] = aa[i];
 		}
 	}
+}
+
+static void
+tile_u8(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,
+    uint64_t *restrict pb, uint64_t *restrict pa, uint64_t *restrict ub,
+    uint64_t *restrict ua)
+{
+	if (r->nch == 1)
+		tile_rows(r, pl, y0, y1, pb, pa, ub, ua, 1);
+	else
+		tile_rows(r, pl, y0, y1, pb, pa, ub, ua, r->nch);
+}
+
+/* tile_16: as tile_u8 for 16-bit samples (flip: u16) in runs of 8 bytes,
+ * each two rows from y0 on 8 bytes apart (bricks 4 samples wide), so that
+ * 16 bytes hold a run of each of the two; the last samples too (r->tv;
+ * nt <= 4).  tile16_rows: its body */
+static inline __attribute__((always_inline)) void
+tile16_rows(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,
+    uint64_t *restrict pb, uint64_t *restrict pa, uint64_t *restrict ub,
+    uint64_t *restrict ua, const int nch, const int flip)
+{
+	const quad_k k = *r->k;
+	const int64_t *oy = r->oy, *ro = r->ro;
+	const int sh = nch * 16, nt = r->nt;
+	const int64_t t0 = r->ot[0];
+	const __m128i top = _mm_set1_epi16(flip ? -0x8000 : 0);
+	int64_t y;
+	int ch;
+
+	for (y = y0; y < y1; y += 2) {
+		const char *row = pl + oy[y] * 2;
+		uint64_t b0 = 0, b1 = 0, a0 = 0, a1 = 0;
+		unsigned bw, aw;
+
+		for (ch = 0; ch < nch; ch++) {
+			const int64_t *q = ro + ch * 4;
+			__m128i v0 = _mm_loadu_si128((const __m128i *)(const
+			    void *)(row + q[0]));
+			__m128i v1 = _mm_loadu_si128((const __m128i *)(const
+			    void *)(row + q[1]));
+			__m128i v2 = _mm_loadu_si128((const __m128i *)(const
+			    void *)(row + q[2]));
+			__m128i v3 = _mm_loadu_si128((const __m128i *)(const
+			    void *)(row + q[3]));
+
+			if (flip) {
+				v0 = _mm_xor_si128(v0, top);
+				v1 = _mm_xor_si128(v1, top);
+				v2 = _mm_xor_si128(v2, top);
+				v3 = _mm_xor_si128(v3, top);
+			}
+			test_s16(_mm_unpacklo_epi64(v0, v1),
+			    _mm_unpacklo_epi64(v2, v3), &k, &bw, &aw);
+			b0 |= (uint64_t)bw << (ch * 16);
+			a0 |= (uint64_t)aw << (ch * 16);
+			test_s16(_mm_unpackhi_epi64(v0, v1),
+			    _mm_unpackhi_epi64(v2, v3), &k, &bw, &aw);
+			b1 |= (uint64_t)bw << (ch * 16);
+			a1 |= (uint64_t)aw << (ch * 16);
+		}
+		if (nt != 0) {
+			__m128i v = _mm_loadu_si128((const __m128i *)(const
+			    void *)(row + t0));
+
+			test_s16_8(flip ? _mm_xor_si128(v, top) : v, &k, &bw,
+			    &aw);
+			b0 |= (uint64_t)bw << sh;
+			a0 |= (uint64_t)aw << sh;
+			b1 |= (uint64_t)(bw >> 4) << sh;
+			a1 |= (uint64_t)(aw >> 4) << sh;
+		}
+		ub[y] = pb[y] | b0;
+		ua[y] = pa[y] | a0;
+		pb[y] = b0;
+		pa[y] = a0;
+		ub[y + 1] = pb[y + 1] | b1;
+		ua[y + 1] = pa[y + 1] | a1;
+		pb[y + 1] = b1;
+		pa[y + 1] = a1;
+	}
+}
+
+static void
+tile_u16(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,
+    uint64_t *restrict pb, uint64_t *restrict pa, uint64_t *restrict ub,
+    uint64_t *restrict ua)
+{
+	if (r->nch == 1)
+		tile16_rows(r, pl, y0, y1, pb, pa, ub, ua, 1, 1);
+	else
+		tile16_rows(r, pl, y0, y1, pb, pa, ub, ua, r->nch, 1);
+}
+
+static void
+tile_i16(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,
+    uint64_t *restrict pb, uint64_t *restrict pa, uint64_t *restrict ub,
+    uint64_t *restrict ua)
+{
+	if (r->nch == 1)
+		tile16_rows(r, pl, y0, y1, pb, pa, ub, ua, 1, 0);
+	else
+		tile16_rows(r, pl, y0, y1, pb, pa, ub, ua, r->nch, 0);
 }
 #else
 #define QUAD_RUN(T, QUAD)
@@ -1518,25 +1621,56 @@ tile_u8(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,
 /* leaf_rows: a plane of leaves' bits into out, n rows of nx leaves from
  * bit p, step bits apart: a leaf row's corners are samples x and x + 1 of
  * rows y and y + 1 of two planes of samples, whose rows' bits, OR-ed over
- * the two planes, are ub (below) and ua (above) */
+ * the two planes, are ub (below) and ua (above).  Two rows at a time where
+ * SSE2 is there; rows that never straddle two words (step divides 64) put
+ * without the test. */
 static void
 leaf_rows(uint64_t *restrict out, const uint64_t *ub, const uint64_t *ua,
     int64_t n, int64_t p, int64_t step, int nx)
 {
 	const uint64_t keep = nx >= 64 ? ~(uint64_t)0 :
 	    ((uint64_t)1 << nx) - 1;
-	int64_t y;
+	const int one = 64 % step == 0 && nx <= step;
+	uint64_t v[2];
+	int64_t y = 0;
+	int i;
 
-	for (y = 0; y < n; y++, p += step) {
+#ifdef MASK_SIMD
+	const __m128i kp = _mm_set1_epi64x((long long)keep);
+
+	for (; y + 2 <= n; y += 2) {
+		__m128i bb = _mm_or_si128(_mm_loadu_si128((const __m128i *)
+		    (const void *)(ub + y)), _mm_loadu_si128((const __m128i *)
+		    (const void *)(ub + y + 1)));
+		__m128i aa = _mm_or_si128(_mm_loadu_si128((const __m128i *)
+		    (const void *)(ua + y)), _mm_loadu_si128((const __m128i *)
+		    (const void *)(ua + y + 1)));
+
+		bb = _mm_or_si128(bb, _mm_srli_epi64(bb, 1));
+		aa = _mm_or_si128(aa, _mm_srli_epi64(aa, 1));
+		_mm_storeu_si128((__m128i *)(void *)v, _mm_and_si128(
+		    _mm_and_si128(bb, aa), kp));
+		for (i = 0; i < 2; i++, p += step) {
+			int sh = (int)(p & 63);
+
+			out[p >> 6] |= v[i] << sh;
+			if (!one && sh + nx > 64)
+				out[(p >> 6) + 1] |= v[i] >> (64 - sh);
+		}
+	}
+#endif
+	for (; y < n; y++, p += step) {
 		uint64_t bb = ub[y] | ub[y + 1];
 		uint64_t aa = ua[y] | ua[y + 1];
-		uint64_t v = (bb | bb >> 1) & (aa | aa >> 1) & keep;
 		int sh = (int)(p & 63);
 
-		out[p >> 6] |= v << sh;
+		v[0] = (bb | bb >> 1) & (aa | aa >> 1) & keep;
+		out[p >> 6] |= v[0] << sh;
 		if (sh + nx > 64)
-			out[(p >> 6) + 1] |= v >> (64 - sh);
+			out[(p >> 6) + 1] |= v[0] >> (64 - sh);
 	}
+	(void)one;
+	(void)i;
 }
 
 /* mask_block: the bits of level-1 macrocell c (linear index) into out
@@ -1559,7 +1693,8 @@ mask_block(const vx_macro *m, const vx_grid *g, int64_t c,
 	int64_t ro[VX_CELLMASK_MAXROW + 1], ot[16];
 	chunk_plane_fn *plane = NULL;
 	chunk_rows cr;
-	int64_t ntile = 0;        /* rows read as tiles (tile_u8) */
+	int64_t ntile = 0;        /* rows read as tiles (tile) */
+	chunk_plane_fn *tile = NULL;
 #endif
 
 	b[0] = c % m->dims[1][0];
@@ -1612,16 +1747,26 @@ mask_block(const vx_macro *m, const vx_grid *g, int64_t c,
 			} else
 				for (a = 0; a < cr.nt; a++)
 					ot[a] = o[xt + a] * sz;
-			/* u8 in runs of 4 bytes: tiles of four rows 4 bytes
-			 * apart (the last samples as a tile too) */
-			if (g->type == VX_U8 && run == 4 && (cr.nt == 0 ||
-			    (cr.tv && cr.nt <= 4))) {
-				for (y = 0; y + 4 <= ns[1]; y += 4)
-					if (oy[y + 1] != oy[y] + 4 ||
-					    oy[y + 2] != oy[y] + 8 ||
-					    oy[y + 3] != oy[y] + 12)
-						break;
-				ntile = y + 4 <= ns[1] ? 0 : y;
+			/* u8 in runs of 4 bytes, 16-bit in runs of 8: tiles of
+			 * four (two) rows that many bytes apart (the last
+			 * samples as a tile too) */
+			if ((g->type == VX_U8 && run == 4) ||
+			    ((g->type == VX_U16 || g->type == VX_I16) &&
+			    run == 8)) {
+				int gr = 16 / run, d = run / sz;
+
+				if (cr.nt == 0 || (cr.tv && cr.nt <= d)) {
+					for (y = 0; y + gr <= ns[1]; y += gr) {
+						for (a = 1; a < gr && oy[y + a] ==
+						    oy[y] + a * d; a++)
+							;
+						if (a < gr)
+							break;
+					}
+					ntile = y;
+				}
+				tile = g->type == VX_U8 ? tile_u8 :
+				    g->type == VX_U16 ? tile_u16 : tile_i16;
 			}
 		}
 	}
@@ -1663,8 +1808,7 @@ mask_block(const vx_macro *m, const vx_grid *g, int64_t c,
 				    (int64_t)vx_type_size(g->type);
 
 				if (ntile > 0)
-					tile_u8(&cr, pl, 0, ntile, pb, pa, ub,
-					    ua);
+					tile(&cr, pl, 0, ntile, pb, pa, ub, ua);
 				plane(&cr, pl, ntile, ns[1], pb, pa, ub, ua);
 			} else
 #endif
