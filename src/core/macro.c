@@ -1023,29 +1023,88 @@ vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *box,
  * thread built what. */
 
 /* Where SSE2 is there (every x86-64), a block whose rows' x offsets let it
- * (the usual case: a linear layout, or bricks whose edge along x is 4 bytes
- * or more and divides the block's) tests a row W samples at a time (f32 8,
- * the others 16), in chunks of W samples from the row's start, each chunk
- * a few loads (runs of 16, 8 or 4 bytes adjacent in memory: the plan is
- * made once per block, the x offsets being the same for every row) and
- * one compare per test and 16 bytes.  u8 in bricks 4 samples wide reads
- * four rows at once, 16 bytes holding a run of each (tile_u8).  Integer
- * tests are exact in the type's own width: u8 v <= fl as min(v, fl) == v
- * and v >= ce as max(v, ce) == v; u16 and i16 as not v > fl and not ce > v
- * (u16 made signed by flipping its top bit), fl and ce clamped into the
- * type's range (a value that no sample can be below, or none above,
- * brackets nothing and was skipped before).  Floats: the same finiteness
- * test as one at a time.  The row's last samples after the chunks are
- * read as a chunk where they are adjacent and 16 or 32 bytes from them lie
- * within the volume's samples (the bits past the row are never used), else
- * one at a time.  Other blocks test four samples adjacent in memory at
- * once where they are (integers widened to 32 bits, where v <= fl and
- * v >= ce as v > ce - 1 are exact), else one at a time.  The bits are the
- * same every way. */
+ * (a linear layout, bricks 16 bytes wide or more; u8 and u16/i16 bricks 4
+ * samples wide: every type's default bricks) tests a row W samples at a
+ * time (f32 8, the others 16), in chunks of W samples from the row's
+ * start, each chunk a few loads (runs of 16, 8 or 4 bytes adjacent in
+ * memory: the plan is made once per block, the x offsets being the same
+ * for every row) and one compare per test and 16 bytes; one function per
+ * type and runs reads the block's planes (block_for).  u8 (u16, i16) in
+ * bricks 4 samples wide reads four (two) rows at once, 16 bytes holding a
+ * run of each (tile_rows, tile16_rows).  Integer tests are exact in the
+ * type's own width: u8 v <= fl as min(v, fl) == v and v >= ce as
+ * max(v, ce) == v; u16 and i16 as not v > fl and not ce > v (u16 made
+ * signed by flipping its top bit), fl and ce clamped into the type's range
+ * (a value that no sample can be below, or none above, brackets nothing
+ * and was skipped before).  Floats: the same finiteness test as one at a
+ * time.  The row's last samples after the chunks are read as a chunk
+ * where they are adjacent and 16 or 32 bytes from them lie within the
+ * volume's samples (the bits past the row are never used), else one at a
+ * time.  Other blocks test four samples adjacent in memory at once where
+ * they are (integers widened to 32 bits, where v <= fl and v >= ce as
+ * v > ce - 1 are exact), else one at a time (MASK_ROWS).  The bits are
+ * the same every way. */
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #define MASK_SIMD 1
+#endif
 
+/* leaf_rows: a plane of leaves' bits into out, n rows of nx leaves from
+ * bit p, step bits apart: a leaf row's corners are samples x and x + 1 of
+ * rows y and y + 1 of two planes of samples, whose rows' bits, OR-ed over
+ * the two planes, are ub (below) and ua (above).  Two rows at a time where
+ * SSE2 is there; rows that never straddle two words (step divides 64) put
+ * without the test. */
+static void
+leaf_rows(uint64_t *restrict out, const uint64_t *ub, const uint64_t *ua,
+    int64_t n, int64_t p, int64_t step, int nx)
+{
+	const uint64_t keep = nx >= 64 ? ~(uint64_t)0 :
+	    ((uint64_t)1 << nx) - 1;
+	const int one = 64 % step == 0 && nx <= step;
+	uint64_t v[2];
+	int64_t y = 0;
+	int i;
+
+#ifdef MASK_SIMD
+	const __m128i kp = _mm_set1_epi64x((long long)keep);
+
+	for (; y + 2 <= n; y += 2) {
+		__m128i bb = _mm_or_si128(_mm_loadu_si128((const __m128i *)
+		    (const void *)(ub + y)), _mm_loadu_si128((const __m128i *)
+		    (const void *)(ub + y + 1)));
+		__m128i aa = _mm_or_si128(_mm_loadu_si128((const __m128i *)
+		    (const void *)(ua + y)), _mm_loadu_si128((const __m128i *)
+		    (const void *)(ua + y + 1)));
+
+		bb = _mm_or_si128(bb, _mm_srli_epi64(bb, 1));
+		aa = _mm_or_si128(aa, _mm_srli_epi64(aa, 1));
+		_mm_storeu_si128((__m128i *)(void *)v, _mm_and_si128(
+		    _mm_and_si128(bb, aa), kp));
+		for (i = 0; i < 2; i++, p += step) {
+			int sh = (int)(p & 63);
+
+			out[p >> 6] |= v[i] << sh;
+			if (!one && sh + nx > 64)
+				out[(p >> 6) + 1] |= v[i] >> (64 - sh);
+		}
+	}
+#endif
+	for (; y < n; y++, p += step) {
+		uint64_t bb = ub[y] | ub[y + 1];
+		uint64_t aa = ua[y] | ua[y + 1];
+		int sh = (int)(p & 63);
+
+		v[0] = (bb | bb >> 1) & (aa | aa >> 1) & keep;
+		out[p >> 6] |= v[0] << sh;
+		if (sh + nx > 64)
+			out[(p >> 6) + 1] |= v[0] >> (64 - sh);
+	}
+	(void)one;
+	(void)i;
+}
+
+#ifdef MASK_SIMD
 typedef struct quad_k {
 	__m128i fl, cm1;          /* integer thresholds: fl, ce - 1 */
 	__m128 val, fmax, abs;    /* f32: the value, FLT_MAX, ~sign */
@@ -1224,12 +1283,14 @@ chunk_f32(const char *p, const int64_t *ro, int run, const quad_k *k,
 }
 
 /* chunk_plan: whether a block's rows can be read in chunks of w samples of
- * sz bytes, the row's ns samples at x offsets o: the longest runs (16, 8
- * or 4 bytes, at least one sample) that every chunk's samples come in, and
+ * sz bytes, the row's ns samples at x offsets o: the longest runs among
+ * runs (a set of 16, 8 and 4 bytes, each at least one sample) that every
+ * chunk's samples come in (runs of r bytes are runs of r / 2 too), and
  * their byte offsets from the row's start into ro; 0 when there is no
  * chunk or one has no such runs */
 static int
-chunk_plan(const int64_t *o, int64_t ns, int w, int sz, int64_t *ro)
+chunk_plan(const int64_t *o, int64_t ns, int w, int sz, int runs,
+    int64_t *ro)
 {
 	int n = (int)(ns / w), c, r, best = 16, i;
 
@@ -1239,6 +1300,8 @@ chunk_plan(const int64_t *o, int64_t ns, int w, int sz, int64_t *ro)
 		for (r = best; r >= 4 && r >= sz; r /= 2) {
 			int step = r / sz;
 
+			if (!(runs & r))
+				continue;
 			for (i = 0; i < w; i++)
 				if (q[i] != q[i - i % step] + i % step)
 					break;
@@ -1324,12 +1387,16 @@ tail_f32(const char *p, const int64_t *ro, int n, const quad_k *k,
 		continue;                                                \
 	}
 
-/* a block's plan for reading a plane's rows in chunks */
+/* a block's plan for reading its planes' rows in chunks, for one value */
 typedef struct chunk_rows {
 	const quad_k *k;
 	int64_t fl, ce;           /* integer thresholds (the last samples) */
 	float val;
+	const char *base;         /* the samples */
+	const int64_t *oz;        /* the planes' offsets, in samples */
 	const int64_t *oy;        /* the rows' offsets, in samples */
+	int64_t nz, ny;           /* planes, rows */
+	int64_t ntile;            /* rows 0 to ntile - 1 read as tiles */
 	const int64_t *ro;        /* the chunks' runs' byte offsets in a row */
 	int nch;                  /* chunks in a row, >= 1 */
 	int nt;                   /* samples after them, at byte offsets ot */
@@ -1337,23 +1404,28 @@ typedef struct chunk_rows {
 	int tv;                   /* 1: those samples are one chunk's first,
 	                             at ot[0], ot[1] in runs of 16 bytes
 	                             (the rest read, in bounds, not used) */
+	uint64_t *pb, *pa, *ub, *ua;   /* rows' bits: as MASK_ROWS */
+	uint64_t *out;            /* the block's bits */
+	int64_t step, pstep;      /* leaf rows', planes' bits apart */
+	int nx;                   /* leaves in a row */
 } chunk_rows;
 
-/* CHUNK_PLANE: NAME(r, pl, y0, y1, pb, pa, ub, ua) reads rows y0 to y1 - 1
- * of the plane at pl as r plans, chunks of W samples of type T in runs of
- * R bytes, into below and above bits: a row's bits OR-ed with the previous
- * plane's row (pb, pa: in) into ub, ua, and its own into pb, pa */
-#define CHUNK_PLANE(NAME, T, CHUNK, TAIL, W, R, BELOW, ABOVE)                  \
-static void                                                              \
+/* CHUNK_PLANE: NAME(r, pl, y0, y1, pb, pa, ub, ua, nch) reads rows y0 to
+ * y1 - 1 of the plane at pl as r plans, nch chunks of W samples of type T
+ * in runs of R bytes, into below and above bits: a row's bits OR-ed with
+ * the previous plane's row (pb, pa: in) into ub, ua, and its own into pb,
+ * pa */
+#define CHUNK_PLANE(NAME, T, CHUNK, TAIL, W, R, BELOW, ABOVE)            \
+static inline __attribute__((always_inline)) void                        \
 NAME(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,        \
     uint64_t *restrict pb, uint64_t *restrict pa, uint64_t *restrict ub, \
-    uint64_t *restrict ua)                                               \
+    uint64_t *restrict ua, const int nch)                                \
 {                                                                        \
 	const quad_k k = *r->k;                                          \
 	const int64_t fl = r->fl, ce = r->ce;                            \
 	const int64_t *oy = r->oy, *ro = r->ro, *ot = r->ot;             \
 	const float val = r->val;                                        \
-	const int nch = r->nch, nt = r->nt, tv = r->tv;                  \
+	const int nt = r->nt, tv = r->tv;                                \
 	const int stride = (W) * (int)sizeof(T) / (R);                   \
 	int64_t y;                                                       \
 	int ch, t;                                                       \
@@ -1393,32 +1465,19 @@ NAME(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,        \
 	}                                                                \
 }
 
-#define CHUNK_PLANES(T, CHUNK, TAIL, W, BELOW, ABOVE)                    \
-	CHUNK_PLANE(CHUNK##_16, T, CHUNK, TAIL, W, 16, BELOW, ABOVE)     \
-	CHUNK_PLANE(CHUNK##_8, T, CHUNK, TAIL, W, 8, BELOW, ABOVE)       \
-	CHUNK_PLANE(CHUNK##_4, T, CHUNK, TAIL, W, 4, BELOW, ABOVE)
-CHUNK_PLANES(uint8_t, chunk_u8, tail_u8, 16, v <= fl, v >= ce)
-CHUNK_PLANES(uint16_t, chunk_u16, tail_u16, 16, v <= fl, v >= ce)
-CHUNK_PLANES(int16_t, chunk_i16, tail_i16, 16, v <= fl, v >= ce)
-CHUNK_PLANES(float, chunk_f32, tail_f32, 8, fabsf(v) <= FLT_MAX && v <= val,
-    fabsf(v) <= FLT_MAX && v >= val)
-
-typedef void chunk_plane_fn(const chunk_rows *, const char *, int64_t,
-    int64_t, uint64_t *, uint64_t *, uint64_t *, uint64_t *);
-
-/* chunk_plane_for: the plane reader for type t and runs of run bytes */
-static chunk_plane_fn *
-chunk_plane_for(vx_type t, int run)
-{
-	static chunk_plane_fn *const fn[4][3] = {
-		{ chunk_u8_16, chunk_u8_8, chunk_u8_4 },
-		{ chunk_u16_16, chunk_u16_8, chunk_u16_4 },
-		{ chunk_i16_16, chunk_i16_8, chunk_i16_4 },
-		{ chunk_f32_16, chunk_f32_8, chunk_f32_4 },
-	};
-
-	return fn[t - VX_U8][run == 16 ? 0 : run == 8 ? 1 : 2];
-}
+CHUNK_PLANE(chunk_u8_16, uint8_t, chunk_u8, tail_u8, 16, 16, v <= fl,
+    v >= ce)
+CHUNK_PLANE(chunk_u8_4, uint8_t, chunk_u8, tail_u8, 16, 4, v <= fl, v >= ce)
+CHUNK_PLANE(chunk_u16_16, uint16_t, chunk_u16, tail_u16, 16, 16, v <= fl,
+    v >= ce)
+CHUNK_PLANE(chunk_u16_8, uint16_t, chunk_u16, tail_u16, 16, 8, v <= fl,
+    v >= ce)
+CHUNK_PLANE(chunk_i16_16, int16_t, chunk_i16, tail_i16, 16, 16, v <= fl,
+    v >= ce)
+CHUNK_PLANE(chunk_i16_8, int16_t, chunk_i16, tail_i16, 16, 8, v <= fl,
+    v >= ce)
+CHUNK_PLANE(chunk_f32_16, float, chunk_f32, tail_f32, 8, 16,
+    fabsf(v) <= FLT_MAX && v <= val, fabsf(v) <= FLT_MAX && v >= val)
 
 /* tile_u8: as chunk_u8_4, rows y0 to y1 - 1 (y1 - y0 a multiple of 4) of
  * u8 samples in runs of 4 bytes, where each four rows from y0 on lie 4
@@ -1485,17 +1544,6 @@ tile_rows(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,
 			pa[y + i] = aa[i];
 		}
 	}
-}
-
-static void
-tile_u8(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,
-    uint64_t *restrict pb, uint64_t *restrict pa, uint64_t *restrict ub,
-    uint64_t *restrict ua)
-{
-	if (r->nch == 1)
-		tile_rows(r, pl, y0, y1, pb, pa, ub, ua, 1);
-	else
-		tile_rows(r, pl, y0, y1, pb, pa, ub, ua, r->nch);
 }
 
 /* tile_16: as tile_u8 for 16-bit samples (flip: u16) in runs of 8 bytes,
@@ -1568,26 +1616,94 @@ tile16_rows(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,
 	}
 }
 
-static void
+static inline __attribute__((always_inline)) void
 tile_u16(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,
     uint64_t *restrict pb, uint64_t *restrict pa, uint64_t *restrict ub,
-    uint64_t *restrict ua)
+    uint64_t *restrict ua, const int nch)
 {
-	if (r->nch == 1)
-		tile16_rows(r, pl, y0, y1, pb, pa, ub, ua, 1, 1);
-	else
-		tile16_rows(r, pl, y0, y1, pb, pa, ub, ua, r->nch, 1);
+	tile16_rows(r, pl, y0, y1, pb, pa, ub, ua, nch, 1);
 }
 
-static void
+static inline __attribute__((always_inline)) void
 tile_i16(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,
     uint64_t *restrict pb, uint64_t *restrict pa, uint64_t *restrict ub,
-    uint64_t *restrict ua)
+    uint64_t *restrict ua, const int nch)
 {
-	if (r->nch == 1)
-		tile16_rows(r, pl, y0, y1, pb, pa, ub, ua, 1, 0);
-	else
-		tile16_rows(r, pl, y0, y1, pb, pa, ub, ua, r->nch, 0);
+	tile16_rows(r, pl, y0, y1, pb, pa, ub, ua, nch, 0);
+}
+
+static inline __attribute__((always_inline)) void
+tile_none(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,
+    uint64_t *restrict pb, uint64_t *restrict pa, uint64_t *restrict ub,
+    uint64_t *restrict ua, const int nch)
+{
+	(void)r, (void)pl, (void)y0, (void)y1, (void)pb, (void)pa, (void)ub;
+	(void)ua, (void)nch;
+}
+
+/* BLOCK_FN: NAME(r) makes a block's bits for one value as r plans: each
+ * plane's rows 0 to r->ntile - 1 read by TILE, the others by ROWS, then
+ * its leaf rows (with the plane before); NAME_body with nch chunks a row,
+ * a constant where it is 1 (the usual) */
+#define BLOCK_FN(NAME, T, TILE, ROWS)                                    \
+static inline __attribute__((always_inline)) void                        \
+NAME##_body(const chunk_rows *r, const int nch)                          \
+{                                                                        \
+	const int64_t ny = r->ny, nty = r->ntile;                        \
+	uint64_t *pb = r->pb, *pa = r->pa, *ub = r->ub, *ua = r->ua;     \
+	int64_t z;                                                       \
+									 \
+	for (z = 0; z < r->nz; z++) {                                    \
+		const char *pl = r->base + r->oz[z] * (int64_t)sizeof(T); \
+									 \
+		TILE(r, pl, 0, nty, pb, pa, ub, ua, nch);                \
+		ROWS(r, pl, nty, ny, pb, pa, ub, ua, nch);               \
+		if (z > 0)                                               \
+			leaf_rows(r->out, ub, ua, ny - 1, r->pstep *     \
+			    (z - 1), r->step, r->nx);                    \
+	}                                                                \
+}                                                                        \
+									 \
+static void                                                              \
+NAME(const chunk_rows *r)                                                \
+{                                                                        \
+	if (r->nch == 1)                                                 \
+		NAME##_body(r, 1);                                       \
+	else                                                             \
+		NAME##_body(r, r->nch);                                  \
+}
+
+/* the layouts that pay: linear and any bricks 16 bytes wide or more (runs
+ * of 16), u8 bricks 4 wide (tiles, or rows where the block's rows do not
+ * fall on the bricks' edges), u16 and i16 bricks 4 wide (the same): every
+ * type's default bricks; others test samples four at a time (MASK_ROWS) */
+BLOCK_FN(block_u8_16, uint8_t, tile_none, chunk_u8_16)
+BLOCK_FN(block_u8_4, uint8_t, tile_rows, chunk_u8_4)
+BLOCK_FN(block_u16_16, uint16_t, tile_none, chunk_u16_16)
+BLOCK_FN(block_u16_8, uint16_t, tile_u16, chunk_u16_8)
+BLOCK_FN(block_i16_16, int16_t, tile_none, chunk_i16_16)
+BLOCK_FN(block_i16_8, int16_t, tile_i16, chunk_i16_8)
+BLOCK_FN(block_f32_16, float, tile_none, chunk_f32_16)
+
+typedef void block_fn(const chunk_rows *);
+
+/* block_for: the block reader for type t and runs of run bytes; NULL:
+ * none */
+static block_fn *
+block_for(vx_type t, int run)
+{
+	switch (t) {
+	case VX_U8:
+		return run == 16 ? block_u8_16 : run == 4 ? block_u8_4 : NULL;
+	case VX_U16:
+		return run == 16 ? block_u16_16 : run == 8 ? block_u16_8 : NULL;
+	case VX_I16:
+		return run == 16 ? block_i16_16 : run == 8 ? block_i16_8 : NULL;
+	case VX_F32:
+		return run == 16 ? block_f32_16 : NULL;
+	default:
+		return NULL;
+	}
 }
 #else
 #define QUAD_RUN(T, QUAD)
@@ -1618,61 +1734,6 @@ tile_i16(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,
 		}                                                        \
 	} while (0)
 
-/* leaf_rows: a plane of leaves' bits into out, n rows of nx leaves from
- * bit p, step bits apart: a leaf row's corners are samples x and x + 1 of
- * rows y and y + 1 of two planes of samples, whose rows' bits, OR-ed over
- * the two planes, are ub (below) and ua (above).  Two rows at a time where
- * SSE2 is there; rows that never straddle two words (step divides 64) put
- * without the test. */
-static void
-leaf_rows(uint64_t *restrict out, const uint64_t *ub, const uint64_t *ua,
-    int64_t n, int64_t p, int64_t step, int nx)
-{
-	const uint64_t keep = nx >= 64 ? ~(uint64_t)0 :
-	    ((uint64_t)1 << nx) - 1;
-	const int one = 64 % step == 0 && nx <= step;
-	uint64_t v[2];
-	int64_t y = 0;
-	int i;
-
-#ifdef MASK_SIMD
-	const __m128i kp = _mm_set1_epi64x((long long)keep);
-
-	for (; y + 2 <= n; y += 2) {
-		__m128i bb = _mm_or_si128(_mm_loadu_si128((const __m128i *)
-		    (const void *)(ub + y)), _mm_loadu_si128((const __m128i *)
-		    (const void *)(ub + y + 1)));
-		__m128i aa = _mm_or_si128(_mm_loadu_si128((const __m128i *)
-		    (const void *)(ua + y)), _mm_loadu_si128((const __m128i *)
-		    (const void *)(ua + y + 1)));
-
-		bb = _mm_or_si128(bb, _mm_srli_epi64(bb, 1));
-		aa = _mm_or_si128(aa, _mm_srli_epi64(aa, 1));
-		_mm_storeu_si128((__m128i *)(void *)v, _mm_and_si128(
-		    _mm_and_si128(bb, aa), kp));
-		for (i = 0; i < 2; i++, p += step) {
-			int sh = (int)(p & 63);
-
-			out[p >> 6] |= v[i] << sh;
-			if (!one && sh + nx > 64)
-				out[(p >> 6) + 1] |= v[i] >> (64 - sh);
-		}
-	}
-#endif
-	for (; y < n; y++, p += step) {
-		uint64_t bb = ub[y] | ub[y + 1];
-		uint64_t aa = ua[y] | ua[y + 1];
-		int sh = (int)(p & 63);
-
-		v[0] = (bb | bb >> 1) & (aa | aa >> 1) & keep;
-		out[p >> 6] |= v[0] << sh;
-		if (sh + nx > 64)
-			out[(p >> 6) + 1] |= v[0] >> (64 - sh);
-	}
-	(void)one;
-	(void)i;
-}
-
 /* mask_block: the bits of level-1 macrocell c (linear index) into out
  * (zeroed) */
 static void
@@ -1691,10 +1752,8 @@ mask_block(const vx_macro *m, const vx_grid *g, int64_t c,
 	 * VX_CELLMASK_MAXROW + 1 samples in runs of 4 bytes or more), the
 	 * last samples' */
 	int64_t ro[VX_CELLMASK_MAXROW + 1], ot[16];
-	chunk_plane_fn *plane = NULL;
+	block_fn *block = NULL;
 	chunk_rows cr;
-	int64_t ntile = 0;        /* rows read as tiles (tile) */
-	chunk_plane_fn *tile = NULL;
 #endif
 
 	b[0] = c % m->dims[1][0];
@@ -1711,7 +1770,10 @@ mask_block(const vx_macro *m, const vx_grid *g, int64_t c,
 	    g->type <= VX_F32) {
 		int cw = g->type == VX_F32 ? 8 : 16;
 		int sz = (int)vx_type_size(g->type);
-		int run = chunk_plan(ox + lo[0], ns[0], cw, sz, ro);
+		/* the runs block_for has readers for */
+		int run = chunk_plan(ox + lo[0], ns[0], cw, sz,
+		    g->type == VX_U8 ? 16 | 4 : g->type == VX_F32 ? 16 :
+		    16 | 8, ro);
 
 		if (run != 0) {
 			const int64_t *oy = g->lay.off[1] + lo[1];
@@ -1719,8 +1781,12 @@ mask_block(const vx_macro *m, const vx_grid *g, int64_t c,
 			const int64_t *o = ox + lo[0];
 			int64_t xt, top = 0, yt = 0, zt = 0;
 
-			plane = chunk_plane_for(g->type, run);
+			cr.base = (const char *)g->data;
+			cr.oz = oz;
 			cr.oy = oy;
+			cr.nz = ns[2];
+			cr.ny = ns[1];
+			cr.ntile = 0;
 			cr.ro = ro;
 			cr.nch = (int)(ns[0] / cw);
 			cr.nt = (int)(ns[0] % cw);
@@ -1763,11 +1829,18 @@ mask_block(const vx_macro *m, const vx_grid *g, int64_t c,
 						if (a < gr)
 							break;
 					}
-					ntile = y;
+					cr.ntile = y;
 				}
-				tile = g->type == VX_U8 ? tile_u8 :
-				    g->type == VX_U16 ? tile_u16 : tile_i16;
 			}
+			block = block_for(g->type, run);
+			cr.pb = pb;
+			cr.pa = pa;
+			cr.ub = ub;
+			cr.ua = ua;
+			cr.out = out;
+			cr.step = w[0];
+			cr.pstep = w[0] * w[1];
+			cr.nx = (int)nl[0];
 		}
 	}
 #endif
@@ -1799,19 +1872,12 @@ mask_block(const vx_macro *m, const vx_grid *g, int64_t c,
 		cr.fl = fl;
 		cr.ce = ce;
 		cr.val = val;
+		if (block != NULL) {
+			block(&cr);
+			continue;
+		}
 #endif
 		for (z = 0; z < ns[2]; z++) {
-#ifdef MASK_SIMD
-			if (plane != NULL) {
-				const char *pl = (const char *)g->data +
-				    g->lay.off[2][lo[2] + z] *
-				    (int64_t)vx_type_size(g->type);
-
-				if (ntile > 0)
-					tile(&cr, pl, 0, ntile, pb, pa, ub, ua);
-				plane(&cr, pl, ntile, ns[1], pb, pa, ub, ua);
-			} else
-#endif
 			switch (g->type) {
 			case VX_U8:
 				MASK_ROWS(uint8_t, quad_u8, v <= fl, v >= ce);
