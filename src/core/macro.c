@@ -1904,15 +1904,13 @@ mask_block(const vx_macro *m, const vx_grid *g, int64_t c,
 	}
 }
 
-/* mask_get: the bits of level-1 macrocell b, built now if no one has; NULL
- * when b has none (it does not bracket) or another thread is building them */
-static const uint64_t *
-mask_get(vx_cellmask *k, const vx_macro *m, const vx_grid *g, int64_t b)
+/* mask_build: mask_get's answer where b's bits are not known built: build
+ * them now if no one has (out of line: once per block) */
+static __attribute__((noinline)) const uint64_t *
+mask_build(vx_cellmask *k, const vx_macro *m, const vx_grid *g, int64_t b)
 {
 	unsigned char st, want = 0;
 
-	if (k->slot[b] < 0)
-		return NULL;
 	st = atomic_load_explicit(&k->state[b], memory_order_acquire);
 	if (st == 2)
 		return k->bits + k->slot[b];
@@ -1922,6 +1920,21 @@ mask_get(vx_cellmask *k, const vx_macro *m, const vx_grid *g, int64_t b)
 	mask_block(m, g, b, k->vals, k->nvals, k->bits + k->slot[b]);
 	atomic_store_explicit(&k->state[b], 2, memory_order_release);
 	return k->bits + k->slot[b];
+}
+
+/* mask_get: the bits of level-1 macrocell b, built now if no one has; NULL
+ * when b has none (it does not bracket) or another thread is building them
+ * (the test for built bits inline, for the walk) */
+static inline const uint64_t *
+mask_get(vx_cellmask *k, const vx_macro *m, const vx_grid *g, int64_t b)
+{
+	int64_t s = k->slot[b];
+
+	if (s < 0)
+		return NULL;
+	if (atomic_load_explicit(&k->state[b], memory_order_acquire) == 2)
+		return k->bits + s;
+	return mask_build(k, m, g, b);
 }
 
 /* row_bits: n <= 64 bits of array v from bit position p */
