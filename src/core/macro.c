@@ -1053,7 +1053,8 @@ vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *box,
  * bit p, step bits apart: a leaf row's corners are samples x and x + 1 of
  * rows y and y + 1 of two planes of samples, whose rows' bits, OR-ed over
  * the two planes, are ub (below) and ua (above).  Two rows at a time where
- * SSE2 is there; rows that never straddle two words (step divides 64) put
+ * SSE2 is there (four put as one word where they are 16 bits apart from a
+ * word's start); rows that never straddle two words (step divides 64) put
  * without the test. */
 static void
 leaf_rows(uint64_t *restrict out, const uint64_t *ub, const uint64_t *ua,
@@ -1069,6 +1070,30 @@ leaf_rows(uint64_t *restrict out, const uint64_t *ub, const uint64_t *ua,
 #ifdef MASK_SIMD
 	const __m128i kp = _mm_set1_epi64x((long long)keep);
 
+	/* rows 16 bits apart from a word's start (u8, u16, i16 macrocells 16
+	 * leaves wide): four rows a word */
+	if (step == 16 && nx <= 16 && (p & 63) == 0)
+		for (; y + 4 <= n; y += 4, p += 64) {
+			uint64_t w[4];
+
+			for (i = 0; i < 4; i += 2) {
+				__m128i bb = _mm_or_si128(_mm_loadu_si128(
+				    (const __m128i *)(const void *)(ub + y + i)),
+				    _mm_loadu_si128((const __m128i *)(const
+				    void *)(ub + y + i + 1)));
+				__m128i aa = _mm_or_si128(_mm_loadu_si128(
+				    (const __m128i *)(const void *)(ua + y + i)),
+				    _mm_loadu_si128((const __m128i *)(const
+				    void *)(ua + y + i + 1)));
+
+				bb = _mm_or_si128(bb, _mm_srli_epi64(bb, 1));
+				aa = _mm_or_si128(aa, _mm_srli_epi64(aa, 1));
+				_mm_storeu_si128((__m128i *)(void *)(w + i),
+				    _mm_and_si128(_mm_and_si128(bb, aa), kp));
+			}
+			out[p >> 6] |= w[0] | w[1] << 16 | w[2] << 32 |
+			    w[3] << 48;
+		}
 	for (; y + 2 <= n; y += 2) {
 		__m128i bb = _mm_or_si128(_mm_loadu_si128((const __m128i *)
 		    (const void *)(ub + y)), _mm_loadu_si128((const __m128i *)
