@@ -1084,6 +1084,63 @@ image_pixel(const rc_shared *S, rc_local *L, int x, int y, int aa,
 	L->covered += hit;
 }
 
+/* empty_run: pixels x0..x1-1 of row y as image_pixel leaves a pixel no
+ * box's footprint covers (one sample): transparent black, depth +Inf,
+ * normal 0 */
+static void
+empty_run(rc_local *L, int x0, int x1, int y, vx_image *color,
+    vx_image *depth, vx_image *normal)
+{
+	int n = x1 - x0;
+
+	L->primary += (uint64_t)n;
+	L->binned += (uint64_t)n;
+	memset(vx_image_pixel(color, x0, y), 0, (size_t)n * 4 * sizeof(float));
+	if (depth != NULL) {
+		float *d = vx_image_pixel(depth, x0, y);
+
+		for (int i = 0; i < n; i++)
+			d[i] = INFINITY;
+	}
+	if (normal != NULL)
+		memset(vx_image_pixel(normal, x0, y), 0,
+		    (size_t)n * 3 * sizeof(float));
+}
+
+/* tile_row: pixels x0..x1-1 of row y (one sample each, bins made), a bin's
+ * row of pixel bits at a time: runs of pixels no footprint covers are
+ * written at once (most of an image), the others drawn by image_pixel;
+ * skip: the bins' centres, drawn first (the sparse pass) */
+static void
+tile_row(const rc_shared *S, rc_local *L, int x0, int x1, int y, int skip,
+    vx_image *color, vx_image *depth, vx_image *normal)
+{
+	int by = y / BIN;
+
+	for (int x = x0; x < x1;) {
+		int bx = x / BIN, xe = (bx + 1) * BIN < x1 ? (bx + 1) * BIN : x1;
+		unsigned row = (unsigned)(S->binpix[(int64_t)by * S->nbx + bx] >>
+		    (y - by * BIN) * BIN) & 0xffu;
+
+		if (skip && y % BIN == BIN / 2)
+			row |= 1u << BIN / 2;   /* the centre: not drawn here */
+		while (x < xe) {
+			int e = x;
+
+			if (!(row >> (x - bx * BIN) & 1)) {
+				while (e < xe && !(row >> (e - bx * BIN) & 1))
+					e++;
+				empty_run(L, x, e, y, color, depth, normal);
+				x = e;
+				continue;
+			}
+			if (!skip || y % BIN != BIN / 2 || x % BIN != BIN / 2)
+				image_pixel(S, L, x, y, 1, color, depth, normal);
+			x++;
+		}
+	}
+}
+
 static void
 add_local(vx_raycast_stats *st, const rc_local *L, double *cyc)
 {
@@ -1270,12 +1327,17 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 		int y1 = y0 + tile < cam->h ? y0 + tile : cam->h;
 		uint64_t c0 = o->timing ? vx_cycles() : 0;
 
-		for (int y = y0; y < y1; y++)
-			for (int x = x0; x < x1; x++)
-				if (!sparse || x % BIN != BIN / 2 ||
-				    y % BIN != BIN / 2)
-					image_pixel(&S, L, x, y, aa, color, depth,
-					    normal);
+		if (aa == 1 && S.binoff != NULL)
+			for (int y = y0; y < y1; y++)
+				tile_row(&S, L, x0, x1, y, sparse, color, depth,
+				    normal);
+		else
+			for (int y = y0; y < y1; y++)
+				for (int x = x0; x < x1; x++)
+					if (!sparse || x % BIN != BIN / 2 ||
+					    y % BIN != BIN / 2)
+						image_pixel(&S, L, x, y, aa, color,
+						    depth, normal);
 		if (o->timing)
 			L->cyc_total += vx_cycles() - c0;
 	}
