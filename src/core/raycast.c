@@ -1036,6 +1036,29 @@ out:
 	return !x.first;
 }
 
+/* empty_run: pixels x0..x1-1 of row y as image_pixel leaves a pixel no
+ * box's footprint covers (one sample): transparent black, depth +Inf,
+ * normal 0 */
+static void
+empty_run(rc_local *L, int x0, int x1, int y, vx_image *color,
+    vx_image *depth, vx_image *normal)
+{
+	int n = x1 - x0;
+
+	L->primary += (uint64_t)n;
+	L->binned += (uint64_t)n;
+	memset(vx_image_pixel(color, x0, y), 0, (size_t)n * 4 * sizeof(float));
+	if (depth != NULL) {
+		float *d = vx_image_pixel(depth, x0, y);
+
+		for (int i = 0; i < n; i++)
+			d[i] = INFINITY;
+	}
+	if (normal != NULL)
+		memset(vx_image_pixel(normal, x0, y), 0,
+		    (size_t)n * 3 * sizeof(float));
+}
+
 /* image_pixel: pixel (x, y) of the images, from its aa x aa samples */
 static void
 image_pixel(const rc_shared *S, rc_local *L, int x, int y, int aa,
@@ -1049,15 +1072,8 @@ image_pixel(const rc_shared *S, rc_local *L, int x, int y, int aa,
 	if (aa == 1 && S->binoff != NULL && !bin_of(S, x + 0.5, y + 0.5,
 	    &bin)) {
 		/* what pixel() makes of a ray that enters no box, written
-		 * straight away: most of an image's pixels */
-		L->primary++;
-		L->binned++;
-		memset(vx_image_pixel(color, x, y), 0, 4 * sizeof(float));
-		if (depth != NULL)
-			*vx_image_pixel(depth, x, y) = INFINITY;
-		if (normal != NULL)
-			memset(vx_image_pixel(normal, x, y), 0,
-			    3 * sizeof(float));
+		 * straight away */
+		empty_run(L, x, x + 1, y, color, depth, normal);
 		return;
 	}
 	for (int sy = 0; sy < aa; sy++)
@@ -1082,29 +1098,6 @@ image_pixel(const rc_shared *S, rc_local *L, int x, int y, int aa,
 		for (int c = 0; c < 3; c++)
 			vx_image_pixel(normal, x, y)[c] = (float)bn[c];
 	L->covered += hit;
-}
-
-/* empty_run: pixels x0..x1-1 of row y as image_pixel leaves a pixel no
- * box's footprint covers (one sample): transparent black, depth +Inf,
- * normal 0 */
-static void
-empty_run(rc_local *L, int x0, int x1, int y, vx_image *color,
-    vx_image *depth, vx_image *normal)
-{
-	int n = x1 - x0;
-
-	L->primary += (uint64_t)n;
-	L->binned += (uint64_t)n;
-	memset(vx_image_pixel(color, x0, y), 0, (size_t)n * 4 * sizeof(float));
-	if (depth != NULL) {
-		float *d = vx_image_pixel(depth, x0, y);
-
-		for (int i = 0; i < n; i++)
-			d[i] = INFINITY;
-	}
-	if (normal != NULL)
-		memset(vx_image_pixel(normal, x0, y), 0,
-		    (size_t)n * 3 * sizeof(float));
 }
 
 /* tile_row: pixels x0..x1-1 of row y (one sample each, bins made), a bin's
