@@ -510,22 +510,29 @@ unit(const double g[3], double s, double thresh, double n[3])
 	return 1;
 }
 
-int
-vx_cell_normal(const float c[8], const double p[3], const double d[3],
-    double n[3])
+double
+vx_cell_normal_thresh(const float c[8])
 {
-	static const double centre[3] = { 0.5, 0.5, 0.5 };
-	double g[3], lo = c[0], hi = c[0], thresh;
-	int i;
+	double lo = c[0], hi = c[0];
 
-	for (i = 1; i < 8; i++) {
+	for (int i = 1; i < 8; i++) {
 		double x = c[i];
 
 		/* fmin/fmax without the calls: a NaN is skipped unless all are */
 		lo = x < lo || lo != lo ? x : lo;
 		hi = x > hi || hi != hi ? x : hi;
 	}
-	thresh = 0x1p-40 * (hi - lo);   /* NaN skipped; unit() checks */
+	return 0x1p-40 * (hi - lo);
+}
+
+int
+vx_cell_normal(const float c[8], const double p[3], const double d[3],
+    double n[3])
+{
+	static const double centre[3] = { 0.5, 0.5, 0.5 };
+	double g[3], thresh = vx_cell_normal_thresh(c);   /* unit() checks */
+	int i;
+
 	if (isfinite(thresh)) {
 		vx_cell_gradient(c, p, g);
 		if (unit(g, 1, thresh, g)) {

@@ -276,17 +276,34 @@ visit(void *vctx, const vx_leaf_visit *v)
 	return 0;
 }
 
+/* iso_start: x for a query (isovalues beyond VX_ISO_MAX left out), the
+ * ray counted; 0 when there is nothing to trace */
+static int
+iso_start(iso_ctx *x, const vx_iso_tracer *tr, const double o[3],
+    const double d[3], const float *iso, int niso, vx_iso_hit_fn fn,
+    void *ctx, vx_iso_stats *st)
+{
+	x->tr = tr;
+	x->o = o;
+	x->d = d;
+	x->iso = iso;
+	x->niso = niso > VX_ISO_MAX ? VX_ISO_MAX : niso;
+	x->fn = fn;
+	x->ctx = ctx;
+	x->st = st;
+	if (st)
+		st->rays++;
+	return x->niso > 0;
+}
+
 int
 vx_iso_trace(const vx_iso_tracer *tr, const double o[3], const double d[3],
     double tmin, double tmax, const float *iso, int niso, vx_iso_hit_fn fn,
     void *ctx, vx_iso_stats *st)
 {
-	iso_ctx x = { tr, o, d, iso, niso > VX_ISO_MAX ? VX_ISO_MAX : niso,
-	    fn, ctx, st };
+	iso_ctx x;
 
-	if (st)
-		st->rays++;
-	if (x.niso <= 0)
+	if (!iso_start(&x, tr, o, d, iso, niso, fn, ctx, st))
 		return 0;
 	if (tr->flat || tr->m == NULL)
 		return vx_macro_traverse_flat(tr->m, tr->g, o, d, tmin, tmax,
@@ -304,15 +321,12 @@ vx_iso_trace_boxes(const vx_iso_tracer *tr, const double o[3],
     size_t nbox, const vx_boxpick *pk, const float *iso, int niso,
     vx_iso_hit_fn fn, void *ctx, vx_iso_stats *st)
 {
-	iso_ctx x = { tr, o, d, iso, niso > VX_ISO_MAX ? VX_ISO_MAX : niso,
-	    fn, ctx, st };
+	iso_ctx x;
 
 	if (tr->flat || tr->m == NULL || tr->m->nlev < 1)
 		return vx_iso_trace(tr, o, d, 0, INFINITY, iso, niso, fn, ctx,
 		    st);
-	if (st)
-		st->rays++;
-	if (x.niso <= 0)
+	if (!iso_start(&x, tr, o, d, iso, niso, fn, ctx, st))
 		return 0;
 	return vx_macro_traverse_boxes(tr->m, tr->g, tr->mask, box, ix, nbox,
 	    pk, o, d, iso, x.niso, visit, &x, st ? &st->trav : NULL);
@@ -338,18 +352,12 @@ int
 vx_iso_normal(const vx_grid *g, const vx_iso_hit *h, const double dw[3],
     double n[3])
 {
-	double p[3], gr[3], w[3], lo = h->c[0], hi = h->c[0], thresh, m, mw, len;
-	int a, i;
+	double p[3], gr[3], w[3], thresh = vx_cell_normal_thresh(h->c), m, mw;
+	double len;
+	int a;
 
 	for (a = 0; a < 3; a++)
 		p[a] = h->p[a] - (double)h->cell[a];
-	for (i = 1; i < 8; i++) {
-		double x = h->c[i];
-
-		lo = x < lo || lo != lo ? x : lo;
-		hi = x > hi || hi != hi ? x : hi;
-	}
-	thresh = 0x1p-40 * (hi - lo);
 	vx_cell_gradient(h->c, p, gr);
 	m = fabs(gr[0]);
 	m = fabs(gr[1]) > m ? fabs(gr[1]) : m;

@@ -1504,6 +1504,17 @@ CHUNK_PLANE(chunk_i16_8, int16_t, chunk_i16, tail_i16, 16, 8, v <= fl,
 CHUNK_PLANE(chunk_f32_16, float, chunk_f32, tail_f32, 8, 16,
     fabsf(v) <= FLT_MAX && v <= val, fabsf(v) <= FLT_MAX && v >= val)
 
+/* load4: 16 bytes at each of row + q[0..3] */
+static inline __attribute__((always_inline)) void
+load4(const char *row, const int64_t *q, __m128i *v0, __m128i *v1,
+    __m128i *v2, __m128i *v3)
+{
+	*v0 = _mm_loadu_si128((const __m128i *)(const void *)(row + q[0]));
+	*v1 = _mm_loadu_si128((const __m128i *)(const void *)(row + q[1]));
+	*v2 = _mm_loadu_si128((const __m128i *)(const void *)(row + q[2]));
+	*v3 = _mm_loadu_si128((const __m128i *)(const void *)(row + q[3]));
+}
+
 /* tile_u8: as chunk_u8_4, rows y0 to y1 - 1 (y1 - y0 a multiple of 4) of
  * u8 samples in runs of 4 bytes, where each four rows from y0 on lie 4
  * bytes apart (a bricked layout's bricks 4 samples wide), so that 16 bytes
@@ -1530,14 +1541,9 @@ tile_rows(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,
 
 		for (ch = 0; ch < nch; ch++) {
 			const int64_t *q = ro + ch * 4;
-			__m128i v0 = _mm_loadu_si128((const __m128i *)(const
-			    void *)(row + q[0]));
-			__m128i v1 = _mm_loadu_si128((const __m128i *)(const
-			    void *)(row + q[1]));
-			__m128i v2 = _mm_loadu_si128((const __m128i *)(const
-			    void *)(row + q[2]));
-			__m128i v3 = _mm_loadu_si128((const __m128i *)(const
-			    void *)(row + q[3]));
+			__m128i v0, v1, v2, v3;
+
+			load4(row, q, &v0, &v1, &v2, &v3);
 			__m128i l01 = _mm_unpacklo_epi32(v0, v1);
 			__m128i l23 = _mm_unpacklo_epi32(v2, v3);
 			__m128i h01 = _mm_unpackhi_epi32(v0, v1);
@@ -1595,14 +1601,9 @@ tile16_rows(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,
 
 		for (ch = 0; ch < nch; ch++) {
 			const int64_t *q = ro + ch * 4;
-			__m128i v0 = _mm_loadu_si128((const __m128i *)(const
-			    void *)(row + q[0]));
-			__m128i v1 = _mm_loadu_si128((const __m128i *)(const
-			    void *)(row + q[1]));
-			__m128i v2 = _mm_loadu_si128((const __m128i *)(const
-			    void *)(row + q[2]));
-			__m128i v3 = _mm_loadu_si128((const __m128i *)(const
-			    void *)(row + q[3]));
+			__m128i v0, v1, v2, v3;
+
+			load4(row, q, &v0, &v1, &v2, &v3);
 
 			if (flip) {
 				v0 = _mm_xor_si128(v0, top);

@@ -962,6 +962,15 @@ tet_layer(void *ctx, const vx_tethit *h)
 	return composite(x, &sp, c0);
 }
 
+/* bin_row: the pixel bits of bin (bx, by) in its pixel row y (bit x % BIN
+ * set where a box's footprint holds pixel (x, y)) */
+static inline unsigned
+bin_row(const rc_shared *S, int bx, int by, int y)
+{
+	return (unsigned)(S->binpix[(int64_t)by * S->nbx + bx] >>
+	    (y - by * BIN) * BIN) & ((1u << BIN) - 1);
+}
+
 /* bin_of: the bin of sample point (px, py) in *bin; returns its bit in
  * binpix (0: no box's footprint holds the pixel) */
 static inline int
@@ -972,8 +981,7 @@ bin_of(const rc_shared *S, double px, double py, int64_t *bin)
 	bx = bx < 0 ? 0 : bx >= S->nbx ? S->nbx - 1 : bx;
 	by = by < 0 ? 0 : by >= S->nby ? S->nby - 1 : by;
 	*bin = (int64_t)by * S->nbx + bx;
-	return (int)(S->binpix[*bin] >> ((int)py - by * BIN) * BIN >>
-	    ((int)px - bx * BIN) & 1);
+	return (int)(bin_row(S, bx, by, (int)py) >> ((int)px - bx * BIN) & 1);
 }
 
 /* pixel: one camera sample; returns 1 if it hit a surface. */
@@ -1066,16 +1074,10 @@ image_pixel(const rc_shared *S, rc_local *L, int x, int y, int aa,
 {
 	double acc[4] = { 0, 0, 0, 0 }, px[4], dep, n[3];
 	double best = INFINITY, bn[3] = { 0, 0, 0 };
-	int64_t bin;
 	int hit = 0;
 
-	if (aa == 1 && S->binoff != NULL && !bin_of(S, x + 0.5, y + 0.5,
-	    &bin)) {
-		/* what pixel() makes of a ray that enters no box, written
-		 * straight away */
-		empty_run(L, x, x + 1, y, color, depth, normal);
-		return;
-	}
+	/* (runs of pixels no box covers are written by tile_row; pixel()
+	 * leaves one the same) */
 	for (int sy = 0; sy < aa; sy++)
 		for (int sx = 0; sx < aa; sx++) {
 			if (pixel(S, L, x + (sx + 0.5) / aa, y + (sy + 0.5) / aa,
@@ -1112,8 +1114,7 @@ tile_row(const rc_shared *S, rc_local *L, int x0, int x1, int y, int skip,
 
 	for (int x = x0; x < x1;) {
 		int bx = x / BIN, xe = (bx + 1) * BIN < x1 ? (bx + 1) * BIN : x1;
-		unsigned row = (unsigned)(S->binpix[(int64_t)by * S->nbx + bx] >>
-		    (y - by * BIN) * BIN) & 0xffu;
+		unsigned row = bin_row(S, bx, by, y);
 
 		if (skip && y % BIN == BIN / 2)
 			row |= 1u << BIN / 2;   /* the centre: not drawn here */

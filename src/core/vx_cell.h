@@ -211,6 +211,11 @@ int vx_cell_max(const double k[4], double t0, double t1, double *tmax,
  * the four edge differences along axis a. */
 void vx_cell_gradient(const float c[8], const double p[3], double g[3]);
 
+/* vx_cell_normal_thresh: the size at or below which a gradient counts as
+ * vanishing for vx_cell_normal: 2^-40 times the corners' range (NaN corners
+ * skipped; not finite when the range is not). */
+double vx_cell_normal_thresh(const float c[8]);
+
 /* vx_cell_normal: unit normal at p with n . d <= 0 (facing the ray).
  * Uses the gradient at p; if it is not finite or |g| <= 2^-40 times the
  * corners' range, the gradient at the cell centre (central differences of
