@@ -12,6 +12,7 @@
 #include <cmocka.h>
 
 #include "vx_iso.h"
+#include "helper_ray.h"
 
 /* hash01: a deterministic number in [0,1) from (seed, i). */
 static double
@@ -631,7 +632,7 @@ first_hit_oracle_random(void **state)
 		int missed = 0, notroot = 0, n = 0;
 
 		for (int k = 0; k < 150; k++) {
-			double o[3], d[3], q[3], len = 0, t0 = 0, t1 = INFINITY;
+			double o[3], d[3], q[3], len = 0, t0, t1;
 
 			/* from outside the box towards a random point in it */
 			for (int a = 0; a < 3; a++) {
@@ -646,19 +647,7 @@ first_hit_oracle_random(void **state)
 			for (int a = 0; a < 3; a++)
 				d[a] /= sqrt(len);
 			/* the segment inside the grid [0, dims - 1] */
-			for (int a = 0; a < 3; a++) {
-				double hi = (double)(g.dims[a] - 1);
-				double ta = (0 - o[a]) / d[a], tb = (hi - o[a]) / d[a];
-
-				if (ta > tb) {
-					double sw = ta;
-					ta = tb;
-					tb = sw;
-				}
-				t0 = ta > t0 ? ta : t0;
-				t1 = tb < t1 ? tb : t1;
-			}
-			if (!(t0 < t1))
+			if (!grid_segment(&g, o, d, &t0, &t1) || !(t0 < t1))
 				continue;
 			/* a hair inside, where the oracle's field is the
 			 * grid's */

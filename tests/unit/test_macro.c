@@ -739,118 +739,6 @@ hierarchy_equals_filtered_flat(void **state)
 
 /* ---- cell masks ---- */
 
-/* Every bit of a cell mask against the brute-force bracket test of its leaf
- * (oracle: the leaf's corner range from vx_grid_get, as in
- * hierarchy_equals_filtered_flat); bits only in bracketing level-1
- * macrocells; lazy bits (built by walks) equal eager ones.  Hard cases:
- * integer isovalues equal to samples, NaN and Inf samples, a NaN isovalue,
- * isovalues beyond the type's range, rows of up to 63 leaves (bits that
- * straddle 64-bit words), partial macrocells at the grid's far faces. */
-static void
-cellmask_bits_brute_force(void **state)
-{
-	static const vx_type types[] = { VX_U8, VX_I16, VX_U16, VX_F32 };
-	uint64_t s = 7;
-
-	(void)state;
-	for (int k = 0; k < 48; k++) {
-		int64_t dims[3];
-		int sz[2][3];
-		float vals[4];
-		int nv = 1 + irand(&s, 3);
-		vx_grid g;
-		vx_macro m;
-		vx_cellmask em, lm;
-		vx_err e = { 0, "" };
-
-		for (int a = 0; a < 3; a++) {
-			dims[a] = 2 + irand(&s, a == 0 ? 80 : 12);
-			sz[0][a] = 1 + irand(&s, a == 0 ? 63 : 6);
-			sz[1][a] = 1 + irand(&s, 3);
-		}
-		rand_grid(&g, dims, types[k % 4], k % 8 < 4 ? NULL :
-		    "bricked 4x2x2 2x2x2", hash64(100 + k), types[k % 4] ==
-		    VX_F32);
-		assert_int_equal(vx_macro_build(&m, &g, 1 + irand(&s, 2), sz, 2,
-		    &e), 0);
-		for (int q = 0; q < nv; q++)
-			vals[q] = irand(&s, 2) ? (float)irand(&s, 200) :
-			    (float)(urand(&s) * 220 - 10);
-		if (k % 11 == 5)
-			vals[nv - 1] = NAN;
-		if (k % 13 == 6)
-			vals[0] = k % 2 ? 1e30f : -1e30f;
-		assert_int_equal(vx_cellmask_build(&em, &m, &g, vals, nv, 0, 2,
-		    &e), 0);
-		assert_int_equal(vx_cellmask_build(&lm, &m, &g, vals, nv, 1, 1,
-		    &e), 0);
-		assert_true(em.ready && lm.ready);
-		assert_int_equal(vx_cellmask_built(&lm), 0);
-		int64_t nb[3] = { m.dims[1][0], m.dims[1][1], m.dims[1][2] };
-		int64_t w[3] = { m.width[1][0], m.width[1][1], m.width[1][2] };
-		int64_t set = 0;
-		for (int64_t b = 0; b < nb[0] * nb[1] * nb[2]; b++) {
-			int64_t bx = b % nb[0], by = b / nb[0] % nb[1];
-			int64_t bz = b / nb[0] / nb[1];
-			float blo = m.mm[1][2 * b], bhi = m.mm[1][2 * b + 1];
-			int br = 0;
-
-			for (int q = 0; q < nv; q++)
-				br |= blo <= vals[q] && vals[q] <= bhi;
-			assert_int_equal(em.slot[b] >= 0, br);
-			if (!br)
-				continue;
-			set++;
-			for (int64_t z = 0; z < w[2]; z++)
-				for (int64_t y = 0; y < w[1]; y++)
-					for (int64_t x = 0; x < w[0]; x++) {
-						int64_t X = bx * w[0] + x;
-						int64_t Y = by * w[1] + y;
-						int64_t Z = bz * w[2] + z;
-						int64_t i = x + w[0] * (y + w[1] * z);
-						int bit = (int)(em.bits[em.slot[b] +
-						    (i >> 6)] >> (i & 63) & 1);
-						int want = 0;
-						float lo, hi;
-
-						if (X < m.dims[0][0] && Y <
-						    m.dims[0][1] && Z < m.dims[0][2]) {
-							leaf_range(&g, X, Y, Z, &lo,
-							    &hi);
-							for (int q = 0; q < nv; q++)
-								want |= lo <= vals[q] &&
-								    vals[q] <= hi;
-						}
-						assert_int_equal(bit, want);
-					}
-		}
-		assert_int_equal(em.nset, set);
-		/* walks build the lazy mask's blocks as they enter them */
-		for (int j = 0; j < 60; j++) {
-			double o[3], d[3];
-			rec r;
-
-			for (int a = 0; a < 3; a++) {
-				o[a] = rand_coord(&s, dims[a] - 1);
-				d[a] = rand_dir(&s);
-			}
-			rec_init(&r, m.dims[0]);
-			assert_int_equal(vx_macro_traverse_masked(&m, &g, &lm, o,
-			    d, 0, INFINITY, vals, nv, collect, &r, NULL), 0);
-			free(r.v);
-		}
-		for (int64_t b = 0; b < nb[0] * nb[1] * nb[2]; b++)
-			if (lm.slot[b] >= 0 && lm.state[b] == 2)
-				assert_memory_equal(lm.bits + lm.slot[b],
-				    em.bits + em.slot[b],
-				    (size_t)em.words * sizeof *em.bits);
-		vx_cellmask_free(&em);
-		vx_cellmask_free(&lm);
-		vx_macro_free(&m);
-		vx_grid_free(&g);
-	}
-}
-
 /* check_mask_bits: every bit of eager mask em over m and g against the
  * leaf's corner range read one corner at a time (leaf_range, the oracle),
  * for values vals[0..nv); returns the number of set bits */
@@ -899,6 +787,92 @@ check_mask_bits(const vx_cellmask *em, const vx_macro *m, const vx_grid *g,
 				}
 	}
 	return ones;
+}
+
+/* Every bit of a cell mask against the brute-force bracket test of its leaf
+ * (oracle: the leaf's corner range from vx_grid_get, as in
+ * hierarchy_equals_filtered_flat); bits only in bracketing level-1
+ * macrocells; lazy bits (built by walks) equal eager ones.  Hard cases:
+ * integer isovalues equal to samples, NaN and Inf samples, a NaN isovalue,
+ * isovalues beyond the type's range, rows of up to 63 leaves (bits that
+ * straddle 64-bit words), partial macrocells at the grid's far faces. */
+static void
+cellmask_bits_brute_force(void **state)
+{
+	static const vx_type types[] = { VX_U8, VX_I16, VX_U16, VX_F32 };
+	uint64_t s = 7;
+
+	(void)state;
+	for (int k = 0; k < 48; k++) {
+		int64_t dims[3];
+		int sz[2][3];
+		float vals[4];
+		int nv = 1 + irand(&s, 3);
+		vx_grid g;
+		vx_macro m;
+		vx_cellmask em, lm;
+		vx_err e = { 0, "" };
+
+		for (int a = 0; a < 3; a++) {
+			dims[a] = 2 + irand(&s, a == 0 ? 80 : 12);
+			sz[0][a] = 1 + irand(&s, a == 0 ? 63 : 6);
+			sz[1][a] = 1 + irand(&s, 3);
+		}
+		rand_grid(&g, dims, types[k % 4], k % 8 < 4 ? NULL :
+		    "bricked 4x2x2 2x2x2", hash64(100 + k), types[k % 4] ==
+		    VX_F32);
+		assert_int_equal(vx_macro_build(&m, &g, 1 + irand(&s, 2), sz, 2,
+		    &e), 0);
+		for (int q = 0; q < nv; q++)
+			vals[q] = irand(&s, 2) ? (float)irand(&s, 200) :
+			    (float)(urand(&s) * 220 - 10);
+		if (k % 11 == 5)
+			vals[nv - 1] = NAN;
+		if (k % 13 == 6)
+			vals[0] = k % 2 ? 1e30f : -1e30f;
+		assert_int_equal(vx_cellmask_build(&em, &m, &g, vals, nv, 0, 2,
+		    &e), 0);
+		assert_int_equal(vx_cellmask_build(&lm, &m, &g, vals, nv, 1, 1,
+		    &e), 0);
+		assert_true(em.ready && lm.ready);
+		assert_int_equal(vx_cellmask_built(&lm), 0);
+		int64_t nb[3] = { m.dims[1][0], m.dims[1][1], m.dims[1][2] };
+		int64_t set = 0;
+		for (int64_t b = 0; b < nb[0] * nb[1] * nb[2]; b++) {
+			float blo = m.mm[1][2 * b], bhi = m.mm[1][2 * b + 1];
+			int br = 0;
+
+			for (int q = 0; q < nv; q++)
+				br |= blo <= vals[q] && vals[q] <= bhi;
+			assert_int_equal(em.slot[b] >= 0, br);
+			set += br;
+		}
+		(void)check_mask_bits(&em, &m, &g, vals, nv);
+		assert_int_equal(em.nset, set);
+		/* walks build the lazy mask's blocks as they enter them */
+		for (int j = 0; j < 60; j++) {
+			double o[3], d[3];
+			rec r;
+
+			for (int a = 0; a < 3; a++) {
+				o[a] = rand_coord(&s, dims[a] - 1);
+				d[a] = rand_dir(&s);
+			}
+			rec_init(&r, m.dims[0]);
+			assert_int_equal(vx_macro_traverse_masked(&m, &g, &lm, o,
+			    d, 0, INFINITY, vals, nv, collect, &r, NULL), 0);
+			free(r.v);
+		}
+		for (int64_t b = 0; b < nb[0] * nb[1] * nb[2]; b++)
+			if (lm.slot[b] >= 0 && lm.state[b] == 2)
+				assert_memory_equal(lm.bits + lm.slot[b],
+				    em.bits + em.slot[b],
+				    (size_t)em.words * sizeof *em.bits);
+		vx_cellmask_free(&em);
+		vx_cellmask_free(&lm);
+		vx_macro_free(&m);
+		vx_grid_free(&g);
+	}
 }
 
 /* cluster_grid: samples of type ty around centre c (c - 4 .. c + 4; f32

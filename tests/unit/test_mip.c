@@ -13,6 +13,7 @@
 
 #include "vx_cell.h"
 #include "vx_mip.h"
+#include "helper_ray.h"
 
 static double
 hash01(uint64_t seed, uint64_t i)
@@ -87,26 +88,9 @@ static double
 dense(const vx_grid *g, const double o[3], const double d[3], int n,
     int zoom)
 {
-	double ta = 0, tb = INFINITY, best = -INFINITY, tbest = 0;
+	double ta, tb, best = -INFINITY, tbest = 0;
 
-	for (int a = 0; a < 3; a++) {
-		double hi = (double)(g->dims[a] - 1);
-
-		if (d[a] == 0) {
-			if (!(o[a] >= 0 && o[a] <= hi))
-				return -INFINITY;
-			continue;
-		}
-		double t0 = -o[a] / d[a], t1 = (hi - o[a]) / d[a];
-		if (t0 > t1) {
-			double s = t0;
-			t0 = t1;
-			t1 = s;
-		}
-		ta = t0 > ta ? t0 : ta;
-		tb = t1 < tb ? t1 : tb;
-	}
-	if (!(ta <= tb))
+	if (!grid_segment(g, o, d, &ta, &tb))
 		return -INFINITY;
 	for (int r = 0; r <= zoom; r++) {
 		double lo = ta, hi = tb, h = (tb - ta) / n;

@@ -98,6 +98,35 @@ free3(vx_image *a, vx_image *b, vx_image *c)
 	vx_image_free(c);
 }
 
+/* render_into: colour, depth and normals of s over g, m with options o
+ * into c, dd, nn (initialized here), counters into *st */
+static void
+render_into(const vx_scene *s, const vx_plan *p, const vx_grid *g,
+    const vx_macro *m, const vx_raycast_opts *o, vx_image *c, vx_image *dd,
+    vx_image *nn, vx_raycast_stats *st)
+{
+	vx_err e = { 0, "" };
+
+	vx_image_init(c);
+	vx_image_init(dd);
+	vx_image_init(nn);
+	memset(st, 0, sizeof *st);
+	assert_int_equal(vx_raycast_render(s, p, g, m, NULL, o, c, dd, nn, st,
+	    &e), 0);
+}
+
+/* same_render: render k is render 0's pictures and cell work */
+static void
+same_render(const vx_image *c, const vx_image *dd, const vx_image *nn,
+    const vx_raycast_stats *st, int k)
+{
+	assert_true(same(&c[0], &c[k]));
+	assert_true(same(&dd[0], &dd[k]));
+	assert_true(same(&nn[0], &nn[k]));
+	assert_int_equal(st[0].cells, st[k].cells);
+	assert_int_equal(st[0].roots, st[k].roots);
+}
+
 /* Depth of the centre pixel: an explicit camera on the +y axis looking at
  * the centre sees the sphere at distance |eye - c| - r (oracle: geometry;
  * the trilinear isosurface of a sampled distance field lies within 0.05
@@ -412,25 +441,15 @@ binning_modes(void **state)
 		o.nthreads = 2;
 		o.no_binning = k == 0;
 		o.mask_keep = k == 2 ? &full : NULL;
-		vx_image_init(&c[k]);
-		vx_image_init(&dd[k]);
-		vx_image_init(&nn[k]);
-		memset(&st[k], 0, sizeof st[k]);
-		assert_int_equal(vx_raycast_render(&s, &p, &g, &m, NULL, &o,
-		    &c[k], &dd[k], &nn[k], &st[k], &e), 0);
+		render_into(&s, &p, &g, &m, &o, &c[k], &dd[k], &nn[k], &st[k]);
 	}
 	assert_int_equal(st[0].bins, 0);
 	assert_int_equal(st[1].bins, 1);
 	assert_int_equal(st[1].bin_block, VX_RAYCAST_BLOCK);
 	assert_int_equal(st[2].bins, 1);
 	assert_int_equal(st[2].bin_block, 0);
-	for (int k = 1; k < 3; k++) {
-		assert_true(same(&c[0], &c[k]));
-		assert_true(same(&dd[0], &dd[k]));
-		assert_true(same(&nn[0], &nn[k]));
-		assert_int_equal(st[0].cells, st[k].cells);
-		assert_int_equal(st[0].roots, st[k].roots);
-	}
+	for (int k = 1; k < 3; k++)
+		same_render(c, dd, nn, st, k);
 	assert_true(st[0].covered > 1000);
 	for (int k = 0; k < 3; k++)
 		free3(&c[k], &dd[k], &nn[k]);
@@ -489,12 +508,7 @@ binning_block_bound(void **state)
 		o.nthreads = k == 2 ? 1 : 2;
 		o.no_binning = k == 0;
 		o.mask_keep = k > 0 ? &full : NULL;
-		vx_image_init(&c[k]);
-		vx_image_init(&dd[k]);
-		vx_image_init(&nn[k]);
-		memset(&st[k], 0, sizeof st[k]);
-		assert_int_equal(vx_raycast_render(&s, &p, &g, &m, NULL, &o,
-		    &c[k], &dd[k], &nn[k], &st[k], &e), 0);
+		render_into(&s, &p, &g, &m, &o, &c[k], &dd[k], &nn[k], &st[k]);
 	}
 	assert_int_equal(st[0].bins, 0);
 	for (int k = 1; k < 3; k++) {
@@ -502,11 +516,7 @@ binning_block_bound(void **state)
 		assert_int_equal(st[k].bin_block, 0);
 		assert_true(st[k].bin_boxes > 1000);
 		assert_int_equal(st[k].bin_boxes, st[k].bin_whole);
-		assert_true(same(&c[0], &c[k]));
-		assert_true(same(&dd[0], &dd[k]));
-		assert_true(same(&nn[0], &nn[k]));
-		assert_int_equal(st[0].cells, st[k].cells);
-		assert_int_equal(st[0].roots, st[k].roots);
+		same_render(c, dd, nn, st, k);
 	}
 	assert_true(st[0].covered > 500);
 	for (int k = 0; k < 3; k++)
