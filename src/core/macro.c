@@ -861,14 +861,13 @@ ray_axes(ray *r, const int64_t n[3], const double o[3], const double d[3])
 	return 1;
 }
 
-/* ray_finish: the set-up of ray r (ray_axes done, over n leaves) for a
- * walk from level top: the segment [*ta, *tb] clipped to the grid, the
- * start leaf (the one the ray is in just after *ta) and its entry axis *e
- * (-1: *ta is on no face of it).  Returns 0 when nothing is to be walked
- * (the ray misses, or the root range brackets none of the values). */
+/* ray_clip: the set-up of ray r (ray_axes done, over n leaves) for a walk
+ * from level top: the segment [*ta, *tb] clipped to the grid.  Returns 0
+ * when nothing is to be walked (the ray misses, or the root range
+ * brackets none of the values). */
 static inline __attribute__((always_inline)) int
-ray_finish(ray *r, const vx_macro *m, int top, const float *vals,
-    int nvals, double *tap, double *tbp, int64_t leaf[3], int *e)
+ray_clip(ray *r, const vx_macro *m, int top, const float *vals, int nvals,
+    double *tap, double *tbp)
 {
 	const int64_t *n = r->n;
 	double ta = *tap, tb = *tbp;
@@ -894,7 +893,24 @@ ray_finish(ray *r, const vx_macro *m, int top, const float *vals,
 	/* a hierarchy's level 0 is the leaf: width 1 */
 	r->w = top > 0 ? (const int64_t (*)[3])m->width : unit_w;
 	r->iw = top > 0 ? (const double (*)[3])m->iwidth : unit_iw;
-	/* the start leaf (post-crossing at ta) */
+	*tap = ta;
+	*tbp = tb;
+	return 1;
+}
+
+/* ray_finish: ray_clip, and the start leaf (the one the ray is in just
+ * after *ta) and its entry axis *e (-1: *ta is on no face of it) */
+static inline __attribute__((always_inline)) int
+ray_finish(ray *r, const vx_macro *m, int top, const float *vals,
+    int nvals, double *tap, double *tbp, int64_t leaf[3], int *e)
+{
+	const int64_t *n = r->n;
+	double ta;
+	int a;
+
+	if (!ray_clip(r, m, top, vals, nvals, tap, tbp))
+		return 0;
+	ta = *tap;
 	*e = -1;
 	for (a = 0; a < 3; a++) {
 		if (r->s[a] == 0) {
@@ -905,8 +921,6 @@ ray_finish(ray *r, const vx_macro *m, int top, const float *vals,
 		if (tcross(r, a, r->s[a] > 0 ? leaf[a] : leaf[a] + 1) == ta)
 			*e = a;
 	}
-	*tap = ta;
-	*tbp = tb;
 	return 1;
 }
 
@@ -2093,35 +2107,25 @@ children(const vx_macro *m, int l, int a, int64_t cl, const int64_t n[3],
 	*k1 = hi;
 }
 
-/* up_level: the walk's state of level l (top: the walk's start level):
- * the range of its cell c[l] among its siblings (lim, in walking order;
- * from the parent c[l + 1]) and the cell's exit time per axis (tn) */
+/* top_level: the walk's state at its start level top: the range of its
+ * cell c[top] (lim, in walking order: the whole level) and the cell's exit
+ * time per axis (tn) */
 static void
-up_level(const ray *r, const vx_macro *m, int top, const int64_t n[3],
-    int l, int64_t c[][3], int64_t lim[][3], double tn[][3])
+top_level(const ray *r, const vx_macro *m, int top, const int64_t n[3],
+    int64_t c[][3], int64_t lim[][3], double tn[][3])
 {
 	for (int a = 0; a < 3; a++) {
-		if (l == top)
-			lim[l][a] = r->up[a] ? (top ? m->dims[top][a] : n[a]) :
-			    -1;
-		else {
-			int64_t k0, k1;
-
-			children(m, l + 1, a, c[l + 1][a], n, &k0, &k1);
-			lim[l][a] = r->up[a] ? k1 : k0 - 1;
-		}
-		tn[l][a] = t_exit_of(r, l, a, c[l][a]);
+		lim[top][a] = r->up[a] ? (top ? m->dims[top][a] : n[a]) : -1;
+		tn[top][a] = t_exit_of(r, top, a, c[top][a]);
 	}
 }
 
 /* walk: the traversal behind the public entry points.  top is the level
  * whose DDA starts the walk (0: flat).  n: leaf dims.  g: the volume whose
- * cells are the leaves, or NULL; mm0: stored leaf ranges or NULL.  rp: the
- * ray set up by ray_axes over n leaves (o, d unused), whose walk starts at
- * level 1, or NULL: set up here from o, d. */
+ * cells are the leaves, or NULL; mm0: stored leaf ranges or NULL. */
 static int
 walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
-    const float *mm0, vx_cellmask *mk, const ray *rp, const double o[3],
+    const float *mm0, vx_cellmask *mk, const double o[3],
     const double d[3], double tmin, double tmax, const float *vals,
     int nvals, vx_visit_fn fn, void *ctx, vx_trav_stats *st)
 {
@@ -2133,29 +2137,21 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 	vx_trav_stats s;
 	vx_leaf_visit v;
 	double ta = tmin, tb = tmax, t, texit;
-	int a, l, e, ax, start, cont = 0, made, rc = 0;
+	int a, l, e, ax, start, cont = 0, rc = 0;
 	ray r;
 
 	memset(&s, 0, sizeof s);
 	s.rays = 1;
-	/* the ray set up by the caller (rp, over these n leaves), or here */
-	if (n[0] <= 0 || n[1] <= 0 || n[2] <= 0 || !(ta <= tb))
-		goto done;
-	if (rp != NULL)
-		r = *rp;
-	else if (!ray_axes(&r, n, o, d))
+	if (n[0] <= 0 || n[1] <= 0 || n[2] <= 0 || !(ta <= tb) ||
+	    !ray_axes(&r, n, o, d))
 		goto done;
 	if (!ray_finish(&r, m, top, vals, nvals, &ta, &tb, leaf, &e))
 		goto done;
 	for (l = 0; l <= top; l++)
 		for (a = 0; a < 3; a++)
 			c[l][a] = leaf[a] / r.w[l][a];
-	/* a ray set up by the caller starts in its level-1 macrocell: the
-	 * levels above are made when it first leaves into them (up_level;
-	 * they only cull) */
-	l = rp != NULL && top > 1 ? 1 : top;
-	up_level(&r, m, top, n, l, c, lim, tn);
-	made = l;
+	l = top;
+	top_level(&r, m, top, n, c, lim, tn);
 	t = ta;
 	start = 1;
 
@@ -2305,8 +2301,6 @@ walk(const vx_macro *m, int top, const int64_t n[3], const vx_grid *g,
 			if (l == top)
 				goto done;
 			l++;   /* left the parent too, through the same face */
-			if (l > made)
-				up_level(&r, m, top, n, made = l, c, lim, tn);
 		}
 		tn[l][ax] = t_exit_of(&r, l, ax, c[l][ax]);
 		t = texit;
@@ -2343,7 +2337,7 @@ vx_macro_traverse(const vx_macro *m, const vx_grid *g, const double o[3],
 {
 	if (g != NULL && !fits(m, g))
 		return -1;
-	return walk(m, m->nlev, m->dims[0], g, g ? NULL : m->mm[0], NULL, NULL, o,
+	return walk(m, m->nlev, m->dims[0], g, g ? NULL : m->mm[0], NULL, o,
 	    d, tmin, tmax, vals, nvals, fn, ctx, st);
 }
 
@@ -2394,10 +2388,229 @@ vx_macro_traverse_masked(const vx_macro *m, const vx_grid *g,
 {
 	if (mask_walk(m, g, &k, vals, nvals) != 0)
 		return -1;
-	return walk(m, m->nlev, m->dims[0], g, NULL, k, NULL, o, d, tmin, tmax,
+	return walk(m, m->nlev, m->dims[0], g, NULL, k, o, d, tmin, tmax,
 	    vals, nvals, fn, ctx, st);
 }
 
+
+/* The boxes' walk.  A ray is walked through the boxes of a list that it
+ * enters, one after the other in order of entry, leaf by leaf inside each
+ * box only: what lies between them holds no leaf to visit.  The boxes are
+ * disjoint, so their spans along the ray are too (but for shared times
+ * where the ray touches one at an edge or a corner), and the walk through
+ * them visits exactly the leaves of the walk from 0 that lie in them, in
+ * its order, with its data:
+ * - a box's entry time is the largest crossing time of its near faces,
+ *   and the crossing that enters it the one of the highest axis among
+ *   those at that time (the walk crosses planes of equal time in axis
+ *   order);
+ * - the leaf it enters there is the walk's: along that axis the box's
+ *   first, along the others the one whose entry face is crossed by then
+ *   (on a lower axis at that very time too, on a higher one not:
+ *   find_cell over the whole grid); where that leaf lies outside the box,
+ *   the walk is never inside it (it passes an edge or a corner);
+ * - a box entered at or before the segment's start holds the walk's start
+ *   leaf or is not walked: it starts there, at the start, as the walk
+ *   does;
+ * - the entry is a crossing time of the walk's own planes, and from there
+ *   on the steps are the walk's (leaves), up to the box's far faces;
+ * - boxes are taken in order of (entry, axis of the crossing; a start box
+ *   first): the walk's order, as one crossing enters one leaf.  The box's
+ *   index breaks the remaining ties (boxes that will not be walked).
+ * The boxes entered are kept in a list of at most PEND_MAX sorted by that
+ * key, filled from the box list while its lower bounds (lb) do not pass
+ * the earliest entry in it.  When it is full, the latest key is left out
+ * and becomes a horizon: keys from it on wait, and when the list runs dry
+ * the box list is read again from the start for them (the boxes walked
+ * all lie before the horizon): exact whatever the number of boxes. */
+
+#define PEND_MAX 64
+
+typedef struct bkey {
+	double t;     /* entry time (a start box: the segment's start) */
+	int e;        /* axis of the entering crossing; -1: a start box */
+	uint32_t j;   /* the box */
+} bkey;
+
+static inline int
+key_lt(const bkey *a, const bkey *b)
+{
+	return a->t < b->t || (a->t == b->t && (a->e < b->e ||
+	    (a->e == b->e && a->j < b->j)));
+}
+
+/* box_times: ray r's entry time *tin into box bx, the axis *e of the
+ * crossing that enters it, and its exit time *tout; 0 when the ray runs
+ * beside it along an axis it does not move on */
+static inline __attribute__((always_inline)) int
+box_times(const ray *r, const vx_cellbox *bx, double *tin, double *tout,
+    int *e)
+{
+	double ti = -INFINITY, to = INFINITY;
+	int a, ea = -1;
+
+	for (a = 0; a < 3; a++) {
+		int64_t lo = bx->lo[a], hi = bx->hi[a];
+
+		if (r->s[a] == 0) {
+			if (r->fixed[a] < lo || r->fixed[a] >= hi)
+				return 0;
+		} else {
+			double tn = tcross(r, a, r->up[a] ? lo : hi);
+			double tf = tcross(r, a, r->up[a] ? hi : lo);
+
+			if (tn >= ti) {
+				ti = tn;
+				ea = a;
+			}
+			if (tf < to)
+				to = tf;
+		}
+	}
+	*tin = ti;
+	*tout = to;
+	*e = ea;
+	return 1;
+}
+
+/* box_walk: the leaves of box bx that the walk visits, from the leaf it
+ * enters at t through the face of axis e, or (e < 0) from the start leaf
+ * sl at the segment's start t, entered through the face of axis se (tb:
+ * the segment's end) */
+static int
+box_walk(const vx_macro *m, const vx_grid *g, vx_cellmask *mk, const ray *r,
+    const vx_cellbox *bx, double t, int e, const int64_t sl[3], int se,
+    double tb, const float *vals, int nvals, vx_visit_fn fn, void *ctx,
+    vx_trav_stats *s)
+{
+	int64_t c[3], lim[3], c1[3], li = 0, dl[3] = { 0, 0, 0 };
+	double tn[3], texit;
+	const uint64_t *bits = NULL;
+	int a, ax;
+
+	for (a = 0; a < 3; a++) {
+		lim[a] = r->up[a] ? bx->hi[a] : bx->lo[a] - 1;
+		if (e < 0)
+			c[a] = sl[a];
+		else if (r->s[a] == 0)
+			c[a] = r->fixed[a];
+		else if (a == e)
+			c[a] = r->up[a] ? bx->lo[a] : bx->hi[a] - 1;
+		else
+			c[a] = find_cell(r, 0, a, 0, r->n[a], t, a < e);
+		if (c[a] < bx->lo[a] || c[a] >= bx->hi[a])
+			return 0;   /* past an edge or a corner: not inside */
+		tn[a] = r->s[a] ? tcross(r, a, c[a] + r->up[a]) : INFINITY;
+	}
+	if (e < 0)
+		e = se;
+	if (mk != NULL) {
+		for (a = 0; a < 3; a++)
+			c1[a] = c[a] / r->w[1][a];
+		bits = leaf_bits(mk, m, g, r, c1, c, &li, dl);
+	}
+	return leaves(r, g, c, lim, tn, &t, &e, tb, vals, nvals, bits, li, dl,
+	    fn, ctx, s, &ax, &texit);
+}
+
+/* boxes_walk: the boxes' walk of ray r (ray_axes done) through the boxes
+ * the pick selects; the visitor's nonzero value, or 0 */
+static int
+boxes_walk(const vx_macro *m, const vx_grid *g, vx_cellmask *mk, ray *r,
+    const vx_cellbox *box, const uint32_t *ix, size_t nbox,
+    const vx_boxpick *pk, const float *vals, int nvals, vx_visit_fn fn,
+    void *ctx, vx_trav_stats *s)
+{
+	const double *lbs = pk != NULL && pk->pix != NULL && ix != NULL ?
+	    pk->lb : NULL;
+	const int32_t *q = pk != NULL && lbs == NULL ? pk->q : NULL;
+	bkey pend[PEND_MAX];   /* sorted, the earliest last */
+	bkey hz = { INFINITY, 0, 0 }, fl = { -INFINITY, 0, 0 };
+	double ta = 0, tb = INFINITY;
+	int64_t sl[3] = { 0, 0, 0 };
+	int np = 0, walked = 0, have_sl = 0, se = -1, rc = 0;
+	size_t k = 0;
+
+	if (!ray_clip(r, m, m->nlev, vals, nvals, &ta, &tb))
+		return 0;
+	for (;;) {
+		for (; k < nbox; k++) {
+			uint32_t j = ix != NULL ? ix[k] : (uint32_t)k;
+			const vx_cellbox *bx = box + j;
+			double tin, tout;
+			bkey y;
+			int e, i;
+
+			if ((lbs != NULL ? lbs[k] : bx->lb) > (np > 0 ?
+			    pend[np - 1].t : hz.t))
+				break;
+			if (lbs != NULL) {
+				if (!(pk->pix[k] >> pk->bit & 1))
+					continue;
+			} else if (q != NULL && (q[0] < bx->fp[0] ||
+			    q[0] > bx->fp[2] || q[1] < bx->fp[1] ||
+			    q[1] > bx->fp[3]))
+				continue;
+			/* entered (a box entered after the start: before the
+			 * end, where the walk still steps) */
+			if (!box_times(r, bx, &tin, &tout, &e) || tin > tout ||
+			    tout < ta || (tin > ta && !(tin < tb)))
+				continue;
+			y.t = tin > ta ? tin : ta;
+			y.e = tin > ta ? e : -1;
+			y.j = j;
+			if (key_lt(&y, &fl) || !key_lt(&y, &hz))
+				continue;   /* walked, or past the horizon */
+			if (np == PEND_MAX) {
+				/* full: the latest waits for the next pass */
+				if (key_lt(&pend[0], &y)) {
+					hz = y;
+					continue;
+				}
+				hz = pend[0];
+				memmove(pend, pend + 1, (size_t)(np - 1) *
+				    sizeof *pend);
+				np--;
+			}
+			for (i = np; i > 0 && key_lt(&pend[i - 1], &y); i--)
+				pend[i] = pend[i - 1];
+			pend[i] = y;
+			np++;
+		}
+		if (np == 0) {
+			if (hz.t == INFINITY)
+				break;
+			/* the boxes left at the horizon: a pass for them */
+			fl = hz;
+			hz.t = INFINITY;
+			k = 0;
+			continue;
+		}
+		np--;
+		if (pend[np].e < 0 && !have_sl) {
+			/* the start leaf, as the walk from the start has it */
+			for (int a = 0; a < 3; a++) {
+				if (r->s[a] == 0) {
+					sl[a] = r->fixed[a];
+					continue;
+				}
+				sl[a] = find_cell(r, 0, a, 0, r->n[a], ta, 1);
+				if (tcross(r, a, r->s[a] > 0 ? sl[a] : sl[a] +
+				    1) == ta)
+					se = a;
+			}
+			have_sl = 1;
+		}
+		if (!walked) {
+			walked = 1;
+			s->rays++;
+		}
+		if ((rc = box_walk(m, g, mk, r, box + pend[np].j, pend[np].t,
+		    pend[np].e, sl, se, tb, vals, nvals, fn, ctx, s)) != 0)
+			break;
+	}
+	return rc;
+}
 
 int
 vx_macro_traverse_boxes(const vx_macro *m, const vx_grid *g,
@@ -2406,28 +2619,23 @@ vx_macro_traverse_boxes(const vx_macro *m, const vx_grid *g,
     const float *vals, int nvals, vx_visit_fn fn, void *ctx,
     vx_trav_stats *st)
 {
-	double te, t0 = 0;
+	vx_trav_stats s;
 	ray r;
+	int rc;
 
 	if (m->nlev < 1 || mask_walk(m, g, &k, vals, nvals) != 0)
 		return -1;
-	/* the ray set up once, for the boxes and the walk */
-	if (!ray_axes(&r, m->dims[0], o, d) ||
-	    (te = pk != NULL && pk->pix != NULL && ix != NULL ?
-	    boxes_first(&r, box, ix, nbox, NULL, pk->lb, pk->pix, pk->bit) :
-	    boxes_first(&r, box, ix, nbox, pk != NULL ? pk->q : NULL, NULL,
-	    NULL, 0)) == INFINITY)
+	if (!ray_axes(&r, m->dims[0], o, d))
 		return 0;
-	if (te > 0) {
-		/* just below te (nextafter(te, -Inf)) */
-		uint64_t u;
-
-		memcpy(&u, &te, sizeof u);
-		u--;
-		memcpy(&t0, &u, sizeof t0);
+	memset(&s, 0, sizeof s);
+	rc = boxes_walk(m, g, k, &r, box, ix, nbox, pk, vals, nvals, fn, ctx,
+	    &s);
+	if (st != NULL) {
+		st->leaves += s.leaves;
+		st->culled += s.culled;
+		st->rays += s.rays;
 	}
-	return walk(m, m->nlev, m->dims[0], g, NULL, k, &r, o, d, t0,
-	    INFINITY, vals, nvals, fn, ctx, st);
+	return rc;
 }
 
 int
@@ -2445,12 +2653,12 @@ vx_macro_traverse_flat(const vx_macro *m, const vx_grid *g,
 			n[a] = g->dims[a] > 1 ? g->dims[a] - 1 : 0;
 		if (n[0] == 0 || n[1] == 0 || n[2] == 0)
 			n[0] = n[1] = n[2] = 0;
-		return walk(NULL, 0, n, g, NULL, NULL, NULL, o, d, tmin, tmax, vals,
+		return walk(NULL, 0, n, g, NULL, NULL, o, d, tmin, tmax, vals,
 		    nvals, fn, ctx, st);
 	}
 	if (g != NULL && !fits(m, g))
 		return -1;
-	return walk(m, 0, m->dims[0], g, g ? NULL : m->mm[0], NULL, NULL, o, d,
+	return walk(m, 0, m->dims[0], g, g ? NULL : m->mm[0], NULL, o, d,
 	    tmin, tmax, vals, nvals, fn, ctx, st);
 }
 

@@ -39,7 +39,7 @@ typedef struct rc_shared {
 	 * rays may cross them, by a lower bound of their entry time (bin k:
 	 * binlist[binoff[k] .. binoff[k + 1])); NULL: off */
 	int nbx, nby;
-	int bin_block;                /* SUB, or 0: whole macrocells */
+	int bin_block;                /* the block edge, or 0: whole macrocells */
 	int64_t bin_boxes;            /* boxes binned */
 	int64_t bin_whole;            /* of them whole macrocells */
 	int64_t *binoff;
@@ -59,7 +59,6 @@ typedef struct rc_shared {
 } rc_shared;
 
 #define BIN 8
-#define SUB VX_RAYCAST_BLOCK   /* binned blocks of SUB^3 leaves */
 
 /* What each thread owns: on cache lines of its own (the counters are
  * written per cell; neighbours sharing a line would slow both threads). */
@@ -411,8 +410,9 @@ typedef struct bin_buf {
 /* bins_build: S->binoff / binbox / binlist / binpix: the primary rays'
  * bins of BIN x BIN pixels, each listing, by a lower bound of their entry
  * time, the boxes a ray of the bin may enter among those that hold every
- * leaf that brackets an isovalue: with a cell mask, the blocks of SUB^3
- * leaves that hold a bracketing leaf, of the bracketing level-1 macrocells
+ * leaf that brackets an isovalue: with a cell mask, the blocks of sub^3
+ * leaves (sub: the option's bin_block, else VX_RAYCAST_BLOCK) that hold a
+ * bracketing leaf, of the bracketing level-1 macrocells
  * whose bits are built; else (bits not built, no mask, or the blocks or
  * their lists would pass the bound of bins_fill) those macrocells whole.
  * Conservative: a primary ray that enters such a box lies in its
@@ -436,7 +436,8 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 	int *thr = NULL;
 	bin_buf *buf = NULL;
 	vx_cellbox *box = NULL;
-	int sub = mask != NULL && mask->ready ? SUB : 0, rc = 0, nthr, t;
+	int sub = mask == NULL || !mask->ready ? 0 : S->o->bin_block > 0 ?
+	    S->o->bin_block : VX_RAYCAST_BLOCK, rc = 0, nthr, t;
 
 #ifdef _OPENMP
 	nthr = S->o->nthreads > 0 ? S->o->nthreads : omp_get_num_procs();
@@ -1016,9 +1017,9 @@ pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
 		vx_world_to_index(S->g, ow, oi);
 		vx_world_to_index_dir(S->g, dw, di);
 		if (S->binoff != NULL) {
-			/* the walk starts just before the first box the ray
-			 * enters, and not at all when it enters none: the same
-			 * leaves (vx_macro_traverse_boxes) */
+			/* the walk goes through the boxes the ray enters, one
+			 * after the other, and nowhere when it enters none:
+			 * the same leaves (vx_macro_traverse_boxes) */
 			int64_t t = S->binoff[bin];
 			int bx = (int)(bin % S->nbx), by = (int)(bin / S->nbx);
 			uint64_t walked = L->st.trav.rays;
@@ -1180,6 +1181,9 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	st->mesh = S.mesh != NULL;
 	if (!cam->ready)
 		return vx_err_set(e, VX_EINTERNAL, "raycast: camera not resolved");
+	if (o->bin_block > VX_RAYCAST_BLOCK_MAX)
+		return vx_err_set(e, VX_EUSAGE, "raycast: bin block %d: at most "
+		    "%d", o->bin_block, VX_RAYCAST_BLOCK_MAX);
 	S.s = s;
 	S.p = p;
 	S.tex = tex;

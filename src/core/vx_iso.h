@@ -69,15 +69,14 @@ int vx_iso_trace(const vx_iso_tracer *tr, const double o[3],
     const double d[3], double tmin, double tmax, const float *iso, int niso,
     vx_iso_hit_fn fn, void *ctx, vx_iso_stats *st);
 
-/* vx_iso_trace_boxes: vx_iso_trace for t >= 0 whose walk starts just
- * before the first of the boxes box[0..nbox) (or box[ix[0..nbox)]) whose
- * footprint holds pk's query (vx_boxpick; pk NULL: every box) the ray
- * enters, and does not start when
- * it enters none (vx_macro_traverse_boxes, on its conditions: every leaf
- * that brackets one of the isovalues lies in one of the boxes, and so on):
- * the same hits.  A tracer without the hierarchy (flat, or no level 1)
- * traces the whole ray.  st->trav.rays counts the ray only when it was
- * walked. */
+/* vx_iso_trace_boxes: vx_iso_trace for t >= 0 whose walk goes through the
+ * boxes box[0..nbox) (or box[ix[0..nbox)]) whose footprint holds pk's
+ * query (vx_boxpick; pk NULL: every box) that the ray enters, one after
+ * the other, and nowhere else (vx_macro_traverse_boxes): the hits of the
+ * cells of those boxes; all the hits of the ray when every leaf that
+ * brackets one of the isovalues lies in one of them.  A tracer without the
+ * hierarchy (flat, or no level 1) traces the whole ray.  st->trav.rays
+ * counts the ray only when it entered a box. */
 int vx_iso_trace_boxes(const vx_iso_tracer *tr, const double o[3],
     const double d[3], const vx_cellbox *box, const uint32_t *ix,
     size_t nbox, const vx_boxpick *pk, const float *iso, int niso,

@@ -343,18 +343,22 @@ double vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *box,
     const int32_t q[2]);
 
 /* vx_macro_traverse_boxes: the walk of vx_macro_traverse_masked (mask k)
- * of the ray o + t d from t = 0, started just before the time it enters
- * the first of the boxes (vx_macro_boxes_entry with box, ix, nbox and pk's
- * q, or its bits: pk NULL looks at every box) and
- * not started at all when it enters none: the same leaves, data and
- * order, on the conditions vx_macro_boxes_entry gives (every leaf that
- * brackets the values lies in one of those boxes, and so on), with the
- * ray set up once for both.  The walk starts in its level-1 macrocell and
- * looks at the levels above only when it leaves into them (they only cull:
- * st's macrocell counts differ, the visits do not).  Returns the visitor's
- * nonzero value, 0 (st counts the ray only when it was walked), or -1 when
- * g does not fit m or m has no level 1.  Reentrant (k's lazy bits as for
- * the walk). */
+ * of the ray o + t d from t = 0 through the boxes box[0..nbox) (or, with
+ * ix non-NULL, box[ix[0..nbox)]), sorted by lb, that pk picks (its q, or
+ * its bits: pk NULL picks every box) and the ray enters, and nowhere else:
+ * one box after the other in order of entry, leaf by leaf inside each.
+ * The boxes must be disjoint (vx_cellmask_boxes' blocks and whole
+ * level-1 macrocells are), and each lb at most the entry time of every
+ * ray that enters its box.  It visits exactly the leaves of the walk from
+ * 0 that lie in those boxes, with the same data, in the same order: all
+ * of them when every leaf that brackets the values lies in one of those
+ * boxes (raycast's bins); a ray that enters none visits nothing.  Any
+ * number of boxes: those entered wait in a list of at most 64, by entry
+ * time, and the list is read again for the rest when it overflows.  The
+ * levels of the hierarchy are not walked (st counts no macrocells).
+ * Returns the visitor's nonzero value, 0 (st counts the ray only when it
+ * entered a box), or -1 when g does not fit m or m has no level 1.
+ * Reentrant (k's lazy bits as for the walk). */
 int vx_macro_traverse_boxes(const vx_macro *m, const vx_grid *g,
     vx_cellmask *k, const vx_cellbox *box, const uint32_t *ix, size_t nbox,
     const vx_boxpick *pk, const double o[3], const double d[3],

@@ -37,10 +37,16 @@ typedef struct vx_raycast_opts {
 	int timing;              /* 1: measure the share of time per phase */
 	int no_binning;          /* 1: every primary ray walks from its start
 	                            (same picture, for measuring the bins:
-	                            each ray otherwise starts just before the
-	                            first level-1 macrocell bracketing an
-	                            isovalue that it enters, and a ray that
-	                            enters none is not walked) */
+	                            each ray otherwise walks only the binned
+	                            boxes it enters, and a ray that enters
+	                            none is not walked) */
+	int bin_block;           /* edge of the blocks of leaves binned (1 to
+	                            VX_RAYCAST_BLOCK_MAX; <= 0: the default,
+	                            VX_RAYCAST_BLOCK): each block's box of
+	                            bracketing leaves is binned, and a ray
+	                            walks the boxes it enters, leaf by leaf
+	                            inside each (same picture whatever the
+	                            edge: for measuring it) */
 	int no_cellmask;         /* 1: no cell mask (vx_macro.h): the walk
 	                            reads every stepped leaf's samples (same
 	                            picture, for measuring the mask) */
@@ -54,10 +60,11 @@ typedef struct vx_raycast_opts {
 } vx_raycast_opts;
 
 /* Primary rays are binned with the boxes of the bracketing leaves of each
- * block of VX_RAYCAST_BLOCK^3 leaves (with a cell mask; else whole level-1
- * macrocells). */
-#define VX_RAYCAST_BLOCK 4
-#define VX_RAYCAST_BLOCK_STR "4x4x4"
+ * block of VX_RAYCAST_BLOCK^3 leaves by default (with a cell mask; else
+ * whole level-1 macrocells); bin_block sets the edge, up to
+ * VX_RAYCAST_BLOCK_MAX (a row of blocks' leaf bits is one word). */
+#define VX_RAYCAST_BLOCK 8
+#define VX_RAYCAST_BLOCK_MAX 64
 
 typedef struct vx_raycast_stats {
 	uint64_t primary, shadow;        /* rays */

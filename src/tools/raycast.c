@@ -22,15 +22,15 @@ static const char usage[] =
     "        [--ortho] [--fov DEG] [--light SPEC] [--lights none]\n"
     "        [--effects WORDS] [--background R,G,B] [--set LINE]\n"
     "        [--name NAME] [--solver exact|neubauer|linear] [--flat]\n"
-    "        [--no-cellmask] [--no-binning] [--aa N] [-j N] [--stats]\n"
-    "        [--explain] [-n] [--hdr] [-z LEVEL] [--bits 8|16]\n"
+    "        [--no-cellmask] [--no-binning] [--bin-block N] [--aa N] [-j N]\n"
+    "        [--stats] [--explain] [-n] [--hdr] [-z LEVEL] [--bits 8|16]\n"
     "        [--exposure STOPS] [--depth FILE.pfm] [--normals FILE.pfm]\n"
     "        [-o OUT] [STREAM|-]";
 
 typedef struct opts {
 	const char *in, *out, *scene, *name, *depth, *normals;
 	int hdr, zlevel, bits, stats, explain, dry, flat, aa, solver, nomask;
-	int nobin;
+	int nobin, binblock;
 	long threads;
 	double exposure;
 	int ortho;
@@ -54,7 +54,7 @@ parse(opts *o, int argc, char **argv)
 	enum { O_SCENE = 256, O_ISO, O_SIZE, O_VIEW, O_ORTHO, O_FOV, O_LIGHT,
 	    O_LIGHTS, O_EFFECTS, O_BG, O_SET, O_NAME, O_SOLVER, O_FLAT, O_AA,
 	    O_STATS, O_EXPLAIN, O_HDR, O_BITS, O_EXPOSURE, O_DEPTH, O_NORMALS,
-	    O_NOMASK, O_NOBIN };
+	    O_NOMASK, O_NOBIN, O_BINBLOCK };
 	static const struct option lo[] = {
 		{ "scene", 1, 0, O_SCENE }, { "iso", 1, 0, O_ISO },
 		{ "size", 1, 0, O_SIZE }, { "view", 1, 0, O_VIEW },
@@ -65,6 +65,7 @@ parse(opts *o, int argc, char **argv)
 		{ "solver", 1, 0, O_SOLVER }, { "flat", 0, 0, O_FLAT },
 		{ "no-cellmask", 0, 0, O_NOMASK },
 		{ "no-binning", 0, 0, O_NOBIN },
+		{ "bin-block", 1, 0, O_BINBLOCK },
 		{ "aa", 1, 0, O_AA }, { "stats", 0, 0, O_STATS },
 		{ "explain", 0, 0, O_EXPLAIN }, { "dry-run", 0, 0, 'n' },
 		{ "hdr", 0, 0, O_HDR }, { "bits", 1, 0, O_BITS },
@@ -111,6 +112,10 @@ parse(opts *o, int argc, char **argv)
 		case O_FLAT: o->flat = 1; break;
 		case O_NOMASK: o->nomask = 1; break;
 		case O_NOBIN: o->nobin = 1; break;
+		case O_BINBLOCK:
+			o->binblock = (int)tool_parse_long("--bin-block", optarg, 1,
+			    VX_RAYCAST_BLOCK_MAX);
+			break;
 		case O_AA: o->aa = (int)tool_parse_long("--aa", optarg, 1, 16); break;
 		case O_STATS: o->stats = 1; break;
 		case O_EXPLAIN: o->explain = 1; break;
@@ -298,19 +303,30 @@ main(int argc, char **argv)
 			    "per cell of the macrocells bracketing the "
 			    "isovalues, built as rays first enter them)", nthr,
 			    nthr == 1 ? "" : "s");
-		if (!is_mesh && !o.flat)
-			fprintf(stderr, "raycast: primary rays %s%s\n", o.nobin ?
-			    "walk from the eye (--no-binning)" : "start just "
-			    "before the first box they enter (binned per 8x8 "
-			    "pixels) of ", o.nobin ? "" : o.nomask ? "the level-1 "
-			    "macrocells bracketing an isovalue; a ray that "
-			    "enters none is not walked" : "the boxes of the "
-			    "leaves bracketing an isovalue in each block of "
-			    VX_RAYCAST_BLOCK_STR " leaves, in the macrocells "
-			    "whose cell mask bits are built (the centre pixel of each "
-			    "8x8 bin is drawn first, to build those in sight; "
-			    "the other bracketing macrocells whole); a ray that "
-			    "enters none is not walked");
+		if (!is_mesh && !o.flat) {
+			int bb = o.binblock > 0 ? o.binblock : VX_RAYCAST_BLOCK;
+
+			if (o.nobin)
+				fprintf(stderr, "raycast: primary rays walk from "
+				    "the eye (--no-binning)\n");
+			else if (o.nomask)
+				fprintf(stderr, "raycast: primary rays walk the "
+				    "level-1 macrocells bracketing an isovalue "
+				    "that they enter (binned per 8x8 pixels), one "
+				    "after the other, and nothing between them; a "
+				    "ray that enters none is not walked\n");
+			else
+				fprintf(stderr, "raycast: primary rays walk the "
+				    "boxes they enter (binned per 8x8 pixels) of "
+				    "the leaves bracketing an isovalue in each "
+				    "block of %dx%dx%d leaves, in the macrocells "
+				    "whose cell mask bits are built (the centre "
+				    "pixel of each 8x8 bin is drawn first, to "
+				    "build those in sight; the other bracketing "
+				    "macrocells whole), one after the other, and "
+				    "nothing between them; a ray that enters none "
+				    "is not walked\n", bb, bb, bb);
+		}
 		free(buf);
 	}
 	if (plan.nsurface_on == 0)
@@ -379,6 +395,7 @@ main(int argc, char **argv)
 	ro.timing = o.stats;
 	ro.no_cellmask = o.nomask;
 	ro.no_binning = o.nobin;
+	ro.bin_block = o.binblock;
 	vx_image_init(&color);
 	vx_image_init(&depth);
 	vx_image_init(&normal);

@@ -127,15 +127,16 @@ check_eq "mip -z 0: raw images" "$(enc "$T/m0.vx")" "raw"
 check_eq "mip -z 0 = default, decoded" "$(px same "$T/m.vx" "$T/m0.vx")" same
 expect_fail "raycast -z 10" 64 "-z" raycast -z 10 --hdr "$T/sph.vx"
 
-# 11. binning: primary rays start just before the first box they enter
-# among the blocks of 4^3 leaves holding a bracketing leaf (with the cell
-# mask; else the bracketing level-1 macrocells), and rays that enter none
-# are not walked:
+# 11. binning: primary rays walk the boxes they enter, one after the
+# other, among the boxes of the bracketing leaves of each block of 8^3
+# leaves (with the cell mask; else the bracketing level-1 macrocells), and
+# rays that enter none are not walked:
 # the same images, bit for bit, as rays walked from the eye
 # (--no-binning), over cameras with hard cases: the eye inside the volume
 # and inside a bracketing macrocell, orthographic views along an axis
 # (rays through the macrocells' faces and edges: ties), 2x2 samples per
-# pixel, layers and shadows, small macrocells.  Oracle: --no-binning.
+# pixel, layers and shadows, small macrocells; and with blocks of 1^3 to
+# 5^3 leaves (--bin-block).  Oracle: --no-binning.
 vread --synth ml --size 33 | macrocell --sizes 2x3x2,2x2x2 >"$T/mlb.vx"
 vread --synth ml --size 33 | macrocell --sizes 8x8x8 >"$T/ml8.vx"
 nb=0
@@ -156,6 +157,10 @@ for c in "camera perspective eye 0 -5 0 look 0 0 0 up 0 0 1 fov 30" \
 		    >"$T/nobin$nb.vx" 2>"$T/bs2"
 		check_eq "binning = no binning: $v, $c" \
 		    "$(px same "$T/bin$nb.vx" "$T/nobin$nb.vx")" same
+		bb=$((nb % 5 + 1))
+		raycast "$@" --hdr --bin-block $bb "$T/$v.vx" >"$T/bb$nb.vx"
+		check_eq "binning with --bin-block $bb = no binning: $v, $c" \
+		    "$(px same "$T/bb$nb.vx" "$T/nobin$nb.vx")" same
 		# the same cells handed to the cell kernel, the same roots
 		check_eq "binning visits the same cells: $v, $c" \
 		    "$(grep 'cells visited' "$T/bs1")" "$(grep 'cells visited' "$T/bs2")"
@@ -167,7 +172,13 @@ raycast --iso 0.5 --aa 2 --size 33x33 --set "$cam" --hdr --no-binning \
 check_eq "binning = no binning: 2x2 samples" "$(px same "$T/aa1.vx" "$T/aa2.vx")" same
 raycast --iso 0.5 --size 65x65 --set "$cam" --stats "$T/sph.vx" 2>"$T/bst" >/dev/null
 check "binning: --stats counts the rays not walked" \
-    grep -q 'binning: [1-9][0-9]* boxes (of the bracketing leaves of each block of 4x4x4, and [0-9]* bracketing level-1 macrocells whole, [0-9.]* ms); [1-9][0-9]* of 4225 primary rays enter none' "$T/bst"
+    grep -q 'binning: [1-9][0-9]* boxes (of the bracketing leaves of each block of 8x8x8, and [0-9]* bracketing level-1 macrocells whole, [0-9.]* ms); [1-9][0-9]* of 4225 primary rays enter none' "$T/bst"
+raycast --iso 0.5 --size 65x65 --set "$cam" --stats --bin-block 3 "$T/sph.vx" \
+    2>"$T/bst6" >/dev/null
+check "binning: --bin-block 3 in --stats" grep -q 'of each block of 3x3x3, and' "$T/bst6"
+expect_fail "--bin-block past 64: one line, exit 64" 64 \
+    "raycast: --bin-block: 65 is out of range" \
+    raycast --iso 0.5 --bin-block 65 "$T/sph.vx"
 # without a cell mask, whole level-1 macrocells: the same picture
 raycast --iso 0.5 --size 65x65 --set "$cam" --stats --no-cellmask --hdr \
     "$T/sph.vx" 2>"$T/bst3" >"$T/nm1.vx"

@@ -1278,6 +1278,18 @@ cellmask_boxes_cover_bits(void **state)
  * macrocell corners and edges along axes (ties), and from inside the
  * volume.  Oracle: the walk from 0 (from just before the entry where
  * footprints leave boxes out). */
+/* in_boxes: 1 when leaf i lies in one of boxes b[0..n) */
+static int
+in_boxes(const int64_t i[3], const vx_cellbox *b, size_t n)
+{
+	for (size_t k = 0; k < n; k++)
+		if (i[0] >= b[k].lo[0] && i[0] < b[k].hi[0] &&
+		    i[1] >= b[k].lo[1] && i[1] < b[k].hi[1] &&
+		    i[2] >= b[k].lo[2] && i[2] < b[k].hi[2])
+			return 1;
+	return 0;
+}
+
 static void
 boxes_entry_keeps_visits(void **state)
 {
@@ -1461,9 +1473,11 @@ boxes_entry_keeps_visits(void **state)
 				tq = vx_macro_boxes_entry(&m, fb, NULL, nf, o, d, NULL);
 				ok &= memcmp(&tq, &(double){ vx_macro_boxes_entry(&m,
 				    sbx, NULL, nsbx, o, d, q) }, sizeof tq) == 0;
-				/* vx_macro_traverse_boxes: in one call, the walk
-				 * from just before that entry (oracle: the walk
-				 * started there), none when there is none */
+				/* vx_macro_traverse_boxes: in one call, the
+				 * visits of the walk from 0 to the leaves of
+				 * those boxes (oracle: the walk from 0, its
+				 * visits outside them left out), none when
+				 * there is no entry */
 				rec h5, h6;
 
 				rec_init(&h5, m.dims[0]);
@@ -1472,10 +1486,10 @@ boxes_entry_keeps_visits(void **state)
 
 				ok &= vx_macro_traverse_boxes(&m, &g, &mk, sbx, NULL,
 				    nsbx, &pk, o, d, vals, nv, collect, &h5, NULL) == 0;
-				if (tq < INFINITY)
-					ok &= vx_macro_traverse(&m, &g, o, d, tq > 0 ?
-					    nextafter(tq, -INFINITY) : 0, INFINITY,
-					    vals, nv, collect, &h6, NULL) == 0;
+				for (int i = 0; i < h.n; i++)
+					if (in_boxes(h.v[i].i, fb, nf))
+						h6.v[h6.n++] = h.v[i];
+				ok &= tq < INFINITY || h6.n == 0;
 				ok &= h5.n == h6.n;
 				for (int i = 0; ok && i < h5.n; i++)
 					ok &= same_visit(&h5.v[i], &h6.v[i]) &&
@@ -1550,6 +1564,159 @@ boxes_entry_keeps_visits(void **state)
 		vx_grid_free(&g);
 	}
 	assert_true(entered > 200 && none > 50);
+}
+
+/* stop_at: a visitor that records and stops at visit number r->cap */
+static int
+stop_at(void *ctx, const vx_leaf_visit *v)
+{
+	rec *r = ctx;
+
+	r->v[r->n++] = *v;
+	return r->n == r->cap ? 7 : 0;
+}
+
+/* vx_macro_traverse_boxes through many boxes: a checkerboard (every leaf
+ * brackets) in a long thin grid, each leaf its own box (blocks of 1^3),
+ * rays along the long axis entering up to 149 boxes, more than the walk's
+ * list of pending boxes holds (64): the visits are the walk's from 0,
+ * same data and order, whatever the boxes' order (lb -Inf, given forwards
+ * and backwards) or with true lower bounds sorted; rays along the axes
+ * through leaf edges and corners (ties), from inside, both ways; a
+ * visitor that stops at visit k stops the walk there with its value.
+ * Oracle: the walk from 0 (vx_macro_traverse). */
+static void
+boxes_walk_many_boxes(void **state)
+{
+	int64_t dims[3] = { 150, 4, 4 };
+	int sz[2][3] = { { 4, 2, 2 }, { 4, 2, 2 } };
+	float val = 0.5f;
+	uint64_t s = 4242;
+	vx_grid g;
+	vx_macro m;
+	vx_cellmask mk;
+	vx_cellbox *bx;
+	uint32_t *fw, *bw;
+	size_t nbx = 0;
+	int64_t most = 0;
+	vx_err e = { 0, "" };
+
+	(void)state;
+	assert_int_equal(vx_grid_alloc(&g, dims, VX_F32, NULL, &e), 0);
+	for (int z = 0; z < 4; z++)
+		for (int y = 0; y < 4; y++)
+			for (int x = 0; x < 150; x++)
+				vx_grid_set(&g, x, y, z, (x + y + z) % 2);
+	vx_grid_range(&g);
+	assert_int_equal(vx_macro_build(&m, &g, 2, sz, 1, &e), 0);
+	assert_int_equal(vx_cellmask_build(&mk, &m, &g, &val, 1, 1, 1, &e),
+	    0);
+	bx = calloc(149 * 3 * 3, sizeof *bx);
+	fw = malloc(149 * 3 * 3 * sizeof *fw);
+	bw = malloc(149 * 3 * 3 * sizeof *bw);
+	assert_true(bx && fw && bw);
+	for (int64_t b = 0; b < m.dims[1][0] * m.dims[1][1] * m.dims[1][2];
+	    b++)
+		nbx += vx_cellmask_boxes(&mk, b, 1, bx + nbx);
+	assert_int_equal(nbx, 149 * 3 * 3);
+	for (size_t i = 0; i < nbx; i++) {
+		bx[i].lb = -INFINITY;
+		fw[i] = (uint32_t)i;
+		bw[i] = (uint32_t)(nbx - 1 - i);
+	}
+	for (int j = 0; j < 300; j++) {
+		double o[3], d[3];
+		int sg = j % 2 ? -1 : 1, ok = 1;
+		rec h, h1, h2, h3, h4;
+
+		o[0] = sg > 0 ? -1 - 3 * urand(&s) : 151 + 3 * urand(&s);
+		o[1] = 3 * urand(&s);
+		o[2] = 3 * urand(&s);
+		d[0] = sg;
+		d[1] = (urand(&s) - 0.5) * 0.03;
+		d[2] = (urand(&s) - 0.5) * 0.03;
+		if (j % 5 == 1) {
+			/* along x, on leaf edges and corners */
+			o[1] = irand(&s, 4);
+			o[2] = irand(&s, 4);
+			d[1] = d[2] = 0;
+		}
+		if (j % 5 == 2) {
+			/* diagonal steps through leaf corners */
+			o[1] = 0;
+			o[2] = irand(&s, 2);
+			d[1] = d[2] = 1.0 / 64;
+		}
+		if (j % 5 == 3)   /* from inside */
+			o[0] = 149 * urand(&s);
+		rec_init(&h, m.dims[0]);
+		ok &= vx_macro_traverse(&m, &g, o, d, 0, INFINITY, &val, 1,
+		    collect, &h, NULL) == 0;
+		for (int w = 0; w < 3; w++) {
+			rec *hw = w == 0 ? &h1 : w == 1 ? &h2 : &h3;
+
+			rec_init(hw, m.dims[0]);
+			ok &= vx_macro_traverse_boxes(&m, &g, &mk, bx,
+			    w == 0 ? NULL : w == 1 ? fw : bw, nbx, NULL, o, d,
+			    &val, 1, collect, hw, NULL) == 0;
+			ok &= hw->n == h.n;
+			for (int i = 0; ok && i < h.n; i++)
+				ok &= same_visit(&hw->v[i], &h.v[i]) &&
+				    memcmp(hw->v[i].c, h.v[i].c,
+				    sizeof h.v[i].c) == 0;
+		}
+		/* true lower bounds, sorted: the same */
+		{
+			vx_cellbox *sb = malloc(nbx * sizeof *sb);
+			rec hs;
+
+			assert_non_null(sb);
+			memcpy(sb, bx, nbx * sizeof *sb);
+			for (size_t i = 0; i < nbx; i++) {
+				double t = vx_macro_boxes_entry(&m, &bx[i], NULL,
+				    1, o, d, NULL);
+
+				sb[i].lb = t < INFINITY ? t : 1e300;
+			}
+			qsort(sb, nbx, sizeof *sb, lb_cmp);
+			rec_init(&hs, m.dims[0]);
+			ok &= vx_macro_traverse_boxes(&m, &g, &mk, sb, NULL, nbx,
+			    NULL, o, d, &val, 1, collect, &hs, NULL) == 0;
+			ok &= hs.n == h.n;
+			for (int i = 0; ok && i < h.n; i++)
+				ok &= same_visit(&hs.v[i], &h.v[i]);
+			free(hs.v);
+			free(sb);
+		}
+		/* stopped at visit k: its value, k visits */
+		if (h.n > 0) {
+			rec_init(&h4, m.dims[0]);
+			h4.cap = 1 + irand(&s, h.n);
+			ok &= vx_macro_traverse_boxes(&m, &g, &mk, bx, bw, nbx,
+			    NULL, o, d, &val, 1, stop_at, &h4, NULL) == 7;
+			ok &= h4.n == h4.cap;
+			for (int i = 0; ok && i < h4.n; i++)
+				ok &= same_visit(&h4.v[i], &h.v[i]);
+			free(h4.v);
+		}
+		if (!ok)
+			fprintf(stderr, "# ray %d: o %.17g %.17g %.17g d %.17g "
+			    "%.17g %.17g: %d visits\n", j, o[0], o[1], o[2],
+			    d[0], d[1], d[2], h.n);
+		assert_true(ok);
+		most = h.n > most ? h.n : most;
+		free(h.v);
+		free(h1.v);
+		free(h2.v);
+		free(h3.v);
+	}
+	assert_true(most > 140);   /* past the pending list, twice */
+	free(bx);
+	free(fw);
+	free(bw);
+	vx_cellmask_free(&mk);
+	vx_macro_free(&m);
+	vx_grid_free(&g);
 }
 
 /* The visitor's nonzero value stops the walk and is returned. */
@@ -1997,6 +2164,7 @@ main(void)
 		cmocka_unit_test(cellmask_equals_plain_walk),
 		cmocka_unit_test(cellmask_boxes_cover_bits),
 		cmocka_unit_test(boxes_entry_keeps_visits),
+		cmocka_unit_test(boxes_walk_many_boxes),
 		cmocka_unit_test(visitor_stops),
 		cmocka_unit_test(explicit_leaves),
 		cmocka_unit_test(default_sizes_overhead),

@@ -389,7 +389,8 @@ no_self_shadow_any_solver(void **state)
 
 /* The bins' three modes give the picture of rays walked from the eye
  * (no binning), bit for bit, with the same cells visited: blocks of 4^3
- * cells for the macrocells whose mask bits the first rays built (a fresh
+ * cells (bin_block 4) for the macrocells whose mask bits the first rays
+ * built (a fresh
  * mask), whole macrocells when every bracketing macrocell's bits are
  * built but the blocks' lists would pass 8 entries a pixel (an eye inside
  * a field of many small surfaces: blocks behind it span the image), and
@@ -440,12 +441,13 @@ binning_modes(void **state)
 		vx_raycast_opts_init(&o);
 		o.nthreads = 2;
 		o.no_binning = k == 0;
+		o.bin_block = 4;
 		o.mask_keep = k == 2 ? &full : NULL;
 		render_into(&s, &p, &g, &m, &o, &c[k], &dd[k], &nn[k], &st[k]);
 	}
 	assert_int_equal(st[0].bins, 0);
 	assert_int_equal(st[1].bins, 1);
-	assert_int_equal(st[1].bin_block, VX_RAYCAST_BLOCK);
+	assert_int_equal(st[1].bin_block, 4);
 	assert_int_equal(st[2].bins, 1);
 	assert_int_equal(st[2].bin_block, 0);
 	for (int k = 1; k < 3; k++)
@@ -458,7 +460,8 @@ binning_modes(void **state)
 	vx_grid_free(&g);
 }
 
-/* More blocks of 4^3 cells in view than the bins take (8 a pixel and
+/* More blocks of 4^3 cells (bin_block 4) in view than the bins take (8 a
+ * pixel and
  * 65536: a field of small surfaces filling a 200 x 200 x 136 volume,
  * about 85,000 blocks, every mask bit built, a 40 x 30 picture): the
  * bins fall back to whole macrocells, and the picture, depth, normals and
@@ -507,6 +510,7 @@ binning_block_bound(void **state)
 		vx_raycast_opts_init(&o);
 		o.nthreads = k == 2 ? 1 : 2;
 		o.no_binning = k == 0;
+		o.bin_block = 4;
 		o.mask_keep = k > 0 ? &full : NULL;
 		render_into(&s, &p, &g, &m, &o, &c[k], &dd[k], &nn[k], &st[k]);
 	}
@@ -526,6 +530,92 @@ binning_block_bound(void **state)
 	vx_grid_free(&g);
 }
 
+/* Any block edge gives the picture of rays walked from the eye, bit for
+ * bit, with the same cells visited and roots solved: edges 1 (a box a
+ * bracketing cell), 2, 3 and 5 (blocks that do not divide the 16^3
+ * macrocells: short last blocks), 8 (the default), 16 (a macrocell's
+ * box of bracketing cells) and 64 (past the macrocell), on a field of
+ * many small surfaces seen from outside and from inside it (rays that
+ * start in a box), at 1 and 2 threads; an edge past the largest is
+ * refused.  Oracle: o.no_binning. */
+static void
+binning_any_block(void **state)
+{
+	static const int edge[] = { 1, 2, 3, 5, 8, 16, 64 };
+	int64_t d[3] = { 48, 40, 36 };
+	int sizes[VX_MACRO_MAXLEV][3] = { { 16, 16, 16 }, { 2, 2, 2 } };
+	float iso = 0.05f;
+	vx_grid g;
+	vx_macro m;
+	vx_err e = { 0, "" };
+	double lo[3], hi[3];
+
+	(void)state;
+	assert_int_equal(vx_grid_alloc(&g, d, VX_F32, NULL, &e), 0);
+	for (int z = 0; z < d[2]; z++)
+		for (int y = 0; y < d[1]; y++)
+			for (int x = 0; x < d[0]; x++)
+				vx_grid_set(&g, x, y, z, sin(0.5 * x) *
+				    sin(0.45 * y) * sin(0.55 * z));
+	vx_grid_range(&g);
+	assert_int_equal(vx_macro_build(&m, &g, 2, (const int (*)[3])sizes, 1,
+	    &e), 0);
+	vx_grid_box(&g, lo, hi);
+	for (int view = 0; view < 2; view++) {
+		vx_scene s;
+		vx_plan p;
+		vx_image c[2], dd[2], nn[2];
+		vx_raycast_stats st[2];
+
+		base_scene(&s, 48, 40, iso);
+		if (view == 1) {
+			double eye[3] = { 20.3, 17.1, 15.7 },
+			    look[3] = { 40, 30, 30 }, up[3] = { 0, 0, 1 };
+
+			s.camera.is_auto = 0;
+			s.camera.projection = VX_PERSPECTIVE;
+			memcpy(s.camera.eye, eye, sizeof eye);
+			memcpy(s.camera.look, look, sizeof look);
+			memcpy(s.camera.up, up, sizeof up);
+			s.camera.fov = 70;
+		}
+		assert_int_equal(vx_camera_resolve(&s.camera, lo, hi, &e), 0);
+		vx_scene_plan_isosurface(&s, &p);
+		for (size_t i = 0; i < sizeof edge / sizeof *edge; i++) {
+			for (int k = 0; k < 2; k++) {
+				vx_raycast_opts o;
+
+				vx_raycast_opts_init(&o);
+				o.nthreads = 1 + (int)(i % 2);
+				o.no_binning = k == 0;
+				o.bin_block = edge[i];
+				render_into(&s, &p, &g, &m, &o, &c[k], &dd[k],
+				    &nn[k], &st[k]);
+			}
+			assert_int_equal(st[1].bins, 1);
+			assert_int_equal(st[1].bin_block, edge[i]);
+			same_render(c, dd, nn, st, 1);
+			assert_true(st[0].covered > 300);
+			for (int k = 0; k < 2; k++)
+				free3(&c[k], &dd[k], &nn[k]);
+		}
+		/* past the largest edge: refused */
+		{
+			vx_raycast_opts o;
+			vx_image ci;
+
+			vx_raycast_opts_init(&o);
+			o.bin_block = VX_RAYCAST_BLOCK_MAX + 1;
+			vx_image_init(&ci);
+			assert_int_equal(vx_raycast_render(&s, &p, &g, &m, NULL,
+			    &o, &ci, NULL, NULL, NULL, &e), VX_EUSAGE);
+			vx_image_free(&ci);
+		}
+	}
+	vx_macro_free(&m);
+	vx_grid_free(&g);
+}
+
 int
 main(void)
 {
@@ -538,6 +628,7 @@ main(void)
 		cmocka_unit_test(no_self_shadow_any_solver),
 		cmocka_unit_test(binning_modes),
 		cmocka_unit_test(binning_block_bound),
+		cmocka_unit_test(binning_any_block),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
