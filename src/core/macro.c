@@ -13,6 +13,12 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
+/* SSE2 where the platform has it: the cell mask's build (MASK_SIMD) and a
+ * visit's corners (corners_i, corners_f) */
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#define MASK_SIMD 1
+#endif
 
 /* Widths beyond this are clamped: a macrocell wider than the leaf grid
  * covers all of it, and the clamp keeps width products from overflowing. */
@@ -601,14 +607,11 @@ brackets(float lo, float hi, const float *vals, int nvals)
 }
 
 /* ---- the leaf loop over volume leaves ----
- * Per axis the current leaf's two sample planes are kept as layout offsets
- * in walking order: near (the one the ray entered by) and far (the one it
- * leaves by); a step along axis a makes far the new near and looks up one
- * table entry.  The cull test needs the 8 samples in any order, so they are
- * loaded in walking order: sample j has bit a set when it lies on axis a's
- * far plane.  Only a visited leaf's corners are put in vx_grid_cell's order:
- * corner i is sample i ^ flip, flip's bit a set where the ray walks down
- * axis a (there the far plane is the lower one). */
+ * A leaf's 8 samples are loaded, from the layout offsets of its lower and
+ * upper sample planes per axis, in vx_grid_cell's order, and written to
+ * the visit as floats by two 16-byte stores: the visitor reads them with
+ * wide loads (finite8, the hit's copy), and a wide load of narrow stores
+ * waits for them to retire. */
 
 /* min and max keeping the first of equal values, as a left-to-right scan
  * with a strict comparison does */
@@ -636,17 +639,36 @@ imax(int32_t a, int32_t b)
 	return b > a ? b : a;
 }
 
-#define LEAF_LOAD(T, q)                                                  \
-	do {                                                             \
-		const T *d = (const T *)g->data;                         \
-		q[0] = d[x0 + yz00]; q[1] = d[x1 + yz00];                \
-		q[2] = d[x0 + yz10]; q[3] = d[x1 + yz10];                \
-		q[4] = d[x0 + yz01]; q[5] = d[x1 + yz01];                \
-		q[6] = d[x0 + yz11]; q[7] = d[x1 + yz11];                \
-	} while (0)
+/* corners: c[0..8) = a0..a7, two 16-byte stores where SSE2 has them
+ * (integer samples, exact in float, or floats) */
+static inline void
+corners_i(float c[8], int32_t a0, int32_t a1, int32_t a2, int32_t a3,
+    int32_t a4, int32_t a5, int32_t a6, int32_t a7)
+{
+#if defined(__SSE2__)
+	_mm_storeu_ps(c, _mm_cvtepi32_ps(_mm_setr_epi32(a0, a1, a2, a3)));
+	_mm_storeu_ps(c + 4, _mm_cvtepi32_ps(_mm_setr_epi32(a4, a5, a6, a7)));
+#else
+	c[0] = (float)a0; c[1] = (float)a1; c[2] = (float)a2;
+	c[3] = (float)a3; c[4] = (float)a4; c[5] = (float)a5;
+	c[6] = (float)a6; c[7] = (float)a7;
+#endif
+}
 
-/* integer samples: the range from the loaded values themselves (no store
- * and reload of the array: a wide reload of narrow stores stalls) */
+static inline void
+corners_f(float c[8], float a0, float a1, float a2, float a3, float a4,
+    float a5, float a6, float a7)
+{
+#if defined(__SSE2__)
+	_mm_storeu_ps(c, _mm_setr_ps(a0, a1, a2, a3));
+	_mm_storeu_ps(c + 4, _mm_setr_ps(a4, a5, a6, a7));
+#else
+	c[0] = a0; c[1] = a1; c[2] = a2; c[3] = a3;
+	c[4] = a4; c[5] = a5; c[6] = a6; c[7] = a7;
+#endif
+}
+
+/* integer samples: the range from the loaded values themselves */
 #define LEAF_INT(T)                                                      \
 	do {                                                             \
 		const T *d = (const T *)g->data;                         \
@@ -654,52 +676,62 @@ imax(int32_t a, int32_t b)
 		int32_t a2 = d[x0 + yz10], a3 = d[x1 + yz10];            \
 		int32_t a4 = d[x0 + yz01], a5 = d[x1 + yz01];            \
 		int32_t a6 = d[x0 + yz11], a7 = d[x1 + yz11];            \
-		qi[0] = a0; qi[1] = a1; qi[2] = a2; qi[3] = a3;          \
-		qi[4] = a4; qi[5] = a5; qi[6] = a6; qi[7] = a7;          \
+		corners_i(c, a0, a1, a2, a3, a4, a5, a6, a7);            \
 		mn = imin(imin(imin(a0, a1), imin(a2, a3)),              \
 		    imin(imin(a4, a5), imin(a6, a7)));                   \
 		mx = imax(imax(imax(a0, a1), imax(a2, a3)),              \
 		    imax(imax(a4, a5), imax(a6, a7)));                   \
 	} while (0)
 
-/* leaf_load: the 8 samples of the leaf whose near and far planes are at
- * layout offsets on, of, in walking order, and their range: integer types
- * into qi, range imn..imx (all finite, exact in float); f32 into qf, range
- * lo..hi over the finite ones (empty: lo = +Inf, hi = -Inf). */
-static inline void
-leaf_load(const vx_grid *g, const int64_t on[3], const int64_t of[3],
-    int32_t qi[8], float qf[8], int32_t *imn, int32_t *imx, float *lo,
-    float *hi)
+/* flo: v if finite, else +Inf (the min's identity); fhi: -Inf */
+static inline float
+flo(float v)
 {
-	int64_t x0 = on[0], x1 = of[0];
-	int64_t yz00 = on[1] + on[2], yz10 = of[1] + on[2];
-	int64_t yz01 = on[1] + of[2], yz11 = of[1] + of[2];
+	return fabsf(v) <= FLT_MAX ? v : INFINITY;
+}
+
+static inline float
+fhi(float v)
+{
+	return fabsf(v) <= FLT_MAX ? v : -INFINITY;
+}
+
+/* leaf_load: the 8 samples of the leaf whose lower and upper sample
+ * planes are at layout offsets lo, hi, into c in vx_grid_cell's order,
+ * and their range: integer types in *imn..*imx (all finite, exact in
+ * float); f32 in *flop..*fhip over the finite ones (empty: +Inf, -Inf;
+ * NaN and +-Inf left out) */
+static inline void
+leaf_load(const vx_grid *g, const int64_t lo[3], const int64_t hi[3],
+    float c[8], int32_t *imn, int32_t *imx, float *flop, float *fhip)
+{
+	int64_t x0 = lo[0], x1 = hi[0];
+	int64_t yz00 = lo[1] + lo[2], yz10 = hi[1] + lo[2];
+	int64_t yz01 = lo[1] + hi[2], yz11 = hi[1] + hi[2];
 	int32_t mn = 0, mx = 0;
-	float l[8], h[8];
-	int k;
 
 	switch (g->type) {
 	case VX_U8: LEAF_INT(uint8_t); break;
 	case VX_U16: LEAF_INT(uint16_t); break;
 	case VX_I16: LEAF_INT(int16_t); break;
-	case VX_F32:
-		LEAF_LOAD(float, qf);
-		/* NaN and +-Inf left out: they become the identities */
-		for (k = 0; k < 8; k++) {
-			int fin = fabsf(qf[k]) <= FLT_MAX;
+	case VX_F32: {
+		const float *d = (const float *)g->data;
+		float a0 = d[x0 + yz00], a1 = d[x1 + yz00];
+		float a2 = d[x0 + yz10], a3 = d[x1 + yz10];
+		float a4 = d[x0 + yz01], a5 = d[x1 + yz01];
+		float a6 = d[x0 + yz11], a7 = d[x1 + yz11];
 
-			l[k] = fin ? qf[k] : INFINITY;
-			h[k] = fin ? qf[k] : -INFINITY;
-		}
-		*lo = min_first(min_first(min_first(l[0], l[1]),
-		    min_first(l[2], l[3])), min_first(min_first(l[4], l[5]),
-		    min_first(l[6], l[7])));
-		*hi = max_first(max_first(max_first(h[0], h[1]),
-		    max_first(h[2], h[3])), max_first(max_first(h[4], h[5]),
-		    max_first(h[6], h[7])));
+		corners_f(c, a0, a1, a2, a3, a4, a5, a6, a7);
+		*flop = min_first(min_first(min_first(flo(a0), flo(a1)),
+		    min_first(flo(a2), flo(a3))), min_first(min_first(flo(a4),
+		    flo(a5)), min_first(flo(a6), flo(a7))));
+		*fhip = max_first(max_first(max_first(fhi(a0), fhi(a1)),
+		    max_first(fhi(a2), fhi(a3))), max_first(max_first(fhi(a4),
+		    fhi(a5)), max_first(fhi(a6), fhi(a7))));
 		return;
+	}
 	default:
-		memset(qi, 0, 8 * sizeof *qi);
+		corners_i(c, 0, 0, 0, 0, 0, 0, 0, 0);
 		break;
 	}
 	*imn = mn;
@@ -734,7 +766,8 @@ leaves(const ray *r, const vx_grid *g, int64_t c[3], const int64_t lim[3],
 	double m0 = r->s[0] ? tcross(r, 0, c0 + r->s[0] + up[0]) : INFINITY;
 	double m1 = r->s[1] ? tcross(r, 1, c1 + r->s[1] + up[1]) : INFINITY;
 	double m2 = r->s[2] ? tcross(r, 2, c2 + r->s[2] + up[2]) : INFINITY;
-	int flip = r->flip, isf = g->type == VX_F32, ithr = 0;
+	int isf = g->type == VX_F32, ithr = 0;
+	vx_leaf_visit v;
 	double t = *tp, texit;
 	int ax, e = *ep, rc = 0;
 
@@ -759,16 +792,18 @@ leaves(const ray *r, const vx_grid *g, int64_t c[3], const int64_t lim[3],
 		if (bits != NULL && !(bits[li >> 6] >> (li & 63) & 1))
 			culled++;
 		else {
-			float lo = 0, hi = 0, qf[8];
-			int32_t qi[8], imn = 0, imx = 0;
-			int64_t on[3], of[3], cc[3] = { c0, c1, c2 };
-			int a, i, in;
+			float lo = 0, hi = 0;
+			int32_t imn = 0, imx = 0;
+			int64_t pl[3], ph[3];
+			int in;
 
-			for (a = 0; a < 3; a++) {
-				on[a] = off[a][cc[a] + !up[a]];
-				of[a] = off[a][cc[a] + up[a]];
-			}
-			leaf_load(g, on, of, qi, qf, &imn, &imx, &lo, &hi);
+			pl[0] = off[0][c0];
+			ph[0] = off[0][c0 + 1];
+			pl[1] = off[1][c1];
+			ph[1] = off[1][c1 + 1];
+			pl[2] = off[2][c2];
+			ph[2] = off[2][c2 + 1];
+			leaf_load(g, pl, ph, v.c, &imn, &imx, &lo, &hi);
 			if (ithr)
 				in = imn <= fl && imx >= ce;
 			else {
@@ -779,12 +814,9 @@ leaves(const ray *r, const vx_grid *g, int64_t c[3], const int64_t lim[3],
 				in = brackets(lo, hi, vals, nvals);
 			}
 			if (in) {
-				vx_leaf_visit v;
-
-				for (i = 0; i < 8; i++)
-					v.c[i] = isf ? qf[i ^ flip] :
-					    (float)qi[i ^ flip];
-				memcpy(v.i, cc, sizeof v.i);
+				v.i[0] = c0;
+				v.i[1] = c1;
+				v.i[2] = c2;
 				v.leaf = c0 + (r->n[0] * (c1 + r->n[1] * c2));
 				v.t0 = t;
 				v.t1 = texit < tb ? texit : tb;
@@ -1058,10 +1090,6 @@ vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *box,
  * they are (integers widened to 32 bits, where v <= fl and v >= ce as
  * v > ce - 1 are exact), else one at a time (MASK_ROWS).  The bits are
  * the same every way. */
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#define MASK_SIMD 1
-#endif
 
 /* leaf_rows: a plane of leaves' bits into out, n rows of nx leaves from
  * bit p, step bits apart: a leaf row's corners are samples x and x + 1 of
