@@ -513,16 +513,27 @@ unit(const double g[3], double s, double thresh, double n[3])
 double
 vx_cell_normal_thresh(const float c[8])
 {
-	double lo = c[0], hi = c[0];
+	double lo[4], hi[4];
+	int i;
 
-	for (int i = 1; i < 8; i++) {
-		double x = c[i];
+	/* fmin/fmax without the calls, a NaN skipped unless all are, as a
+	 * tree of depth 3 rather than a chain of 7: the least and the
+	 * greatest of the values that are not NaN (NaN when all are), in any
+	 * order (where zeros of both signs tie, hi - lo is a zero either
+	 * way) */
+	for (i = 0; i < 4; i++) {
+		double x = c[2 * i], y = c[2 * i + 1];
 
-		/* fmin/fmax without the calls: a NaN is skipped unless all are */
-		lo = x < lo || lo != lo ? x : lo;
-		hi = x > hi || hi != hi ? x : hi;
+		lo[i] = y < x || x != x ? y : x;
+		hi[i] = y > x || x != x ? y : x;
 	}
-	return 0x1p-40 * (hi - lo);
+	for (i = 0; i < 2; i++) {
+		lo[i] = lo[i + 2] < lo[i] || lo[i] != lo[i] ? lo[i + 2] : lo[i];
+		hi[i] = hi[i + 2] > hi[i] || hi[i] != hi[i] ? hi[i + 2] : hi[i];
+	}
+	lo[0] = lo[1] < lo[0] || lo[0] != lo[0] ? lo[1] : lo[0];
+	hi[0] = hi[1] > hi[0] || hi[0] != hi[0] ? hi[1] : hi[0];
+	return 0x1p-40 * (hi[0] - lo[0]);
 }
 
 int

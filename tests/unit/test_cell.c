@@ -1186,6 +1186,57 @@ solver_names(void **state)
 	assert_string_equal(vx_cell_solver_name(99), "unknown");
 }
 
+/* vx_cell_normal_thresh: 2^-40 times the range of the corners that are
+ * not NaN, whatever their positions, NaN when all are, not finite when an
+ * infinity is among them; a table of hard cases (NaNs in every position,
+ * +-Inf, zeros of both signs, one value, subnormals, float limits) and
+ * random sets of values drawn from a pool of them, in every order.
+ * Oracle: min and max over the non-NaN corners, one at a time. */
+static void
+normal_thresh_range(void **state)
+{
+	static const float pool[] = { 0.0f, -0.0f, 1.0f, -1.0f, 3.5f, 1e-45f,
+	    -1e-45f, FLT_MAX, -FLT_MAX, INFINITY, -INFINITY, NAN, 127.5f, 2e30f,
+	    -7e-20f };
+	static const float fixed[][8] = {
+		{ NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN },
+		{ NAN, 1, 2, 3, 4, 5, 6, 7 },
+		{ 0, 1, 2, 3, 4, 5, 6, NAN },
+		{ NAN, NAN, NAN, 5, NAN, NAN, NAN, NAN },
+		{ 0.0f, -0.0f, 0.0f, -0.0f, -0.0f, 0.0f, -0.0f, 0.0f },
+		{ 1, 1, 1, 1, 1, 1, 1, 1 },
+		{ INFINITY, 0, 0, 0, 0, 0, 0, 0 },
+		{ -INFINITY, INFINITY, 0, 0, 0, 0, 0, NAN },
+		{ -FLT_MAX, FLT_MAX, 0, 0, 0, 0, 0, 0 },
+		{ 1e-45f, -1e-45f, 0, 0, 0, 0, 0, 0 },
+	};
+	const uint64_t s = 99;
+	int n = (int)(sizeof fixed / sizeof *fixed);
+
+	(void)state;
+	for (int k = 0; k < n + 4000; k++) {
+		float c[8];
+		double lo = NAN, hi = NAN, want, got;
+
+		for (int i = 0; i < 8; i++)
+			c[i] = k < n ? fixed[k][i] :
+			    pool[mix(s + 8 * (uint64_t)k + (uint64_t)i) %
+			    (sizeof pool / sizeof *pool)];
+		for (int i = 0; i < 8; i++) {
+			if (c[i] != c[i])
+				continue;
+			if (lo != lo || c[i] < lo)
+				lo = c[i];
+			if (hi != hi || c[i] > hi)
+				hi = c[i];
+		}
+		want = 0x1p-40 * (hi - lo);
+		got = vx_cell_normal_thresh(c);
+		if (!(want == got || (want != want && got != got)))
+			fail_msg("case %d: thresh %g, want %g", k, got, want);
+	}
+}
+
 int
 main(void)
 {
@@ -1204,6 +1255,7 @@ main(void)
 		cmocka_unit_test(random_roots),
 		cmocka_unit_test(cell_max),
 		cmocka_unit_test(gradient_normal),
+		cmocka_unit_test(normal_thresh_range),
 		cmocka_unit_test(sign_bound_cells),
 		cmocka_unit_test(sign_bound_adversarial),
 		cmocka_unit_test(solver_names),
