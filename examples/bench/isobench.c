@@ -144,7 +144,8 @@ main(int argc, char **argv)
 	vx_err e = { 0, "" };
 	vx_image color;
 	vx_raycast_stats rs;
-	double wall[MAXFRAMES], cpu[MAXFRAMES], t0;
+	double wall[MAXFRAMES], cpu[MAXFRAMES], tiles[MAXFRAMES];
+	double busy[MAXFRAMES], t0;
 	FILE *f;
 
 	memset(&b, 0, sizeof b);
@@ -279,6 +280,8 @@ main(int argc, char **argv)
 	}
 	for (i = 0; i < nframes; i++) {
 		render(&b, &color, &rs, &wall[i], &cpu[i]);
+		tiles[i] = rs.tile_seconds;
+		busy[i] = rs.thread_seconds;
 		if (i == 0 && pfm != NULL)
 			write_gray_pfm(pfm, &color);
 		vx_image_free(&color);
@@ -289,6 +292,9 @@ main(int argc, char **argv)
 	printf("frame_ms_min %.3f\n", 1e3 * wall[0]);
 	printf("frame_ms_max %.3f\n", 1e3 * wall[nframes - 1]);
 	printf("frame_cpu_ms %.3f\n", 1e3 * median(cpu, nframes));
+	/* the tiles' wall time and the threads' time in them (vx_raycast_stats) */
+	printf("tile_ms %.3f\n", 1e3 * median(tiles, nframes));
+	printf("thread_ms %.3f\n", 1e3 * median(busy, nframes));
 	printf("cellmask %s\nmask_bytes %llu\nmask_blocks %llu\nmask_set %llu\n"
 	    "mask_built %llu\n", rs.mask_bytes ? "on" : "off",
 	    (unsigned long long)rs.mask_bytes,

@@ -166,7 +166,8 @@ class Bench:
                         mask_kib=v["mask_bytes"] / 1024.0, mask_set=v["mask_set"],
                         mask_built=v["mask_built"], mask_blocks=v["mask_blocks"],
                         embree_ms=e["render_ms"], embree_cpu_ms=e["render_cpu_ms"],
-                        vox_ms=v["frame_ms"],
+                        vox_ms=v["frame_ms"], tile_ms=v.get("tile_ms"),
+                        thread_ms=v.get("thread_ms"),
                         vox_cpu_ms=v["frame_cpu_ms"], shares=[v.get("share_traverse"),
                                                               v.get("share_isect"),
                                                               v.get("share_shade")],
@@ -181,9 +182,14 @@ class Bench:
               "| --- | --- | --- | --- | --- | --- | --- | --- |"]
         t2 = ["### Table 2: thread scaling (this machine has 2 cores)", "",
               "Speedup = T1 / T2 from the medians; efficiency = speedup / 2; CPU growth = "
-              "CPU time per frame at 2 threads / at 1 (1.0: no parallel overhead).", "",
-              "| case | voxlux T1 ms | T2 ms | speedup | efficiency | CPU growth | Embree speedup | Embree efficiency |",
-              "| --- | --- | --- | --- | --- | --- | --- | --- |"]
+              "CPU time per frame at 2 threads / at 1 (1.0: no parallel overhead).  voxlux's "
+              "frame split (`vx_raycast_stats`): tile work = the threads' time in the "
+              "tiles at 2 threads / at 1 (1.0: the same work, only spread; above: each "
+              "thread slower side by side); balance = that time / (2 x the tiles' wall "
+              "time) at 2 threads; outside = the frame's time outside the tiles (set-up, "
+              "bins), at 1 / 2 threads.", "",
+              "| case | voxlux T1 ms | T2 ms | speedup | efficiency | CPU growth | tile work | balance | outside ms | Embree speedup | Embree efficiency |",
+              "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
         tm = ["### The cell mask: frames with and without it", "",
               "voxlux's frame with the cell mask (kept between the frames of one "
               "isovalue, as Embree keeps its BVH; a new isovalue's first frame, table "
@@ -219,8 +225,14 @@ class Bench:
             c2 = med([a["vox_cpu_ms"] for a in js["j2"]])
             e1 = med([a["embree_ms"] for a in js["j1"]])
             e2 = med([a["embree_ms"] for a in js["j2"]])
-            t2.append("| %s | %.1f | %.1f | %.2f | %.0f%% | %.2f | %.2f | %.0f%% |" % (
-                key, v1, v2, v1 / v2, 50 * v1 / v2, c2 / c1, e1 / e2, 50 * e1 / e2))
+            b1 = med([a["thread_ms"] for a in js["j1"]])
+            b2 = med([a["thread_ms"] for a in js["j2"]])
+            bal = med([a["thread_ms"] / (2 * a["tile_ms"]) for a in js["j2"]])
+            o1 = med([a["vox_ms"] - a["tile_ms"] for a in js["j1"]])
+            o2 = med([a["vox_ms"] - a["tile_ms"] for a in js["j2"]])
+            t2.append("| %s | %.1f | %.1f | %.2f | %.0f%% | %.2f | %.2f | %.0f%% | %.1f / %.1f | %.2f | %.0f%% |" % (
+                key, v1, v2, v1 / v2, 50 * v1 / v2, c2 / c1, b2 / b1, 100 * bal, o1, o2,
+                e1 / e2, 50 * e1 / e2))
             sh = [med([a["shares"][k] for a in js["j1"]]) for k in range(3)]
             x = js["j1"][-1]
             t1.append("| %s | %.0f%% | %.0f%% | %.0f%% | %.2f | %.2f | %.1f%% |" % (

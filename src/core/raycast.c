@@ -67,6 +67,7 @@ typedef struct rc_local {
 	vx_tettrace_stats tst;
 	uint64_t primary, shadow, shaded, covered, binned;
 	uint64_t cyc_total, cyc_shade, cyc_shadow;
+	double busy;                  /* seconds in tiles */
 } rc_local;
 
 /* box_sort: *bx[0..n) in order of lb, ties in their given order (a stable
@@ -1155,6 +1156,7 @@ add_local(vx_raycast_stats *st, const rc_local *L, double *cyc)
 	for (l = 0; l <= VX_MACRO_MAXLEV; l++)
 		st->macro[l] += L->st.trav.macro[l] + L->tst.trav.macro[l];
 	st->culled += L->st.trav.culled;
+	st->thread_seconds += L->busy;
 	cyc[0] += (double)L->cyc_total;
 	cyc[1] += (double)(L->st.cyc_isect + L->tst.cyc_isect);
 	cyc[2] += (double)(L->cyc_shade - L->cyc_shadow);
@@ -1311,6 +1313,7 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	st->mask_bytes = S.tr.mask ? vx_cellmask_bytes(mask) : 0;
 	st->mask_blocks = S.tr.mask ? (uint64_t)mask->nblock : 0;
 	st->mask_set = S.tr.mask ? (uint64_t)mask->nset : 0;
+	clock_gettime(CLOCK_MONOTONIC, &tb0);
 #ifdef _OPENMP
 #pragma omp parallel for num_threads(nthr) schedule(dynamic, 1)
 #endif
@@ -1324,7 +1327,9 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 		int x1 = x0 + tile < cam->w ? x0 + tile : cam->w;
 		int y1 = y0 + tile < cam->h ? y0 + tile : cam->h;
 		uint64_t c0 = o->timing ? vx_cycles() : 0;
+		struct timespec w0, w1;
 
+		clock_gettime(CLOCK_MONOTONIC, &w0);
 		if (aa == 1 && S.binoff != NULL)
 			for (int y = y0; y < y1; y++)
 				tile_row(&S, L, x0, x1, y, sparse, color, depth,
@@ -1338,8 +1343,14 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 						    depth, normal);
 		if (o->timing)
 			L->cyc_total += vx_cycles() - c0;
+		clock_gettime(CLOCK_MONOTONIC, &w1);
+		L->busy += (double)(w1.tv_sec - w0.tv_sec) +
+		    1e-9 * (double)(w1.tv_nsec - w0.tv_nsec);
 	}
 	clock_gettime(CLOCK_MONOTONIC, &t1);
+	st->threads = nthr;
+	st->tile_seconds = (double)(t1.tv_sec - tb0.tv_sec) +
+	    1e-9 * (double)(t1.tv_nsec - tb0.tv_nsec);
 	for (k = 0; k < nthr; k++)
 		add_local(st, &loc[k], cyc);
 	free(loc);

@@ -101,6 +101,14 @@ typedef struct vx_raycast_stats {
 	                                    those bracketing (masked), and
 	                                    those whose bits rays needed */
 	double share_traverse, share_isect, share_shade;   /* when timing */
+	int threads;             /* threads the frame ran on */
+	double tile_seconds;     /* wall time of the frame's tiles (the
+	                            main pass over the pixels) */
+	double thread_seconds;   /* the threads' time in those tiles, summed:
+	                            at 1 thread tile_seconds; at N, the same
+	                            work spread over N, plus what running side
+	                            by side costs each thread; thread_seconds
+	                            / (N tile_seconds) is the tiles' balance */
 } vx_raycast_stats;
 
 void vx_raycast_opts_init(vx_raycast_opts *o);

@@ -217,6 +217,13 @@ print_stats(const vx_raycast_stats *st, const vx_macro *m, int w, int h,
 	    "shading %.0f%%\n", 100 * st->share_traverse,
 	    st->mesh ? "tet tests" : "intersection", 100 * st->share_isect,
 	    100 * st->share_shade);
+	fprintf(stderr, "raycast: tiles: %.1f ms on %d thread%s, %.1f ms of "
+	    "the threads' time (balance %.0f%%); outside them %.1f ms (set-up, "
+	    "bins, the centre pixels' pass)\n", 1e3 * st->tile_seconds,
+	    st->threads, st->threads == 1 ? "" : "s", 1e3 * st->thread_seconds,
+	    st->tile_seconds > 0 && st->threads > 0 ? 100 * st->thread_seconds /
+	    (st->threads * st->tile_seconds) : 0.0, 1e3 * (st->seconds -
+	    st->tile_seconds));
 }
 
 int

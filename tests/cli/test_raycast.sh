@@ -173,6 +173,9 @@ check_eq "binning = no binning: 2x2 samples" "$(px same "$T/aa1.vx" "$T/aa2.vx")
 raycast --iso 0.5 --size 65x65 --set "$cam" --stats "$T/sph.vx" 2>"$T/bst" >/dev/null
 check "binning: --stats counts the rays not walked" \
     grep -q 'binning: [1-9][0-9]* boxes (of the bracketing leaves of each block of 8x8x8, and [0-9]* bracketing level-1 macrocells whole, [0-9.]* ms); [1-9][0-9]* of 4225 primary rays enter none' "$T/bst"
+raycast --iso 0.5 --size 65x65 --set "$cam" --stats -j 2 "$T/sph.vx" 2>"$T/bst7" >/dev/null
+check "--stats: the tiles' time on 2 threads and outside them" \
+    grep -q "^raycast: tiles: [0-9.]* ms on 2 threads, [0-9.]* ms of the threads' time (balance [0-9]*%); outside them [0-9.]* ms" "$T/bst7"
 raycast --iso 0.5 --size 65x65 --set "$cam" --stats --bin-block 3 "$T/sph.vx" \
     2>"$T/bst6" >/dev/null
 check "binning: --bin-block 3 in --stats" grep -q 'of each block of 3x3x3, and' "$T/bst6"

@@ -616,6 +616,46 @@ binning_any_block(void **state)
 	vx_grid_free(&g);
 }
 
+/* The frame's time split (vx_raycast_stats): the threads it ran on, the
+ * tiles' wall time within the frame's, and the threads' time in the tiles
+ * within threads x that wall time (each thread's tiles lie inside the
+ * tiles' span), at 1, 2 and 3 threads.  Invariants, not speed. */
+static void
+stats_time_split(void **state)
+{
+	vx_grid g;
+	vx_macro m;
+	vx_scene s;
+	vx_plan p;
+
+	(void)state;
+	make_scene_volume(&g, 32, NULL, 9, 0, 0);
+	build(&m, &g);
+	base_scene(&s, 48, 40, 9);
+	for (int t = 1; t <= 3; t++) {
+		vx_raycast_opts o;
+		vx_raycast_stats st;
+		vx_image c, dd, nn;
+		double lo[3], hi[3];
+		vx_err e = { 0, "" };
+
+		vx_grid_box(&g, lo, hi);
+		assert_int_equal(vx_camera_resolve(&s.camera, lo, hi, &e), 0);
+		vx_scene_plan_isosurface(&s, &p);
+		vx_raycast_opts_init(&o);
+		o.nthreads = t;
+		render_into(&s, &p, &g, &m, &o, &c, &dd, &nn, &st);
+		assert_int_equal(st.threads, t);
+		assert_true(st.tile_seconds > 0);
+		assert_true(st.tile_seconds <= st.seconds);
+		assert_true(st.thread_seconds > 0);
+		assert_true(st.thread_seconds <= t * st.tile_seconds * (1 + 1e-9));
+		free3(&c, &dd, &nn);
+	}
+	vx_macro_free(&m);
+	vx_grid_free(&g);
+}
+
 int
 main(void)
 {
@@ -629,6 +669,7 @@ main(void)
 		cmocka_unit_test(binning_modes),
 		cmocka_unit_test(binning_block_bound),
 		cmocka_unit_test(binning_any_block),
+		cmocka_unit_test(stats_time_split),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
