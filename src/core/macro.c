@@ -930,29 +930,32 @@ ray_clip(ray *r, const vx_macro *m, int top, const float *vals, int nvals,
 	return 1;
 }
 
-/* ray_finish: ray_clip, and the start leaf (the one the ray is in just
- * after *ta) and its entry axis *e (-1: *ta is on no face of it) */
-static inline __attribute__((always_inline)) int
-ray_finish(ray *r, const vx_macro *m, int top, const float *vals,
-    int nvals, double *tap, double *tbp, int64_t leaf[3], int *e)
+/* start_leaf: the leaf ray r is in just after ta (the segment's start)
+ * and its entry axis *e (-1: ta is on no face of it) */
+static inline void
+start_leaf(const ray *r, double ta, int64_t leaf[3], int *e)
 {
-	const int64_t *n = r->n;
-	double ta;
-	int a;
-
-	if (!ray_clip(r, m, top, vals, nvals, tap, tbp))
-		return 0;
-	ta = *tap;
 	*e = -1;
-	for (a = 0; a < 3; a++) {
+	for (int a = 0; a < 3; a++) {
 		if (r->s[a] == 0) {
 			leaf[a] = r->fixed[a];
 			continue;
 		}
-		leaf[a] = find_cell(r, 0, a, 0, n[a], ta, 1);
+		leaf[a] = find_cell(r, 0, a, 0, r->n[a], ta, 1);
 		if (tcross(r, a, r->s[a] > 0 ? leaf[a] : leaf[a] + 1) == ta)
 			*e = a;
 	}
+}
+
+/* ray_finish: ray_clip, and the start leaf and its entry axis *e
+ * (start_leaf) */
+static inline __attribute__((always_inline)) int
+ray_finish(ray *r, const vx_macro *m, int top, const float *vals,
+    int nvals, double *tap, double *tbp, int64_t leaf[3], int *e)
+{
+	if (!ray_clip(r, m, top, vals, nvals, tap, tbp))
+		return 0;
+	start_leaf(r, *tap, leaf, e);
 	return 1;
 }
 
@@ -980,60 +983,47 @@ vx_macro_cell_brackets(const vx_macro *m, int l, int64_t b,
 	return brackets(m->mm[l][2 * b], m->mm[l][2 * b + 1], vals, nvals);
 }
 
-/* boxes_first: vx_macro_boxes_entry (see vx_macro.h) for ray r, set up by
- * ray_axes as for the walk: the same crossing-time function, so the same
- * times */
-static inline __attribute__((always_inline)) double
-boxes_first(const ray *r, const vx_cellbox *box, const uint32_t *ix,
-    size_t nbox, const int32_t *q, const double *lbs, const uint64_t *pix,
-    int bit)
+/* box_times: ray r's entry time *tin into box bx, the axis *e of the
+ * crossing that enters it, and its exit time *tout; 0 when the ray runs
+ * beside it along an axis it does not move on */
+static inline __attribute__((always_inline)) int
+box_times(const ray *r, const vx_cellbox *bx, double *tin, double *tout,
+    int *e)
 {
-	double best = INFINITY;
-	size_t k;
-	int a;
+	double ti = -INFINITY, to = INFINITY;
+	int a, ea = -1;
 
-	for (k = 0; k < nbox; k++) {
-		const vx_cellbox *bx;
-		double tin = -INFINITY, tout = INFINITY;
+	for (a = 0; a < 3; a++) {
+		int64_t lo = bx->lo[a], hi = bx->hi[a];
 
-		if (pix != NULL) {
-			/* the entries in order; a box only when it may
-			 * hold the query */
-			if (lbs[k] > best)
-				break;
-			if (!(pix[k] >> bit & 1))
-				continue;
-			bx = box + ix[k];
+		if (r->s[a] == 0) {
+			if (r->fixed[a] < lo || r->fixed[a] >= hi)
+				return 0;
 		} else {
-			bx = ix != NULL ? box + ix[k] : box + k;
-			if (bx->lb > best)
-				break;
-			if (q != NULL && (q[0] < bx->fp[0] ||
-			    q[0] > bx->fp[2] || q[1] < bx->fp[1] ||
-			    q[1] > bx->fp[3]))
-				continue;
-		}
-		for (a = 0; a < 3; a++) {
-			int64_t lo = bx->lo[a], hi = bx->hi[a];
+			double tn = tcross(r, a, r->up[a] ? lo : hi);
+			double tf = tcross(r, a, r->up[a] ? hi : lo);
 
-			if (r->s[a] == 0) {
-				if (r->fixed[a] < lo || r->fixed[a] >= hi)
-					break;
-			} else {
-				double tn = tcross(r, a, r->up[a] ? lo : hi);
-				double tf = tcross(r, a, r->up[a] ? hi : lo);
-
-				if (tn > tin)
-					tin = tn;
-				if (tf < tout)
-					tout = tf;
+			if (tn >= ti) {
+				ti = tn;
+				ea = a;
 			}
+			if (tf < to)
+				to = tf;
 		}
-		if (a == 3 && !(tin > tout) && tin < best)
-			best = tin;
 	}
-	/* +0 for -0: the same time whatever the boxes' order */
-	return best + 0.0;
+	*tin = ti;
+	*tout = to;
+	*e = ea;
+	return 1;
+}
+
+/* fp_holds: 1 when box bx's footprint holds query point q (NULL: every
+ * point) */
+static inline int
+fp_holds(const vx_cellbox *bx, const int32_t *q)
+{
+	return q == NULL || (q[0] >= bx->fp[0] && q[0] <= bx->fp[2] &&
+	    q[1] >= bx->fp[1] && q[1] <= bx->fp[3]);
 }
 
 double
@@ -1041,11 +1031,24 @@ vx_macro_boxes_entry(const vx_macro *m, const vx_cellbox *box,
     const uint32_t *ix, size_t nbox, const double o[3], const double d[3],
     const int32_t q[2])
 {
+	double best = INFINITY, tin, tout;
+	int e;
 	ray r;
 
+	/* set up by ray_axes as for the walk: the same crossing times */
 	if (!ray_axes(&r, m->dims[0], o, d))
 		return INFINITY;
-	return boxes_first(&r, box, ix, nbox, q, NULL, NULL, 0);
+	for (size_t k = 0; k < nbox; k++) {
+		const vx_cellbox *bx = ix != NULL ? box + ix[k] : box + k;
+
+		if (bx->lb > best)
+			break;
+		if (fp_holds(bx, q) && box_times(&r, bx, &tin, &tout, &e) &&
+		    !(tin > tout) && tin < best)
+			best = tin;
+	}
+	/* +0 for -0: the same time whatever the boxes' order */
+	return best + 0.0;
 }
 
 /* ---- cell masks ----
@@ -1281,21 +1284,30 @@ test_s16_8(__m128i v, const quad_k *k, unsigned *b, unsigned *a)
 	*a = m >> 8;
 }
 
+/* load16s: load16 made signed: u16 (flip) with its top bit flipped, so
+ * that signed compares order it as unsigned; i16 as it is */
+static inline __m128i
+load16s(const char *p, const int64_t *ro, int run, int flip)
+{
+	__m128i v = load16(p, ro, run);
+
+	return flip ? _mm_xor_si128(v, _mm_set1_epi16(-0x8000)) : v;
+}
+
 static inline void
 chunk_u16(const char *p, const int64_t *ro, int run, const quad_k *k,
     unsigned *b, unsigned *a)
 {
-	const __m128i top = _mm_set1_epi16(-0x8000);
-
-	test_s16(_mm_xor_si128(load16(p, ro, run), top),
-	    _mm_xor_si128(load16(p, ro + 16 / run, run), top), k, b, a);
+	test_s16(load16s(p, ro, run, 1), load16s(p, ro + 16 / run, run, 1), k,
+	    b, a);
 }
 
 static inline void
 chunk_i16(const char *p, const int64_t *ro, int run, const quad_k *k,
     unsigned *b, unsigned *a)
 {
-	test_s16(load16(p, ro, run), load16(p, ro + 16 / run, run), k, b, a);
+	test_s16(load16s(p, ro, run, 0), load16s(p, ro + 16 / run, run, 0), k,
+	    b, a);
 }
 
 /* tail_*: as chunk_* with runs of 16 bytes at ro[0], ro[1], only n samples
@@ -1309,24 +1321,28 @@ tail_u8(const char *p, const int64_t *ro, int n, const quad_k *k,
 }
 
 static inline void
+tail_16(const char *p, const int64_t *ro, int n, const quad_k *k,
+    unsigned *b, unsigned *a, int flip)
+{
+	if (n > 8)
+		test_s16(load16s(p, ro, 16, flip), load16s(p, ro + 1, 16, flip),
+		    k, b, a);
+	else
+		test_s16_8(load16s(p, ro, 16, flip), k, b, a);
+}
+
+static inline void
 tail_u16(const char *p, const int64_t *ro, int n, const quad_k *k,
     unsigned *b, unsigned *a)
 {
-	if (n > 8)
-		chunk_u16(p, ro, 16, k, b, a);
-	else
-		test_s16_8(_mm_xor_si128(load16(p, ro, 16),
-		    _mm_set1_epi16(-0x8000)), k, b, a);
+	tail_16(p, ro, n, k, b, a, 1);
 }
 
 static inline void
 tail_i16(const char *p, const int64_t *ro, int n, const quad_k *k,
     unsigned *b, unsigned *a)
 {
-	if (n > 8)
-		chunk_i16(p, ro, 16, k, b, a);
-	else
-		test_s16_8(load16(p, ro, 16), k, b, a);
+	tail_16(p, ro, n, k, b, a, 0);
 }
 
 static inline void
@@ -2467,40 +2483,6 @@ key_lt(const bkey *a, const bkey *b)
 	    (a->e == b->e && a->j < b->j)));
 }
 
-/* box_times: ray r's entry time *tin into box bx, the axis *e of the
- * crossing that enters it, and its exit time *tout; 0 when the ray runs
- * beside it along an axis it does not move on */
-static inline __attribute__((always_inline)) int
-box_times(const ray *r, const vx_cellbox *bx, double *tin, double *tout,
-    int *e)
-{
-	double ti = -INFINITY, to = INFINITY;
-	int a, ea = -1;
-
-	for (a = 0; a < 3; a++) {
-		int64_t lo = bx->lo[a], hi = bx->hi[a];
-
-		if (r->s[a] == 0) {
-			if (r->fixed[a] < lo || r->fixed[a] >= hi)
-				return 0;
-		} else {
-			double tn = tcross(r, a, r->up[a] ? lo : hi);
-			double tf = tcross(r, a, r->up[a] ? hi : lo);
-
-			if (tn >= ti) {
-				ti = tn;
-				ea = a;
-			}
-			if (tf < to)
-				to = tf;
-		}
-	}
-	*tin = ti;
-	*tout = to;
-	*e = ea;
-	return 1;
-}
-
 /* box_walk: the leaves of box bx that the walk visits, from the leaf it
  * enters at t through the face of axis e, or (e < 0) from the start leaf
  * sl at the segment's start t, entered through the face of axis se (tb:
@@ -2572,12 +2554,8 @@ boxes_walk(const vx_macro *m, const vx_grid *g, vx_cellmask *mk, ray *r,
 			if ((lbs != NULL ? lbs[k] : bx->lb) > (np > 0 ?
 			    pend[np - 1].t : hz.t))
 				break;
-			if (lbs != NULL) {
-				if (!(pk->pix[k] >> pk->bit & 1))
-					continue;
-			} else if (q != NULL && (q[0] < bx->fp[0] ||
-			    q[0] > bx->fp[2] || q[1] < bx->fp[1] ||
-			    q[1] > bx->fp[3]))
+			if (lbs != NULL ? !(pk->pix[k] >> pk->bit & 1) :
+			    !fp_holds(bx, q))
 				continue;
 			/* entered (a box entered after the start: before the
 			 * end, where the walk still steps) */
@@ -2617,16 +2595,7 @@ boxes_walk(const vx_macro *m, const vx_grid *g, vx_cellmask *mk, ray *r,
 		np--;
 		if (pend[np].e < 0 && !have_sl) {
 			/* the start leaf, as the walk from the start has it */
-			for (int a = 0; a < 3; a++) {
-				if (r->s[a] == 0) {
-					sl[a] = r->fixed[a];
-					continue;
-				}
-				sl[a] = find_cell(r, 0, a, 0, r->n[a], ta, 1);
-				if (tcross(r, a, r->s[a] > 0 ? sl[a] : sl[a] +
-				    1) == ta)
-					se = a;
-			}
+			start_leaf(r, ta, sl, &se);
 			have_sl = 1;
 		}
 		if (!walked) {
