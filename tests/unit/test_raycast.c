@@ -127,6 +127,51 @@ same_render(const vx_image *c, const vx_image *dd, const vx_image *nn,
 	assert_int_equal(st[0].roots, st[k].roots);
 }
 
+/* sine_field: g = sin(f0 x) sin(f1 y) sin(f2 z) over d samples (a field of
+ * many small closed surfaces about 0), f32, and m its hierarchy of 16^3
+ * macrocells under l2^3 of them */
+static void
+sine_field(vx_grid *g, vx_macro *m, const int64_t d[3], const double f[3],
+    int l2)
+{
+	int sizes[VX_MACRO_MAXLEV][3] = { { 16, 16, 16 }, { l2, l2, l2 } };
+	double *sx = malloc((size_t)(d[0] + d[1] + d[2]) * sizeof *sx);
+	double *sy = sx + d[0], *sz = sy + d[1];
+	vx_err e = { 0, "" };
+
+	assert_non_null(sx);
+	assert_int_equal(vx_grid_alloc(g, d, VX_F32, NULL, &e), 0);
+	for (int64_t i = 0; i < d[0]; i++)
+		sx[i] = sin(f[0] * (double)i);
+	for (int64_t i = 0; i < d[1]; i++)
+		sy[i] = sin(f[1] * (double)i);
+	for (int64_t i = 0; i < d[2]; i++)
+		sz[i] = sin(f[2] * (double)i);
+	for (int64_t z = 0; z < d[2]; z++)
+		for (int64_t y = 0; y < d[1]; y++)
+			for (int64_t x = 0; x < d[0]; x++)
+				vx_grid_set(g, x, y, z, sx[x] * sy[y] * sz[z]);
+	free(sx);
+	vx_grid_range(g);
+	assert_int_equal(vx_macro_build(m, g, 2, (const int (*)[3])sizes, 1,
+	    &e), 0);
+}
+
+/* look_from: an explicit perspective camera at eye looking at look, z up */
+static void
+look_from(vx_scene *s, const double eye[3], const double look[3],
+    double fov)
+{
+	static const double up[3] = { 0, 0, 1 };
+
+	s->camera.is_auto = 0;
+	s->camera.projection = VX_PERSPECTIVE;
+	memcpy(s->camera.eye, eye, sizeof s->camera.eye);
+	memcpy(s->camera.look, look, sizeof s->camera.look);
+	memcpy(s->camera.up, up, sizeof s->camera.up);
+	s->camera.fov = fov;
+}
+
 /* Depth of the centre pixel: an explicit camera on the +y axis looking at
  * the centre sees the sphere at distance |eye - c| - r (oracle: geometry;
  * the trilinear isosurface of a sampled distance field lies within 0.05
@@ -144,14 +189,8 @@ depth_matches_geometry(void **state)
 	make_scene_volume(&g, 32, NULL, 9, 0, 0);
 	build(&m, &g);
 	base_scene(&s, 65, 65, 9);
-	s.camera.is_auto = 0;
-	s.camera.projection = VX_PERSPECTIVE;
-	double eye[3] = { cc, cc + 60, cc }, look[3] = { cc, cc, cc },
-	    up[3] = { 0, 0, 1 };
-	memcpy(s.camera.eye, eye, sizeof eye);
-	memcpy(s.camera.look, look, sizeof look);
-	memcpy(s.camera.up, up, sizeof up);
-	s.camera.fov = 30;
+	look_from(&s, (const double[3]){ cc, cc + 60, cc },
+	    (const double[3]){ cc, cc, cc }, 30);
 	render(&s, &g, &m, 2, 0, &c, &d, &n);
 	double dep = vx_image_get(&d, 32, 32, 0);
 	assert_true(fabs(dep - (60 - 9)) < 0.05);
@@ -398,8 +437,7 @@ no_self_shadow_any_solver(void **state)
 static void
 binning_modes(void **state)
 {
-	int64_t d[3] = { 96, 96, 96 };
-	int sizes[VX_MACRO_MAXLEV][3] = { { 16, 16, 16 }, { 2, 2, 2 } };
+	const int64_t d[3] = { 96, 96, 96 };
 	float iso = 0.05f;
 	vx_grid g;
 	vx_macro m;
@@ -412,24 +450,10 @@ binning_modes(void **state)
 	vx_raycast_stats st[3];
 
 	(void)state;
-	assert_int_equal(vx_grid_alloc(&g, d, VX_F32, NULL, &e), 0);
-	for (int z = 0; z < 96; z++)
-		for (int y = 0; y < 96; y++)
-			for (int x = 0; x < 96; x++)
-				vx_grid_set(&g, x, y, z, sin(0.9 * x) *
-				    sin(0.7 * y) * sin(0.8 * z));
-	vx_grid_range(&g);
-	assert_int_equal(vx_macro_build(&m, &g, 2, (const int (*)[3])sizes, 1,
-	    &e), 0);
+	sine_field(&g, &m, d, (const double[3]){ 0.9, 0.7, 0.8 }, 2);
 	base_scene(&s, 40, 30, iso);
-	s.camera.is_auto = 0;
-	s.camera.projection = VX_PERSPECTIVE;
-	double eye[3] = { 50.3, 44.1, 47.7 }, look[3] = { 90, 80, 70 },
-	    up[3] = { 0, 0, 1 };
-	memcpy(s.camera.eye, eye, sizeof eye);
-	memcpy(s.camera.look, look, sizeof look);
-	memcpy(s.camera.up, up, sizeof up);
-	s.camera.fov = 90;
+	look_from(&s, (const double[3]){ 50.3, 44.1, 47.7 },
+	    (const double[3]){ 90, 80, 70 }, 90);
 	vx_grid_box(&g, lo, hi);
 	assert_int_equal(vx_camera_resolve(&s.camera, lo, hi, &e), 0);
 	vx_scene_plan_isosurface(&s, &p);
@@ -470,10 +494,9 @@ binning_modes(void **state)
 static void
 binning_block_bound(void **state)
 {
-	int64_t d[3] = { 200, 200, 136 };
-	int sizes[VX_MACRO_MAXLEV][3] = { { 16, 16, 16 }, { 4, 4, 4 } };
+	const int64_t d[3] = { 200, 200, 136 };
 	float iso = 0.05f;
-	double sx[200], sy[200], sz[136], lo[3], hi[3];
+	double lo[3], hi[3];
 	vx_grid g;
 	vx_macro m;
 	vx_scene s;
@@ -484,20 +507,7 @@ binning_block_bound(void **state)
 	vx_raycast_stats st[3];
 
 	(void)state;
-	assert_int_equal(vx_grid_alloc(&g, d, VX_F32, NULL, &e), 0);
-	for (int i = 0; i < 200; i++) {
-		sx[i] = sin(0.9 * i);
-		sy[i] = sin(0.7 * i);
-		if (i < 136)
-			sz[i] = sin(0.8 * i);
-	}
-	for (int z = 0; z < 136; z++)
-		for (int y = 0; y < 200; y++)
-			for (int x = 0; x < 200; x++)
-				vx_grid_set(&g, x, y, z, sx[x] * sy[y] * sz[z]);
-	vx_grid_range(&g);
-	assert_int_equal(vx_macro_build(&m, &g, 2, (const int (*)[3])sizes, 1,
-	    &e), 0);
+	sine_field(&g, &m, d, (const double[3]){ 0.9, 0.7, 0.8 }, 4);
 	base_scene(&s, 40, 30, iso);
 	vx_grid_box(&g, lo, hi);
 	assert_int_equal(vx_camera_resolve(&s.camera, lo, hi, &e), 0);
@@ -542,8 +552,7 @@ static void
 binning_any_block(void **state)
 {
 	static const int edge[] = { 1, 2, 3, 5, 8, 16, 64 };
-	int64_t d[3] = { 48, 40, 36 };
-	int sizes[VX_MACRO_MAXLEV][3] = { { 16, 16, 16 }, { 2, 2, 2 } };
+	const int64_t d[3] = { 48, 40, 36 };
 	float iso = 0.05f;
 	vx_grid g;
 	vx_macro m;
@@ -551,15 +560,7 @@ binning_any_block(void **state)
 	double lo[3], hi[3];
 
 	(void)state;
-	assert_int_equal(vx_grid_alloc(&g, d, VX_F32, NULL, &e), 0);
-	for (int z = 0; z < d[2]; z++)
-		for (int y = 0; y < d[1]; y++)
-			for (int x = 0; x < d[0]; x++)
-				vx_grid_set(&g, x, y, z, sin(0.5 * x) *
-				    sin(0.45 * y) * sin(0.55 * z));
-	vx_grid_range(&g);
-	assert_int_equal(vx_macro_build(&m, &g, 2, (const int (*)[3])sizes, 1,
-	    &e), 0);
+	sine_field(&g, &m, d, (const double[3]){ 0.5, 0.45, 0.55 }, 2);
 	vx_grid_box(&g, lo, hi);
 	for (int view = 0; view < 2; view++) {
 		vx_scene s;
@@ -568,17 +569,9 @@ binning_any_block(void **state)
 		vx_raycast_stats st[2];
 
 		base_scene(&s, 48, 40, iso);
-		if (view == 1) {
-			double eye[3] = { 20.3, 17.1, 15.7 },
-			    look[3] = { 40, 30, 30 }, up[3] = { 0, 0, 1 };
-
-			s.camera.is_auto = 0;
-			s.camera.projection = VX_PERSPECTIVE;
-			memcpy(s.camera.eye, eye, sizeof eye);
-			memcpy(s.camera.look, look, sizeof look);
-			memcpy(s.camera.up, up, sizeof up);
-			s.camera.fov = 70;
-		}
+		if (view == 1)   /* inside the field */
+			look_from(&s, (const double[3]){ 20.3, 17.1, 15.7 },
+			    (const double[3]){ 40, 30, 30 }, 70);
 		assert_int_equal(vx_camera_resolve(&s.camera, lo, hi, &e), 0);
 		vx_scene_plan_isosurface(&s, &p);
 		for (size_t i = 0; i < sizeof edge / sizeof *edge; i++) {
