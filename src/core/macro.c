@@ -1174,6 +1174,19 @@ leaf_rows(uint64_t *restrict out, const uint64_t *ub, const uint64_t *ua,
 	(void)i;
 }
 
+/* row_planes: row y's bits of plane z (bb below, aa above) OR-ed with
+ * the previous plane's row into ub, ua (a leaf row's corners lie on both
+ * planes), and kept in pb, pa for the next plane */
+static inline void
+row_planes(uint64_t *ub, uint64_t *ua, uint64_t *pb, uint64_t *pa, int64_t y,
+    uint64_t bb, uint64_t aa)
+{
+	ub[y] = pb[y] | bb;
+	ua[y] = pa[y] | aa;
+	pb[y] = bb;
+	pa[y] = aa;
+}
+
 #ifdef MASK_SIMD
 typedef struct quad_k {
 	__m128i fl, cm1;          /* integer thresholds: fl, ce - 1 */
@@ -1493,6 +1506,7 @@ typedef struct chunk_rows {
 	int nx;                   /* leaves in a row */
 } chunk_rows;
 
+
 /* CHUNK_PLANE: NAME(r, pl, y0, y1, pb, pa, ub, ua, nch) reads rows y0 to
  * y1 - 1 of the plane at pl as r plans, nch chunks of W samples of type T
  * in runs of R bytes, into below and above bits: a row's bits OR-ed with
@@ -1541,10 +1555,7 @@ NAME(const chunk_rows *r, const char *pl, int64_t y0, int64_t y1,        \
 				bb |= (uint64_t)(BELOW) << (nch * (W) + t); \
 				aa |= (uint64_t)(ABOVE) << (nch * (W) + t); \
 			}                                                \
-		ub[y] = pb[y] | bb;                                      \
-		ua[y] = pa[y] | aa;                                      \
-		pb[y] = bb;                                              \
-		pa[y] = aa;                                              \
+		row_planes(ub, ua, pb, pa, y, bb, aa);                   \
 	}                                                                \
 }
 
@@ -1811,10 +1822,7 @@ block_for(vx_type t, int run)
 				aa |= (uint64_t)(ABOVE) << x;            \
 				x++;                                     \
 			}                                                \
-			ub[y] = pb[y] | bb;                              \
-			ua[y] = pa[y] | aa;                              \
-			pb[y] = bb;                                      \
-			pa[y] = aa;                                      \
+			row_planes(ub, ua, pb, pa, y, bb, aa);           \
 		}                                                        \
 	} while (0)
 

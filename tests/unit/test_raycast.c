@@ -485,8 +485,7 @@ binning_modes(void **state)
 }
 
 /* More blocks of 4^3 cells (bin_block 4) in view than the bins take (8 a
- * pixel and
- * 65536: a field of small surfaces filling a 200 x 200 x 136 volume,
+ * pixel and 65536: a field of small surfaces filling a 200 x 200 x 136 volume,
  * about 85,000 blocks, every mask bit built, a 40 x 30 picture): the
  * bins fall back to whole macrocells, and the picture, depth, normals and
  * cells visited are those of rays walked from the eye, at 1 and 2
