@@ -398,33 +398,9 @@ vx_cell_first_root(const double k[4], double t0, double t1, double f0,
 int
 vx_cell_sign_bound(const double k[4], double len)
 {
-	double m0 = fabs(k[0]), m1 = fabs(k[1]), m2 = fabs(k[2]), m3 = fabs(k[3]);
-	double mx, a1, a2, a3, b1, b2, b3, s, lo;
+	double b3;
 
-	if (!(len >= 0 && len <= 0x1p100))
-		return 0;
-	if (!(m0 < 0x1p400 && m1 < 0x1p400 && m2 < 0x1p400 && m3 < 0x1p400))
-		return 0;
-	mx = m0 > m1 ? m0 : m1;
-	mx = m2 > mx ? m2 : mx;
-	mx = m3 > mx ? m3 : mx;
-	if (!(mx > 0x1p-400))
-		return 0;
-	a1 = k[1] * len;
-	a2 = k[2] * len * len;
-	a3 = k[3] * len * len * len;
-	s = m0 + fabs(a1) + fabs(a2) + fabs(a3);
-	if (!(s >= 0x1p-600))
-		return 0;
-	lo = 0x1p-38 * s;
-	b1 = k[0] + a1 / 3;
-	b2 = k[0] + (2 * a1 + a2) / 3;
-	b3 = k[0] + a1 + a2 + a3;
-	if (k[0] > lo && b1 > lo && b2 > lo && b3 > lo)
-		return 1;
-	if (k[0] < -lo && b1 < -lo && b2 < -lo && b3 < -lo)
-		return -1;
-	return 0;
+	return vx_cell_sign_bound_b3(k, len, &b3);
 }
 
 int

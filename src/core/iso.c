@@ -32,6 +32,8 @@ typedef struct iso_ctx {
 	vx_iso_hit_fn fn;
 	void *ctx;
 	vx_iso_stats *st;
+	double xs0, dmag;        /* 2 sum |o_a| + 16, sum |d_a|
+	                            (ends_certain) */
 } iso_ctx;
 
 /* The two axes other than a, lower first: u runs along the first. */
@@ -152,17 +154,119 @@ end_pos(ends *E, const iso_ctx *x, const vx_leaf_visit *v, int w,
 	return p;
 }
 
-/* no_root: 1 when vx_cell_first_root(k, 0, len, f0, f1, any solver) is
- * certainly a miss (vx_cell_sign_bound, and both ends of that sign), so
- * the call and perhaps the end values can be skipped. */
+/* outside: the distance from q to [0, 1] (q not NaN), without a branch
+ * where SSE2 has a max (q near a face is on either side of it by
+ * rounding, at random) */
+static inline double
+outside(double q)
+{
+#if defined(__SSE2__)
+	__m128d v = _mm_set_sd(q);
+
+	return _mm_cvtsd_f64(_mm_max_sd(_mm_max_sd(_mm_sub_sd(_mm_setzero_pd(),
+	    v), _mm_sub_sd(v, _mm_set_sd(1.0))), _mm_setzero_pd()));
+#else
+	double a = -q > q - 1 ? -q : q - 1;
+
+	return a > 0 ? a : 0;
+#endif
+}
+
+/* onehot[a + 1][b]: 1.0 where b == a (a = -1: none) */
+static const double onehot[4][3] = {
+	{ 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }
+};
+
+/* ends_certain: 1 when both end values minus iso (end_pos: face values,
+ * or the trilinear where an end lies inside the cell) certainly have the
+ * signs of k0 and of k's value at len, the cubic's own ends, so that a
+ * grazed cell (vx_cell_sign_bound) needs neither face.  Notation: u =
+ * 2^-53, gamma_n = n u / (1 - n u); F the trilinear interpolant of the
+ * corners c (exact, over all of R^3); M = max |c_i| <= max(|lo|, |hi|);
+ * P(t) = o + t d - i exactly; the segment's ends as computed, q0 = ol
+ * and q1 = fl(ol + fl(len d)); out(q) the distance from q to [0, 1].
+ * The test asks out(q0_a), out(q1_a) < 1/4 on every axis (D0, D1 below
+ * are at least their sums): then R_a = |ol_a| + len |d_a| <= 1.25 + 1.5
+ * and W = prod_a (3 + 2 R_a) <= 8.5^3 < 1024.  X = 2 sum |o_a| + (2 |t0|
+ * + |t1|) sum |d_a| + 16 bounds sum_a (|o_a| + (|t0| + |t1|) |d_a| +
+ * |i_a| + 2), as |i_a| <= |o_a| + |t0 d_a| + |ol_a| + 1.
+ * 1. The cubic.  vx_cell_poly's k_i are sums of products of c, iso, ol and
+ *    d, each through at most 12 roundings, so |K(s) - (F(ol + s d) - iso)|
+ *    <= gamma_12 A(s) for K(s) = sum k_i s^i evaluated exactly, where A(s)
+ *    is the same nested interpolation with every quantity made absolute:
+ *    A(s) <= M prod_a (1 + 2 (|ol_a| + s |d_a|)) + |iso| <= M W + |iso|
+ *    for 0 <= s <= len (each level at most (1 + 2 R) times the one below,
+ *    as |D| <= 2 M).  k0 = K(0) exactly; b3, vx_cell_sign_bound's last
+ *    Bernstein coefficient, is within 8 u S <= 8 u (1 + gamma_12)(M W +
+ *    |iso|) of K(len) (S = sum |k_i| len^i).
+ * 2. The points.  ol_a = fl(fl(o_a + fl(t0 d_a)) - i_a) is within 3 u X of
+ *    P_a(t0); face_field's in-face coordinates at t0 are the same
+ *    expression; at t1 they are within 3 u X of P(t1), and q1 within 9 u X
+ *    of it (len = fl(t1 - t0), and the roundings of ol + len d).  A face
+ *    value takes its in-face coordinates clamped to [0, 1] and the face
+ *    axis at its side (0 or 1): its point lies within D + 12 u X (1-norm)
+ *    of the computed q, D = |q_e - side| on the face's axis e plus out(q_b)
+ *    on the other two (D0, D1 add out on the face's axis too); inside (no
+ *    face) it is within 6 u X of q.
+ * 3. Lipschitz.  On the box of coordinates |z_a| <= R_a + 1 that holds
+ *    both points, |dF/dz_a| <= 2 M (3 + 2 R_b)(3 + 2 R_c) <= M W.
+ * 4. The value.  A face value is the bilinear interpolation of its four
+ *    corners at in-face coordinates in [0, 1] (within gamma_4 3 M of the
+ *    exact one, and its clamp into the corners' range only moves it
+ *    towards the exact value); the trilinear inside is within gamma_9 M W
+ *    of F at its computed point.  So |(end value - iso) - k0| and
+ *    |(end value - iso) - b3| are at most (gamma_12 + 8 u + 2 gamma_9)
+ *    (M W + |iso|) + M W (D + 24 u X) < 2^-47 (M W + |iso|) X + M W D,
+ *    below e + 4 M W D, e = 2^-40 (1024 M + |iso|) X + 2^-1000 (the last
+ *    term covers gradual underflow, at most 2^-1074 an operation), with
+ *    room for the roundings of e itself.  Where |k0| and |b3| exceed
+ *    their bounds, the end values minus iso are nonzero and of k0's and
+ *    b3's signs, which vx_cell_sign_bound's nonzero answer says are its
+ *    own (its b0 is k0, its b3 is b3).  end_pos is the sign of the end value minus iso (face_pos
+ *    answers only where the corners decide it), so the answer is that of
+ *    end_pos at both ends.  Overflow or NaN anywhere fails the test. */
+static inline int
+ends_certain(const iso_ctx *x, const vx_leaf_visit *v, const double ol[3],
+    double len, double k0, double b3, double iso)
+{
+	/* lo..hi holds every corner (a leaf's min and max; +-Inf fails) */
+	double m = fabs((double)v->lo) > fabs((double)v->hi) ?
+	    fabs((double)v->lo) : fabs((double)v->hi);
+	double d0 = 0, d1 = 0, e;
+	int a;
+
+	/* the face's axis picked by a product, not a branch on the axis
+	 * (which varies from cell to cell) */
+	for (a = 0; a < 3; a++) {
+		double q1 = ol[a] + len * x->d[a];
+
+		d0 += outside(ol[a]) + onehot[v->entry_axis + 1][a] *
+		    fabs(ol[a] - v->entry_side);
+		d1 += outside(q1) + onehot[v->exit_axis + 1][a] *
+		    fabs(q1 - v->exit_side);
+	}
+	e = 0x1p-40 * (1024 * m + fabs(iso)) * (x->xs0 + (2 * fabs(v->t0) +
+	    fabs(v->t1)) * x->dmag) + 0x1p-1000;
+	m *= 4096;
+	return d0 < 0.25 && d1 < 0.25 && fabs(k0) > e + m * d0 &&
+	    fabs(b3) > e + m * d1;
+}
+
+/* no_root: nonzero when vx_cell_first_root(k, 0, len, f0, f1, any solver)
+ * is certainly a miss (vx_cell_sign_bound, and both ends of that sign:
+ * from the cubic where ends_certain vouches for it (2), else from the
+ * faces (1)), so the call and perhaps the end values can be skipped. */
 static int
 no_root(ends *E, const iso_ctx *x, const vx_leaf_visit *v,
-    const double k[4], double len, double iso)
+    const double ol[3], const double k[4], double len, double iso)
 {
-	int sg = vx_cell_sign_bound(k, len);
+	double b3;
+	int sg = vx_cell_sign_bound_b3(k, len, &b3);
 
 	if (sg == 0)
 		return 0;
+	if (!x->tr->face_ends && ends_certain(x, v, ol, len, k[0], b3, iso))
+		return 2;
 	sg = sg > 0;
 	return end_pos(E, x, v, 0, iso) == sg && end_pos(E, x, v, 1, iso) == sg;
 }
@@ -179,14 +283,17 @@ iso_roots(ends *E, iso_ctx *x, const vx_leaf_visit *v, const double ol[3],
 {
 	vx_iso_stats *st = x->st;
 	double iso = x->iso[s], sa = 0, fa, f1, r, k[4];
-	int n, kind, rc;
+	int n, kind, rc, nr;
 
 	if (!(v->lo <= iso && iso <= v->hi))
 		return 0;
 	vx_cell_poly(v->c, ol, x->d, iso, k);
-	if (no_root(E, x, v, k, len, iso)) {
-		if (st)
+	if ((nr = no_root(E, x, v, ol, k, len, iso)) != 0) {
+		if (st) {
 			st->roots++;   /* a root query, missed */
+			st->bounded++;
+			st->certified += nr == 2;
+		}
 		return 0;
 	}
 	fa = end_field(E, x, v, 0) - iso;
@@ -291,6 +398,8 @@ iso_start(iso_ctx *x, const vx_iso_tracer *tr, const double o[3],
 	x->fn = fn;
 	x->ctx = ctx;
 	x->st = st;
+	x->xs0 = 2 * (fabs(o[0]) + fabs(o[1]) + fabs(o[2])) + 16;
+	x->dmag = fabs(d[0]) + fabs(d[1]) + fabs(d[2]);
 	if (st)
 		st->rays++;
 	return x->niso > 0;

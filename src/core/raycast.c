@@ -1146,6 +1146,8 @@ add_local(vx_raycast_stats *st, const rc_local *L, double *cyc)
 	st->shadow += L->shadow;
 	st->cells += L->st.cells + L->tst.tets;
 	st->roots += L->st.roots;
+	st->bounded += L->st.bounded;
+	st->certified += L->st.certified;
 	st->hits += L->st.hits + L->tst.hits;
 	st->leaves += L->tst.leaves;
 	st->entries += L->tst.entries;

@@ -32,6 +32,10 @@ typedef struct vx_iso_tracer {
 	vx_cellmask *mask;       /* NULL, or m's cell mask for the isovalues
 	                            traced (vx_macro.h): the same hits,
 	                            fewer samples read */
+	int face_ends;           /* 1: a grazed cell's end values always
+	                            from its faces, never certified from its
+	                            cubic (tests: the certificate's
+	                            reference; the same hits either way) */
 } vx_iso_tracer;
 
 typedef struct vx_iso_hit {
@@ -49,6 +53,10 @@ typedef struct vx_iso_stats {
 	uint64_t cells;          /* cells handed to the kernel */
 	uint64_t roots;          /* root queries: vx_cell_first_root calls
 	                            and exact early-outs (vx_cell_sign_bound) */
+	uint64_t bounded;        /* of the root queries, misses settled by
+	                            the cubic's sign bound */
+	uint64_t certified;      /* of those, settled without the face
+	                            values (the cubic vouched for its ends) */
 	uint64_t hits;           /* hits reported */
 	uint64_t nonfinite;      /* cells skipped for a non-finite corner */
 	uint64_t cyc_isect;      /* clock ticks inside the cell kernel (only

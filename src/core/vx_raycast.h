@@ -72,6 +72,10 @@ typedef struct vx_raycast_stats {
 	                                    cells = tets tested (segment
 	                                    computed), hits = crossings,
 	                                    roots 0) */
+	uint64_t bounded, certified;     /* roots: misses settled by the
+	                                    cubic's sign bound, and of them
+	                                    those settled without the face
+	                                    values (vx_iso_stats) */
 	uint64_t leaves, entries;        /* meshes: leaf lists searched, and
 	                                    their entries scanned */
 	int mesh;                        /* 1: the source was a mesh */

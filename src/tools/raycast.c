@@ -176,9 +176,13 @@ print_stats(const vx_raycast_stats *st, const vx_macro *m, int w, int h,
 		    (unsigned long long)st->shaded);
 	else
 		fprintf(stderr, "raycast: cells visited %llu (%.1f per ray), "
-		    "roots solved %llu, hits %llu, shaded %llu, non-finite "
-		    "cells %llu\n", (unsigned long long)st->cells,
-		    (double)st->cells / rays, (unsigned long long)st->roots,
+		    "roots solved %llu (%llu ruled out by the cubic's sign "
+		    "bound, %llu of them without the face values), hits %llu, "
+		    "shaded %llu, non-finite cells %llu\n",
+		    (unsigned long long)st->cells, (double)st->cells / rays,
+		    (unsigned long long)st->roots,
+		    (unsigned long long)st->bounded,
+		    (unsigned long long)st->certified,
 		    (unsigned long long)st->hits, (unsigned long long)st->shaded,
 		    (unsigned long long)st->nonfinite);
 	if (!st->mesh && st->mask_bytes > 0)

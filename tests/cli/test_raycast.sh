@@ -76,6 +76,10 @@ check_close "texture effect off: the material color" "$(px img "$T/t2.vx" color 
 raycast --iso 0.5 --size 65x65 --set "$cam" --stats "$T/sph.vx" 2>"$T/st" >/dev/null
 check_eq "stats: primary rays" "$(sed -n 's/.*rays: \([0-9]*\) primary.*/\1/p' "$T/st")" 4225
 check "stats: time shares" grep -q 'traversal [0-9]*%, intersection [0-9]*%, shading [0-9]*%' "$T/st"
+# roots solved N (B ruled out by the sign bound, C of them without the
+# face values): C <= B <= N, and on the sphere's grazed cells C > 0
+rts=$(sed -n 's/.*roots solved \([0-9]*\) (\([0-9]*\) ruled out by the cubic.s sign bound, \([0-9]*\) of them without the face values).*/\1 \2 \3/p' "$T/st")
+check "stats: bound misses, settled without faces" sh -c "set -- $rts; [ \$# -eq 3 ] && [ \$3 -gt 0 ] && [ \$3 -le \$2 ] && [ \$2 -le \$1 ]"
 
 # 5. the plan: only what the scene calls for
 raycast --iso 0.5 -n "$T/sph.vx" 2>"$T/ex"
