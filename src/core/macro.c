@@ -2549,11 +2549,18 @@ boxes_walk(const vx_macro *m, const vx_grid *g, vx_cellmask *mk, ray *r,
 	int np = 0, walked = 0, have_sl = 0, se = -1, rc = 0;
 	size_t k = 0;
 
+	int use_em = lbs != NULL && pk->use_em;
+	uint64_t rem = use_em ? pk->em : 0;
+
 	if (!ray_clip(r, m, m->nlev, vals, nvals, &ta, &tb))
 		return 0;
 	for (;;) {
-		for (; k < nbox; k++) {
-			uint32_t j = ix != NULL ? ix[k] : (uint32_t)k;
+		for (; use_em ? rem != 0 : k < nbox; k++) {
+			uint32_t j;
+
+			if (use_em)
+				k = (size_t)__builtin_ctzll(rem);
+			j = ix != NULL ? ix[k] : (uint32_t)k;
 			const vx_cellbox *bx = box + j;
 			double tin, tout;
 			bkey y;
@@ -2562,7 +2569,9 @@ boxes_walk(const vx_macro *m, const vx_grid *g, vx_cellmask *mk, ray *r,
 			if ((lbs != NULL ? lbs[k] : bx->lb) > (np > 0 ?
 			    pend[np - 1].t : hz.t))
 				break;
-			if (lbs != NULL ? !(pk->pix[k] >> pk->bit & 1) :
+			if (use_em)
+				rem &= rem - 1;
+			else if (lbs != NULL ? !(pk->pix[k] >> pk->bit & 1) :
 			    !fp_holds(bx, q))
 				continue;
 			/* entered (a box entered after the start: before the
@@ -2598,6 +2607,7 @@ boxes_walk(const vx_macro *m, const vx_grid *g, vx_cellmask *mk, ray *r,
 			fl = hz;
 			hz.t = INFINITY;
 			k = 0;
+			rem = use_em ? pk->em : 0;
 			continue;
 		}
 		np--;

@@ -12,6 +12,9 @@
 #include <time.h>
 
 #include "vx_camera.h"
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -62,12 +65,20 @@ typedef struct rc_shared {
 
 /* What each thread owns: on cache lines of its own (the counters are
  * written per cell; neighbours sharing a line would slow both threads). */
+#define EM_SLOTS 4   /* a tile's bins (16 x 16 pixels: 4) */
+
 typedef struct rc_local {
 	_Alignas(64) vx_iso_stats st;
 	vx_tettrace_stats tst;
 	uint64_t primary, shadow, shaded, covered, binned;
 	uint64_t cyc_total, cyc_shade, cyc_shadow;
 	double busy;                  /* seconds in tiles */
+	/* the entry masks of the bins last walked (bin_em): em[s][p], bit
+	 * k: the bin's k-th entry holds pixel p; em_bin[s]: the bin, -1
+	 * none; em_ok[s]: 0 for a bin of more than 64 entries */
+	int64_t em_bin[EM_SLOTS];
+	int em_ok[EM_SLOTS], em_next;
+	uint64_t em[EM_SLOTS][BIN * BIN];
 } rc_local;
 
 /* box_sort: *bx[0..n) in order of lb, ties in their given order (a stable
@@ -986,6 +997,76 @@ bin_of(const rc_shared *S, double px, double py, int64_t *bin)
 	return (int)(bin_row(S, bx, by, (int)py) >> ((int)px - bx * BIN) & 1);
 }
 
+/* em_make: em[p], bit k set where the k-th entry of bin's list (of n <=
+ * 64 entries, pixel bits mk[0..n)) holds pixel p: the 64 x n bit matrix
+ * transposed, 16 entries at a time where SSE2 has movemask (a byte of
+ * mk per row of the bin; bit x of row y's byte is pixel y BIN + x) */
+static void
+em_make(const uint64_t *mk, int64_t n, uint64_t em[BIN * BIN])
+{
+	memset(em, 0, BIN * BIN * sizeof *em);
+#if defined(__SSE2__) && BIN == 8
+	for (int64_t k0 = 0; k0 < n; k0 += 16) {
+		_Alignas(16) unsigned char t[BIN][16];
+		int nk = n - k0 < 16 ? (int)(n - k0) : 16;
+
+		memset(t, 0, sizeof t);
+		for (int k = 0; k < nk; k++)
+			for (int y = 0; y < BIN; y++)
+				t[y][k] = (unsigned char)(mk[k0 + k] >> BIN * y);
+		for (int y = 0; y < BIN; y++) {
+			__m128i v = _mm_load_si128((const __m128i *)(const void *)
+			    t[y]);
+
+			/* bit x of each byte to its top, for movemask (a
+			 * 64-bit shift: what crosses into the next byte lands
+			 * below its top) */
+			for (int x = 0; x < BIN; x++)
+				em[y * BIN + x] |= (uint64_t)(unsigned)
+				    _mm_movemask_epi8(_mm_slli_epi64(v,
+				    BIN - 1 - x)) << k0;
+		}
+	}
+#else
+	for (int64_t k = 0; k < n; k++)
+		for (uint64_t b = mk[k]; b != 0; b &= b - 1) {
+			int p = 0;
+
+			while (!(b >> p & 1))
+				p++;
+			em[p] |= (uint64_t)1 << k;
+		}
+#endif
+}
+
+/* em_forget: L keeps no entry masks */
+static void
+em_forget(rc_local *L)
+{
+	for (int s = 0; s < EM_SLOTS; s++)
+		L->em_bin[s] = -1;
+}
+
+/* bin_em: L's entry masks of bin (its list at t, n entries), made if not
+ * kept; NULL for more than 64 entries */
+static const uint64_t *
+bin_em(const rc_shared *S, rc_local *L, int64_t bin, int64_t t, int64_t n)
+{
+	int s;
+
+	for (s = 0; s < EM_SLOTS; s++)
+		if (L->em_bin[s] == bin)
+			return L->em_ok[s] ? L->em[s] : NULL;
+	s = L->em_next;
+	L->em_next = (s + 1) % EM_SLOTS;
+	L->em_bin[s] = bin;
+	L->em_ok[s] = n <= 64;
+	if (!L->em_ok[s])
+		return NULL;
+	em_make(S->binmk + t, n, L->em[s]);
+	return L->em[s];
+}
+
 /* pixel: one camera sample; returns 1 if it hit a surface. */
 static int
 pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
@@ -1025,9 +1106,14 @@ pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
 			int bx = (int)(bin % S->nbx), by = (int)(bin / S->nbx);
 			uint64_t walked = L->st.trav.rays;
 			/* the entries' pixel bits and lbs, read in order */
+			int pb = ((int)py - by * BIN) * BIN + (int)px - bx * BIN;
+			const uint64_t *em = bin_em(S, L, bin, t,
+			    S->binoff[bin + 1] - t);
+			/* the entries that hold the pixel, as a mask (lists
+			 * of at most 64) */
 			const vx_boxpick pk = { { (int32_t)px, (int32_t)py },
-			    S->binlb + t, S->binmk + t,
-			    ((int)py - by * BIN) * BIN + (int)px - bx * BIN };
+			    S->binlb + t, S->binmk + t, pb, em != NULL,
+			    em != NULL ? em[pb] : 0 };
 
 			vx_iso_trace_boxes(&S->tr, oi, di, S->binbox,
 			    S->binlist + t, (size_t)(S->binoff[bin + 1] - t), &pk,
@@ -1258,6 +1344,7 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	for (k = 0; k < nthr; k++) {
 		loc[k].st.timing = o->timing;
 		loc[k].tst.timing = o->timing;
+		em_forget(&loc[k]);
 	}
 	/* bins of the boxes that hold the bracketing cells (a volume walked
 	 * hierarchically).  Blocks of cells are binned only for macrocells
@@ -1303,6 +1390,8 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 			bins_drop(&S);
 			if ((rc = bins_build(&S, cam, mask, e)) != 0)
 				goto fail;
+			for (k = 0; k < nthr; k++)
+				em_forget(&loc[k]);   /* lists made again */
 			clock_gettime(CLOCK_MONOTONIC, &tb1);
 			st->bin_seconds += (double)(tb1.tv_sec - tb0.tv_sec) +
 			    1e-9 * (double)(tb1.tv_nsec - tb0.tv_nsec);

@@ -314,12 +314,17 @@ typedef struct vx_cellbox {
  * entry's footprint holds pixel (x, y); the same answer as the fp test for
  * q in the bin).  lb (with pix): the entries' lb in the list's order, so
  * that a query reads its list front to back and each box only when its
- * footprint holds q. */
+ * footprint holds q.  use_em (with pix, a list of at most 64 entries): em
+ * says which entries those are, bit k for the k-th (bit `bit` of pix[k]),
+ * and the query reads only them (the same entries in the same order: no
+ * other entry's lb, pix or box is read, and no branch on its bit). */
 typedef struct vx_boxpick {
 	int32_t q[2];
 	const double *lb;        /* lb[k] = the k-th entry's box's lb */
 	const uint64_t *pix;     /* NULL, or the k-th entry's query points */
 	int bit;                 /* q's bit in pix */
+	int use_em;              /* 1: em lists q's entries (at most 64) */
+	uint64_t em;             /* bit k: the k-th entry's pix holds q */
 } vx_boxpick;
 
 /* vx_macro_boxes_entry: the earliest time the ray o + t d (leaf

@@ -1281,8 +1281,11 @@ cellmask_boxes_cover_bits(void **state)
  * before the earliest entry visits exactly the leaves (same data, same
  * order) of the walk from the segment's start, and none when there is no
  * entry; so does vx_macro_traverse_boxes in one call, over the blocks with
- * and without footprints; boxes in any order with lb -Inf give the same
- * time as sorted ones with true lower bounds.  Rays: random, through
+ * and without footprints, footprints as pixel bits, and (lists of at most
+ * 64) the query's entries as a mask, with the lists also sorted by this
+ * ray's entry times so that the scan stops and resumes (consuming an entry
+ * before its lb test: caught here); boxes in any order with lb -Inf give
+ * the same time as sorted ones with true lower bounds.  Rays: random, through
  * macrocell corners and edges along axes (ties), and from inside the
  * volume.  Oracle: the walk from 0 (from just before the entry where
  * footprints leave boxes out). */
@@ -1298,11 +1301,46 @@ in_boxes(const int64_t i[3], const vx_cellbox *b, size_t n)
 	return 0;
 }
 
+/* em_sorted: id, lbs and pix (n entries, id[i] = i on entry) sorted by
+ * lbs = ray (o, d)'s entry time into box id[i] less a margin (slabs:
+ * a lower bound of the walk's entry, within rounding of it) */
+static void
+em_sorted(const vx_cellbox *bx, size_t n, const double o[3],
+    const double d[3], uint32_t *id, double *lbs, uint64_t *pix)
+{
+	for (size_t i = 0; i < n; i++) {
+		double t = -INFINITY;
+
+		for (int a = 0; a < 3; a++)
+			if (d[a] != 0) {
+				double p = (double)(d[a] > 0 ? bx[id[i]].lo[a] :
+				    bx[id[i]].hi[a]);
+				double ta = (p - o[a]) / d[a];
+
+				t = ta > t ? ta : t;
+			}
+		lbs[i] = t - 1e-9 * (1 + fabs(t));
+	}
+	for (size_t i = 1; i < n; i++)
+		for (size_t j = i; j > 0 && lbs[j - 1] > lbs[j]; j--) {
+			double tl = lbs[j];
+			uint32_t ti = id[j];
+			uint64_t tp = pix[j];
+
+			lbs[j] = lbs[j - 1];
+			id[j] = id[j - 1];
+			pix[j] = pix[j - 1];
+			lbs[j - 1] = tl;
+			id[j - 1] = ti;
+			pix[j - 1] = tp;
+		}
+}
+
 static void
 boxes_entry_keeps_visits(void **state)
 {
 	uint64_t s = 777;
-	int64_t entered = 0, none = 0;
+	int64_t entered = 0, none = 0, em_tested = 0;
 
 	(void)state;
 	for (int k = 0; k < 24; k++) {
@@ -1480,7 +1518,7 @@ boxes_entry_keeps_visits(void **state)
 
 				rec_init(&h5, m.dims[0]);
 				rec_init(&h6, m.dims[0]);
-				vx_boxpick pk = { { q[0], q[1] }, NULL, NULL, 0 };
+				vx_boxpick pk = { { q[0], q[1] }, NULL, NULL, 0, 0, 0 };
 
 				ok &= vx_macro_traverse_boxes(&m, &g, &mk, sbx, NULL,
 				    nsbx, &pk, o, d, vals, nv, collect, &h5, NULL) == 0;
@@ -1521,6 +1559,42 @@ boxes_entry_keeps_visits(void **state)
 					    id, nsbx, &pk, o, d, vals, nv, collect,
 					    &h7, NULL) == 0;
 					ok &= h7.n == h5.n && same_prefix(&h7, &h5, 0);
+					/* and with q's entries as a mask (raycast's
+					 * lists of at most 64): the same walk */
+					if (nsbx <= 64) {
+						rec h8;
+
+						pk.use_em = 1;
+						pk.em = 0;
+						for (size_t i = 0; i < nsbx; i++)
+							pk.em |= (pix[i] >> pk.bit & 1) << i;
+						rec_init(&h8, m.dims[0]);
+						ok &= vx_macro_traverse_boxes(&m, &g, &mk,
+						    sbx, id, nsbx, &pk, o, d, vals, nv,
+						    collect, &h8, NULL) == 0;
+						ok &= h8.n == h5.n &&
+						    same_prefix(&h8, &h5, 0);
+						/* with lbs that are this ray's entry
+						 * times (less a margin), the list sorted
+						 * by them: the scan stops early and goes
+						 * on after each box, both ways */
+						em_sorted(sbx, nsbx, o, d, id, lbs, pix);
+						pk.em = 0;
+						for (size_t i = 0; i < nsbx; i++)
+							pk.em |= (pix[i] >> pk.bit & 1) << i;
+						for (int w = 0; w < 2; w++) {
+							rec_init(&h8, m.dims[0]);
+							pk.use_em = w;
+							ok &= vx_macro_traverse_boxes(&m, &g,
+							    &mk, sbx, id, nsbx, &pk, o, d,
+							    vals, nv, collect, &h8, NULL) == 0;
+							ok &= h8.n == h5.n &&
+							    same_prefix(&h8, &h5, 0);
+							free(h8.v);
+						}
+						pk.use_em = 0;
+						em_tested++;
+					}
 					free(h7.v);
 					free(pix);
 					free(lbs);
@@ -1555,7 +1629,7 @@ boxes_entry_keeps_visits(void **state)
 		vx_macro_free(&m);
 		vx_grid_free(&g);
 	}
-	assert_true(entered > 200 && none > 50);
+	assert_true(entered > 200 && none > 50 && em_tested > 200);
 }
 
 /* stop_at: a visitor that records and stops at visit number r->cap */
