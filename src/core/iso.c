@@ -222,9 +222,10 @@ static const double onehot[4][3] = {
  *    room for the roundings of e itself.  Where |k0| and |b3| exceed
  *    their bounds, the end values minus iso are nonzero and of k0's and
  *    b3's signs, which vx_cell_sign_bound's nonzero answer says are its
- *    own (its b0 is k0, its b3 is b3).  end_pos is the sign of the end value minus iso (face_pos
- *    answers only where the corners decide it), so the answer is that of
- *    end_pos at both ends.  Overflow or NaN anywhere fails the test. */
+ *    own (its b0 is k0, its b3 is b3).  end_pos is the sign of the end
+ *    value minus iso (face_pos answers only where the corners decide it),
+ *    so the answer is that of end_pos at both ends.  Overflow or NaN
+ *    anywhere fails the test. */
 static inline int
 ends_certain(const iso_ctx *x, const vx_leaf_visit *v, const double ol[3],
     double len, double k0, double b3, double iso)

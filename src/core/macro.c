@@ -2548,7 +2548,7 @@ boxes_walk(const vx_macro *m, const vx_grid *g, vx_cellmask *mk, ray *r,
 	int64_t sl[3] = { 0, 0, 0 };
 	int np = 0, walked = 0, have_sl = 0, se = -1, rc = 0;
 	size_t k = 0;
-
+	/* with the query's entries as a mask: the entries not yet read */
 	int use_em = lbs != NULL && pk->use_em;
 	uint64_t rem = use_em ? pk->em : 0;
 
@@ -2556,15 +2556,16 @@ boxes_walk(const vx_macro *m, const vx_grid *g, vx_cellmask *mk, ray *r,
 		return 0;
 	for (;;) {
 		for (; use_em ? rem != 0 : k < nbox; k++) {
+			const vx_cellbox *bx;
+			double tin, tout;
 			uint32_t j;
+			bkey y;
+			int e, i;
 
 			if (use_em)
 				k = (size_t)__builtin_ctzll(rem);
 			j = ix != NULL ? ix[k] : (uint32_t)k;
-			const vx_cellbox *bx = box + j;
-			double tin, tout;
-			bkey y;
-			int e, i;
+			bx = box + j;
 
 			if ((lbs != NULL ? lbs[k] : bx->lb) > (np > 0 ?
 			    pend[np - 1].t : hz.t))

@@ -63,10 +63,10 @@ typedef struct rc_shared {
 
 #define BIN 8
 
+#define EM_SLOTS 4   /* entry masks kept: a tile's bins (16 x 16 pixels) */
+
 /* What each thread owns: on cache lines of its own (the counters are
  * written per cell; neighbours sharing a line would slow both threads). */
-#define EM_SLOTS 4   /* a tile's bins (16 x 16 pixels: 4) */
-
 typedef struct rc_local {
 	_Alignas(64) vx_iso_stats st;
 	vx_tettrace_stats tst;

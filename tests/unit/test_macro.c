@@ -1574,6 +1574,7 @@ boxes_entry_keeps_visits(void **state)
 						    collect, &h8, NULL) == 0;
 						ok &= h8.n == h5.n &&
 						    same_prefix(&h8, &h5, 0);
+						free(h8.v);
 						/* with lbs that are this ray's entry
 						 * times (less a margin), the list sorted
 						 * by them: the scan stops early and goes
