@@ -233,7 +233,7 @@ ends_certain(const iso_ctx *x, const vx_leaf_visit *v, const double ol[3],
 	/* lo..hi holds every corner (a leaf's min and max; +-Inf fails) */
 	double m = fabs((double)v->lo) > fabs((double)v->hi) ?
 	    fabs((double)v->lo) : fabs((double)v->hi);
-	double d0 = 0, d1 = 0, e;
+	double d0 = 0, d1 = 0, e, lip;
 	int a;
 
 	/* the face's axis picked by a product, not a branch on the axis
@@ -248,9 +248,9 @@ ends_certain(const iso_ctx *x, const vx_leaf_visit *v, const double ol[3],
 	}
 	e = 0x1p-40 * (1024 * m + fabs(iso)) * (x->xs0 + (2 * fabs(v->t0) +
 	    fabs(v->t1)) * x->dmag) + 0x1p-1000;
-	m *= 4096;
-	return d0 < 0.25 && d1 < 0.25 && fabs(k0) > e + m * d0 &&
-	    fabs(b3) > e + m * d1;
+	lip = 4096 * m;   /* 4 M W, W < 1024 */
+	return d0 < 0.25 && d1 < 0.25 && fabs(k0) > e + lip * d0 &&
+	    fabs(b3) > e + lip * d1;
 }
 
 /* no_root: nonzero when vx_cell_first_root(k, 0, len, f0, f1, any solver)

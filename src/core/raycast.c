@@ -1029,13 +1029,8 @@ em_make(const uint64_t *mk, int64_t n, uint64_t em[BIN * BIN])
 	}
 #else
 	for (int64_t k = 0; k < n; k++)
-		for (uint64_t b = mk[k]; b != 0; b &= b - 1) {
-			int p = 0;
-
-			while (!(b >> p & 1))
-				p++;
-			em[p] |= (uint64_t)1 << k;
-		}
+		for (uint64_t b = mk[k]; b != 0; b &= b - 1)
+			em[__builtin_ctzll(b)] |= (uint64_t)1 << k;
 #endif
 }
 
