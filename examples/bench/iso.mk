@@ -4,6 +4,7 @@
 #   make -C examples/bench iso            every table below into results/ (RUNS=5 rounds)
 #   make -C examples/bench iso ISO_ONLY=frames       one part: frames, latency, table3, sizes, pictures
 #   make -C examples/bench iso ISO_CASES="ch2:127.5" RUNS=1   a quick look
+#   make -C examples/bench corepair RUNS=9   alone against side by side (a shared core?)
 #
 # The picture: examples/scenes/iso-headlight.scn (one white Lambert surface,
 # a headlight, no ambient: what embree_render draws), 512x512, with the
@@ -33,7 +34,7 @@ ISOBENCH := $(OUT)/isobench
 ch2_FACE := front
 vhf_FACE := back
 
-.PHONY: iso iso-clean
+.PHONY: iso iso-clean corepair
 
 $(ISOBENCH): isobench.c $(VX_LIB)
 	@mkdir -p $(@D)
@@ -57,6 +58,12 @@ iso: $(ISOBENCH) $(EMBREE) $(foreach d,$(ISO_DATASETS),$(OUT)/$(d).nrrd $(OUT)/$
 	    $(OUT)/$(d)-l.vx $($(d)_FACE) "$($(d)_ISOCAM)") \
 	  $(foreach c,$(ISO_CASES),--case $(c)) $(foreach c,$(ISO_T3_CASES),--t3-case $(c))
 	cd $(RESULTS) && cat $$(ls frames.md latency.md table3.md sizes.md pictures.md 2>/dev/null) > iso.md
+
+# alone against side by side (coreprobe's two loops, voxlux, Embree): whether
+# the two vCPUs share a core's execution units (RESULTS.md, Session 9); after
+# `iso` has made the mesh
+corepair: $(ISOBENCH) $(EMBREE) $(OUT)/ch2-b.vx
+	sh corepair.sh $(RUNS)
 
 iso-clean:
 	rm -rf $(RESULTS) $(OUT)/iso $(OUT)/isobench $(OUT)/*-b.vx $(OUT)/*-l.vx
