@@ -373,8 +373,11 @@ vx_cell_first_root(const double k[4], double t0, double t1, double f0,
  *    are b0 = a0, b1 = a0 + a1/3, b2 = a0 + (2 a1 + a2)/3, b3 = a0 + a1 +
  *    a2 + a3, and f(t) = sum b_i B_i(s) with B_i >= 0, sum B_i = 1 on
  *    [0, 1]: f(t) >= min b_i and <= max b_i for t in [0, L].  Each b_i is
- *    computed here with at most 7 roundings of quantities bounded by S, so
- *    |b_i computed - b_i| <= 8 u S; S computed >= (1 - gamma_7) S.
+ *    computed here with at most 7 roundings of quantities bounded by S (the
+ *    thirds are products with 1/3 rounded, that rounding counted: b2's
+ *    longest chain is a2's two, the sum's, the constant's, the product's
+ *    and the last sum's: 6), so |b_i computed - b_i| <= 8 u S; S computed
+ *    >= (1 - gamma_7) S.
  * 2. The test asks min |b_i computed| > 2^-38 S computed, all b_i of one
  *    sign; so the exact b_i, hence f on [0, L], have that sign with
  *    |f(t)| >= (2^-38 (1 - gamma_7) - 8 u) S > (2^-40 + 2^-48) S.
