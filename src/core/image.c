@@ -66,6 +66,24 @@ vx_image_alloc(vx_image *img, int w, int h, int nc, vx_err *e)
 }
 
 int
+vx_image_alloc_uninit(vx_image *img, int w, int h, int nc, vx_err *e)
+{
+	int rc;
+
+	vx_image_init(img);
+	if ((rc = check_size(w, h, nc, e)) != 0)
+		return rc;
+	img->px = vx_malloc((size_t)w * (size_t)h * (size_t)nc *
+	    sizeof(float), e);
+	if (img->px == NULL)
+		return VX_ENOMEM;
+	img->w = w;
+	img->h = h;
+	img->nc = nc;
+	return 0;
+}
+
+int
 vx_image_copy(vx_image *dst, const vx_image *src, vx_err *e)
 {
 	int rc;

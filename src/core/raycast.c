@@ -1290,16 +1290,21 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	if (S.niso == 0)
 		return vx_err_set(e, VX_EDATA, "raycast: no surface to draw "
 		    "(give --iso or a surface line in the scene)");
-	if ((rc = vx_image_alloc(color, cam->w, cam->h, 4, e)) != 0)
+	/* not cleared: the tiles write every pixel (empty runs and
+	 * image_pixel; the sparse pass's centres), and a clear of 4 MB would
+	 * be serial work in every frame */
+	if ((rc = vx_image_alloc_uninit(color, cam->w, cam->h, 4, e)) != 0)
 		return rc;
 	snprintf(color->name, sizeof color->name, "color");
 	if (depth != NULL) {
-		if ((rc = vx_image_alloc(depth, cam->w, cam->h, 1, e)) != 0)
+		if ((rc = vx_image_alloc_uninit(depth, cam->w, cam->h, 1,
+		    e)) != 0)
 			return rc;
 		snprintf(depth->name, sizeof depth->name, "depth");
 	}
 	if (normal != NULL) {
-		if ((rc = vx_image_alloc(normal, cam->w, cam->h, 3, e)) != 0)
+		if ((rc = vx_image_alloc_uninit(normal, cam->w, cam->h, 3,
+		    e)) != 0)
 			return rc;
 		snprintf(normal->name, sizeof normal->name, "normal");
 	}

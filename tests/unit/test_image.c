@@ -66,18 +66,28 @@ alloc_limits(void **state)
 	size_t i;
 
 	(void)state;
-	for (i = 0; i < sizeof t / sizeof t[0]; i++) {
+	for (i = 0; i < 2 * sizeof t / sizeof t[0]; i++) {
+		/* the second pass: vx_image_alloc_uninit, the same limits
+		 * (its pixels are not read: they are not set) */
+		size_t k = i % (sizeof t / sizeof t[0]);
+		int zero = i < sizeof t / sizeof t[0];
 		vx_image img;
 		vx_err e = { 0, "" };
 
-		assert_int_equal(vx_image_alloc(&img, t[i].w, t[i].h, t[i].nc,
-		    &e), t[i].rc);
-		if (t[i].rc == 0) {
+		assert_int_equal((zero ? vx_image_alloc : vx_image_alloc_uninit)(
+		    &img, t[k].w, t[k].h, t[k].nc, &e), t[k].rc);
+		if (t[k].rc == 0) {
 			assert_non_null(img.px);
-			assert_true(img.px[vx_image_nvalue(&img) - 1] == 0);
+			assert_int_equal(vx_image_nvalue(&img),
+			    (size_t)t[k].w * (size_t)t[k].h * (size_t)t[k].nc);
+			if (zero)
+				assert_true(img.px[vx_image_nvalue(&img) - 1] ==
+				    0);
 			assert_string_equal(img.name, "image");
-		} else
+		} else {
 			assert_null(img.px);
+			assert_true(e.msg[0] != 0);
+		}
 		vx_image_free(&img);
 		vx_image_free(&img);   /* freeing twice is fine */
 	}
