@@ -2011,6 +2011,7 @@ mask_build(vx_cellmask *k, const vx_macro *m, const vx_grid *g, int64_t b)
 		return want == 2 ? k->bits + k->slot[b] : NULL;
 	mask_block(m, g, b, k->vals, k->nvals, k->bits + k->slot[b]);
 	atomic_store_explicit(&k->state[b], 2, memory_order_release);
+	atomic_fetch_add_explicit(&k->built, 1, memory_order_relaxed);
 	return k->bits + k->slot[b];
 }
 
@@ -2694,6 +2695,7 @@ vx_cellmask_free(vx_cellmask *k)
 	free(k->slot);
 	free((void *)k->state);
 	free(k->bits);
+	free(k->set);
 	vx_cellmask_init(k);
 }
 
@@ -2703,20 +2705,16 @@ vx_cellmask_bytes(const vx_cellmask *k)
 	if (k == NULL || !k->ready)
 		return 0;
 	return (size_t)k->nblock * (sizeof *k->slot + 1) +
+	    (size_t)k->nset * sizeof *k->set +
 	    (size_t)(k->nset * k->words) * sizeof *k->bits;
 }
 
 int64_t
 vx_cellmask_built(const vx_cellmask *k)
 {
-	int64_t i, n = 0;
-
 	if (k == NULL || !k->ready)
 		return 0;
-	for (i = 0; i < k->nblock; i++)
-		n += atomic_load_explicit(&k->state[i],
-		    memory_order_relaxed) == 2;
-	return n;
+	return atomic_load_explicit(&k->built, memory_order_relaxed);
 }
 
 int
@@ -2751,6 +2749,14 @@ vx_cellmask_build(vx_cellmask *k, const vx_macro *m, const vx_grid *g,
 	for (i = 0; i < nb; i++)
 		k->slot[i] = brackets(m->mm[1][2 * i], m->mm[1][2 * i + 1],
 		    vals, nvals) ? nset++ * words : -1;
+	if ((k->set = malloc((size_t)(nset > 0 ? nset : 1) *
+	    sizeof *k->set)) == NULL) {
+		vx_cellmask_free(k);
+		return vx_err_set(e, VX_ENOMEM, "cell mask: out of memory");
+	}
+	for (nset = 0, i = 0; i < nb; i++)
+		if (k->slot[i] >= 0)
+			k->set[nset++] = i;
 	/* calloc: pages of blocks never entered are never touched */
 	if (vx_mul_size(&bytes, (size_t)(nset > 0 ? nset : 1) *
 	    (size_t)words, sizeof *k->bits) != 0 ||

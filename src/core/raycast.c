@@ -472,9 +472,17 @@ bins_build(rc_shared *S, const vx_camera *cam, vx_cellmask *mask, vx_err *e)
 		if ((S->binbrk = malloc((size_t)(nb > 0 ? nb : 1) *
 		    sizeof *S->binbrk)) == NULL)
 			goto nomem;
-		for (nbr = 0, b = 0; b < nb; b++)
-			if (vx_macro_cell_brackets(m, 1, b, S->iso, S->niso))
-				S->binbrk[nbr++] = b;
+		if (mask != NULL && mask->ready) {
+			/* the mask's list: the same test (its values are
+			 * these isovalues), made once for all frames */
+			nbr = mask->nset;
+			memcpy(S->binbrk, mask->set, (size_t)nbr *
+			    sizeof *S->binbrk);
+		} else
+			for (nbr = 0, b = 0; b < nb; b++)
+				if (vx_macro_cell_brackets(m, 1, b, S->iso,
+				    S->niso))
+					S->binbrk[nbr++] = b;
 		if ((S->binmc = malloc((size_t)(nbr > 0 ? nbr : 1) *
 		    sizeof *S->binmc)) == NULL)
 			goto nomem;

@@ -246,6 +246,10 @@ typedef struct vx_cellmask {
 	                            bits, or -1 */
 	_Atomic unsigned char *state;  /* per level-1 macrocell: 0 bits not
 	                            built, 1 being built, 2 built */
+	_Atomic int64_t built;   /* macrocells in state 2 */
+	int64_t *set;            /* the nset bracketing macrocells, ascending
+	                            (made with the table: a renderer's frames
+	                            need not scan all nblock for them) */
 	uint64_t *bits;          /* leaf (x, y, z) of a macrocell, counted
 	                            from its low corner: bit x + w0 (y + w1 z),
 	                            w = m->width[1] */

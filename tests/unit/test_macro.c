@@ -859,10 +859,16 @@ cellmask_bits_brute_force(void **state)
 			for (int q = 0; q < nv; q++)
 				br |= blo <= vals[q] && vals[q] <= bhi;
 			assert_int_equal(em.slot[b] >= 0, br);
+			/* the list of set macrocells, ascending, both masks */
+			if (br) {
+				assert_int_equal(em.set[set], b);
+				assert_int_equal(lm.set[set], b);
+			}
 			set += br;
 		}
 		(void)check_mask_bits(&em, &m, &g, vals, nv);
 		assert_int_equal(em.nset, set);
+		assert_int_equal(vx_cellmask_built(&em), set);
 		/* walks build the lazy mask's blocks as they enter them */
 		for (int j = 0; j < 60; j++) {
 			double o[3], d[3];
@@ -877,11 +883,16 @@ cellmask_bits_brute_force(void **state)
 			    d, 0, INFINITY, vals, nv, collect, &r, NULL), 0);
 			free(r.v);
 		}
+		int64_t built = 0;
 		for (int64_t b = 0; b < nb[0] * nb[1] * nb[2]; b++)
-			if (lm.slot[b] >= 0 && lm.state[b] == 2)
+			if (lm.slot[b] >= 0 && lm.state[b] == 2) {
 				assert_memory_equal(lm.bits + lm.slot[b],
 				    em.bits + em.slot[b],
 				    (size_t)em.words * sizeof *em.bits);
+				built++;
+			}
+		/* the count kept as blocks are built: the states' count */
+		assert_int_equal(vx_cellmask_built(&lm), built);
 		vx_cellmask_free(&em);
 		vx_cellmask_free(&lm);
 		vx_macro_free(&m);
