@@ -145,7 +145,7 @@ main(int argc, char **argv)
 	vx_image color;
 	vx_raycast_stats rs;
 	double wall[MAXFRAMES], cpu[MAXFRAMES], tiles[MAXFRAMES];
-	double busy[MAXFRAMES], t0;
+	double busy[MAXFRAMES], bins[MAXFRAMES], t0;
 	FILE *f;
 
 	memset(&b, 0, sizeof b);
@@ -282,6 +282,7 @@ main(int argc, char **argv)
 		render(&b, &color, &rs, &wall[i], &cpu[i]);
 		tiles[i] = rs.tile_seconds;
 		busy[i] = rs.thread_seconds;
+		bins[i] = rs.bin_seconds;
 		if (i == 0 && pfm != NULL)
 			write_gray_pfm(pfm, &color);
 		vx_image_free(&color);
@@ -295,6 +296,7 @@ main(int argc, char **argv)
 	/* the tiles' wall time and the threads' time in them (vx_raycast_stats) */
 	printf("tile_ms %.3f\n", 1e3 * median(tiles, nframes));
 	printf("thread_ms %.3f\n", 1e3 * median(busy, nframes));
+	printf("bin_ms %.3f\n", 1e3 * median(bins, nframes));
 	printf("cellmask %s\nmask_bytes %llu\nmask_blocks %llu\nmask_set %llu\n"
 	    "mask_built %llu\n", rs.mask_bytes ? "on" : "off",
 	    (unsigned long long)rs.mask_bytes,

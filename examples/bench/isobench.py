@@ -137,6 +137,33 @@ class Bench:
         cmd = [self.a.embree, "-m", self.mesh(name, iso)] + d["cam"].split() + SIZE + extra
         return keys(run(cmd, self.log)[0])
 
+    def pair(self, cmds):
+        """Run two commands side by side (one per vCPU); their outputs as keys()."""
+        procs = [subprocess.Popen(c, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                  universal_newlines=True) for c in cmds]
+        outs = []
+        for c, p in zip(cmds, procs):
+            o, e = p.communicate()
+            self.log.write("$ " + " ".join(c) + " &\n" + o + e)
+            if p.returncode != 0:
+                sys.exit("isobench.py: failed (%d): %s\n%s" % (p.returncode, " ".join(c), e))
+            outs.append(keys(o))
+        self.log.flush()
+        return outs
+
+    def side_by_side(self, name, iso, F):
+        """Two 1-thread processes of each side by side: the mean of their frame
+        medians (ms), voxlux's and Embree's."""
+        d = self.data[name]
+        vc = [self.a.isobench, "--scene", self.scene, "--set", d["camline"], "--iso", iso,
+              "-j", "1", "-n", F, "--warm", "1", d["bricked"]]
+        v = self.pair([vc, vc])
+        ec = [self.a.embree, "-m", self.mesh(name, iso)] + d["cam"].split() + SIZE + [
+            "-j", "1", "-n", F, "-b", "1"]
+        e = self.pair([ec + ["-o", self.w(name, iso, "embree-pair%d.pfm" % k)] for k in (1, 2)])
+        return (statistics.mean(x["frame_ms"] for x in v),
+                statistics.mean(x["render_ms"] for x in e))
+
     def save(self, what, rows, md):
         with open(os.path.join(self.a.out, what + ".json"), "w") as f:
             json.dump(rows, f, indent=1)
@@ -167,11 +194,18 @@ class Bench:
                         mask_built=v["mask_built"], mask_blocks=v["mask_blocks"],
                         embree_ms=e["render_ms"], embree_cpu_ms=e["render_cpu_ms"],
                         vox_ms=v["frame_ms"], tile_ms=v.get("tile_ms"),
-                        thread_ms=v.get("thread_ms"),
+                        thread_ms=v.get("thread_ms"), bin_ms=v.get("bin_ms"),
                         vox_cpu_ms=v["frame_cpu_ms"], shares=[v.get("share_traverse"),
                                                               v.get("share_isect"),
                                                               v.get("share_shade")],
                         cells=v["cells"], roots=v["roots"], covered=v["covered"]))
+                    if j == "2":
+                        # the same minute's 1-thread frames run as two
+                        # processes side by side: what two threads could do
+                        # on this machine now, with no sharing between them
+                        pv, pe = self.side_by_side(name, iso, F)
+                        rows["%s:%s" % (name, iso)]["j2"][-1].update(
+                            pair_vox_ms=pv, pair_embree_ms=pe)
                     print("round %d %s %s j%s: voxlux %.1f ms, embree %.1f ms" % (
                         r + 1, name, iso, j, v["frame_ms"], e["render_ms"]), flush=True)
         md = ["### (a) Frame time: voxlux raycast against Embree on the extracted mesh",
@@ -190,8 +224,21 @@ class Bench:
               "tiles at 2 threads / at 1 (1.0: the same work, only spread; above: each "
               "thread slower side by side); balance = that time / (2 x the tiles' wall "
               "time) at 2 threads; outside = the frame's time outside the tiles (set-up, "
-              "bins), at 1 / 2 threads.", "",
-              "| case | voxlux T1 ms | T2 ms | speedup | efficiency | CPU growth | tile work | balance | outside ms | Embree speedup | Embree efficiency |",
+              "bins, the bins' centre pixels drawn first), at 1 / 2 threads, and of it "
+              "the bins' making (bins ms).", "",
+              "| case | voxlux T1 ms | T2 ms | speedup | efficiency | CPU growth | tile work | balance | outside ms | bins ms | Embree speedup | Embree efficiency |",
+              "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+        tp = ["### Table 2, side by side: two threads against two 1-thread processes", "",
+              "In the same rounds as Table 2, right after the 2-thread frames: two 1-thread "
+              "processes of each run side by side (one per vCPU; the mean of their frame "
+              "medians).  Two processes share nothing but the machine, so their "
+              "throughput, 2 frames in T1 pair, is what 2 threads could reach in that "
+              "minute; against the pair = T1 pair / (2 x T2), the median of the "
+              "per-round ratios (100%: "
+              "the threads lose nothing to each other; the machine's own slowdown of a "
+              "second busy vCPU, RESULTS.md Session 9, is in T1 pair too); efficiency = "
+              "T1 / (2 x T2) as in Table 2.", "",
+              "| case | voxlux T1 ms | T1 pair ms | T2 ms | efficiency | against the pair | Embree T1 ms | T1 pair ms | T2 ms | efficiency | against the pair |",
               "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
         tm = ["### The cell mask: frames with and without it", "",
               "voxlux's frame with the cell mask (kept between the frames of one "
@@ -234,15 +281,26 @@ class Bench:
             bal = med([a["thread_ms"] / (2 * a["tile_ms"]) for a in js["j2"]])
             o1 = med([a["vox_ms"] - a["tile_ms"] for a in js["j1"]])
             o2 = med([a["vox_ms"] - a["tile_ms"] for a in js["j2"]])
-            t2.append("| %s | %.1f | %.1f | %.2f | %.0f%% | %.2f | %.2f | %.0f%% | %.1f / %.1f | %.2f | %.0f%% |" % (
+            n1 = med([a["bin_ms"] for a in js["j1"] if a.get("bin_ms") is not None])
+            n2 = med([a["bin_ms"] for a in js["j2"] if a.get("bin_ms") is not None])
+            t2.append("| %s | %.1f | %.1f | %.2f | %.0f%% | %.2f | %.2f | %.0f%% | %.1f / %.1f | %.1f / %.1f | %.2f | %.0f%% |" % (
                 key, v1, v2, v1 / v2, 50 * v1 / v2, c2 / c1, b2 / b1, 100 * bal, o1, o2,
-                e1 / e2, 50 * e1 / e2))
+                n1, n2, e1 / e2, 50 * e1 / e2))
+            pr = [a for a in js["j2"] if "pair_vox_ms" in a]
+            if pr:
+                pv = med([a["pair_vox_ms"] for a in pr])
+                pe = med([a["pair_embree_ms"] for a in pr])
+                tp.append("| %s | %.1f | %.1f | %.1f | %.0f%% | %.0f%% | %.1f | %.1f | %.1f | %.0f%% | %.0f%% |" % (
+                    key, v1, pv, v2, 50 * v1 / v2,
+                    100 * med([a["pair_vox_ms"] / (2 * a["vox_ms"]) for a in pr]),
+                    e1, pe, e2, 50 * e1 / e2,
+                    100 * med([a["pair_embree_ms"] / (2 * a["embree_ms"]) for a in pr])))
             sh = [med([a["shares"][k] for a in js["j1"]]) for k in range(3)]
             x = js["j1"][-1]
             t1.append("| %s | %.0f%% | %.0f%% | %.0f%% | %.2f | %.2f | %.1f%% |" % (
                 key, 100 * sh[0], 100 * sh[1], 100 * sh[2], x["cells"] / 262144.0,
                 x["roots"] / 262144.0, 100 * x["covered"] / 262144.0))
-        self.save("frames", rows, "\n".join(md + [""] + t2 + [""] + tm + [""] + t1) + "\n")
+        self.save("frames", rows, "\n".join(md + [""] + t2 + [""] + tp + [""] + tm + [""] + t1) + "\n")
 
     # ---- (b) a new isovalue ----
     def latency(self):
