@@ -56,7 +56,11 @@ typedef struct vx_raycast_opts {
 	                            vx_cellmask_free): reused, with the bits
 	                            already built, while the hierarchy and the
 	                            isovalues stay the same; rebuilt when they
-	                            change */
+	                            change.  A kept mask with bits built skips
+	                            the first pass over the bins' centres
+	                            (first_pass 0): a camera that turns to new
+	                            macrocells walks them whole in that frame,
+	                            building their bits (the same picture) */
 } vx_raycast_opts;
 
 /* Primary rays are binned with the boxes of the bracketing leaves of each
@@ -101,6 +105,10 @@ typedef struct vx_raycast_stats {
 	                            not walked */
 	double bin_seconds;      /* wall time of making the bins (the bits
 	                            of the cell mask they needed included) */
+	uint64_t first_pass;     /* pixels drawn before the main pass, to
+	                            build the bits of the macrocells in sight
+	                            (the bins' centres; only with a mask no
+	                            ray had entered: one made for the frame) */
 	uint64_t mask_blocks, mask_set, mask_built;   /* level-1 macrocells,
 	                                    those bracketing (masked), and
 	                                    those whose bits rays needed */

@@ -484,6 +484,80 @@ binning_modes(void **state)
 	vx_grid_free(&g);
 }
 
+/* A lazily built mask kept from frame to frame while the camera turns
+ * round: the first frame (no bits built yet) draws the bins' centre pixels
+ * first to build the bits of what is in sight; a later frame with the
+ * kept mask does not, and walks the macrocells it sees for the first time
+ * whole, building their bits as it goes.  The turned camera's picture,
+ * depth, normals, cells and roots are those of rays walked from the eye,
+ * and those of a mask made for that frame alone.  Oracle: o.no_binning. */
+static void
+binning_kept_mask_turn(void **state)
+{
+	const int64_t d[3] = { 96, 96, 96 };
+	const double eye[3] = { 50.3, 44.1, 47.7 };
+	float iso = 0.05f;
+	vx_grid g;
+	vx_macro m;
+	vx_scene s;
+	vx_plan p;
+	vx_cellmask keep;
+	vx_err e = { 0, "" };
+	double lo[3], hi[3];
+	vx_image c[3], dd[3], nn[3], c0, d0, n0;
+	vx_raycast_stats st[3], s0;
+	vx_raycast_opts o;
+	int64_t before;
+
+	(void)state;
+	sine_field(&g, &m, d, (const double[3]){ 0.9, 0.7, 0.8 }, 2);
+	base_scene(&s, 40, 30, iso);
+	vx_grid_box(&g, lo, hi);
+	vx_scene_plan_isosurface(&s, &p);
+	vx_cellmask_init(&keep);
+	/* frame 1: looking one way; the mask is made (lazily) and kept */
+	look_from(&s, eye, (const double[3]){ 90, 80, 70 }, 60);
+	assert_int_equal(vx_camera_resolve(&s.camera, lo, hi, &e), 0);
+	vx_raycast_opts_init(&o);
+	o.nthreads = 2;
+	o.bin_block = 4;
+	o.mask_keep = &keep;
+	render_into(&s, &p, &g, &m, &o, &c0, &d0, &n0, &s0);
+	before = vx_cellmask_built(&keep);
+	assert_true(before > 0 && before < keep.nset);
+	/* its bins' centres first: 40 x 30 pixels, 5 x 4 bins of 8 x 8
+	 * (the last row's centre, y 28, is on the image) */
+	assert_int_equal(s0.first_pass, 5 * 4);
+	/* the camera turned round: the oracle, the kept mask, a fresh one */
+	look_from(&s, eye, (const double[3]){ 10, 8, 20 }, 60);
+	assert_int_equal(vx_camera_resolve(&s.camera, lo, hi, &e), 0);
+	for (int k = 0; k < 3; k++) {
+		vx_raycast_opts_init(&o);
+		o.nthreads = 2;
+		o.bin_block = 4;
+		o.no_binning = k == 0;
+		o.mask_keep = k == 1 ? &keep : NULL;
+		render_into(&s, &p, &g, &m, &o, &c[k], &dd[k], &nn[k], &st[k]);
+	}
+	assert_int_equal(st[1].bins, 1);
+	assert_int_equal(st[2].bins, 1);
+	/* the kept mask's frame walked newly seen macrocells whole and built
+	 * their bits on the way */
+	assert_true(st[1].bin_whole > 0);
+	assert_true(vx_cellmask_built(&keep) > before);
+	assert_int_equal(st[1].first_pass, 0);
+	assert_int_equal(st[2].first_pass, 5 * 4);
+	for (int k = 1; k < 3; k++)
+		same_render(c, dd, nn, st, k);
+	assert_true(st[0].covered > 300);
+	for (int k = 0; k < 3; k++)
+		free3(&c[k], &dd[k], &nn[k]);
+	free3(&c0, &d0, &n0);
+	vx_cellmask_free(&keep);
+	vx_macro_free(&m);
+	vx_grid_free(&g);
+}
+
 /* More blocks of 4^3 cells (bin_block 4) in view than the bins take (8 a
  * pixel and 65536: a field of small surfaces filling a 200 x 200 x 136 volume,
  * about 85,000 blocks, every mask bit built, a 40 x 30 picture): the
@@ -659,6 +733,7 @@ main(void)
 		cmocka_unit_test(transparent_shell),
 		cmocka_unit_test(no_self_shadow_any_solver),
 		cmocka_unit_test(binning_modes),
+		cmocka_unit_test(binning_kept_mask_turn),
 		cmocka_unit_test(binning_block_bound),
 		cmocka_unit_test(binning_any_block),
 		cmocka_unit_test(stats_time_split),
