@@ -47,16 +47,25 @@ check_size(long long w, long long h, long long nc, vx_err *e)
 	return 0;
 }
 
-int
-vx_image_alloc(vx_image *img, int w, int h, int nc, vx_err *e)
+/* alloc: vx_image_alloc's work, the pixels zeroed or not */
+static int
+alloc(vx_image *img, int w, int h, int nc, int zero, vx_err *e)
 {
+	size_t n, bytes;
 	int rc;
 
 	vx_image_init(img);
 	if ((rc = check_size(w, h, nc, e)) != 0)
 		return rc;
-	img->px = vx_calloc((size_t)w * (size_t)h * (size_t)nc, sizeof(float),
-	    e);
+	/* check_size bounds w h by VX_IMAGE_MAX_PIXELS: n fits */
+	n = (size_t)w * (size_t)h * (size_t)nc;
+	if (zero)
+		img->px = vx_calloc(n, sizeof(float), e);
+	else if (vx_mul_size(&bytes, n, sizeof(float)) != 0)
+		return vx_err_set(e, VX_ENOMEM, "image: %zu values: too many "
+		    "bytes", n);
+	else
+		img->px = vx_malloc(bytes, e);
 	if (img->px == NULL)
 		return VX_ENOMEM;
 	img->w = w;
@@ -66,21 +75,15 @@ vx_image_alloc(vx_image *img, int w, int h, int nc, vx_err *e)
 }
 
 int
+vx_image_alloc(vx_image *img, int w, int h, int nc, vx_err *e)
+{
+	return alloc(img, w, h, nc, 1, e);
+}
+
+int
 vx_image_alloc_uninit(vx_image *img, int w, int h, int nc, vx_err *e)
 {
-	int rc;
-
-	vx_image_init(img);
-	if ((rc = check_size(w, h, nc, e)) != 0)
-		return rc;
-	img->px = vx_malloc((size_t)w * (size_t)h * (size_t)nc *
-	    sizeof(float), e);
-	if (img->px == NULL)
-		return VX_ENOMEM;
-	img->w = w;
-	img->h = h;
-	img->nc = nc;
-	return 0;
+	return alloc(img, w, h, nc, 0, e);
 }
 
 int
