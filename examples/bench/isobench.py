@@ -127,15 +127,20 @@ class Bench:
                           "--iso", iso, "--runs", "1", "-o", path], self.log)
         return path
 
-    def vox(self, name, iso, extra, stream="bricked"):
+    def vox_cmd(self, name, iso, extra, stream="bricked"):
         d = self.data[name]
-        cmd = [self.a.isobench, "--scene", self.scene, "--set", d["camline"], "--iso", iso]
-        return keys(run(cmd + extra + [d[stream]], self.log)[0])
+        return [self.a.isobench, "--scene", self.scene, "--set", d["camline"],
+                "--iso", iso] + extra + [d[stream]]
+
+    def embree_cmd(self, name, iso, extra):
+        d = self.data[name]
+        return [self.a.embree, "-m", self.mesh(name, iso)] + d["cam"].split() + SIZE + extra
+
+    def vox(self, name, iso, extra, stream="bricked"):
+        return keys(run(self.vox_cmd(name, iso, extra, stream), self.log)[0])
 
     def embree(self, name, iso, extra):
-        d = self.data[name]
-        cmd = [self.a.embree, "-m", self.mesh(name, iso)] + d["cam"].split() + SIZE + extra
-        return keys(run(cmd, self.log)[0])
+        return keys(run(self.embree_cmd(name, iso, extra), self.log)[0])
 
     def pair(self, cmds):
         """Run two commands side by side (one per vCPU); their outputs as keys()."""
@@ -154,13 +159,11 @@ class Bench:
     def side_by_side(self, name, iso, F):
         """Two 1-thread processes of each side by side: the mean of their frame
         medians (ms), voxlux's and Embree's."""
-        d = self.data[name]
-        vc = [self.a.isobench, "--scene", self.scene, "--set", d["camline"], "--iso", iso,
-              "-j", "1", "-n", F, "--warm", "1", d["bricked"]]
+        vc = self.vox_cmd(name, iso, ["-j", "1", "-n", F, "--warm", "1"])
         v = self.pair([vc, vc])
-        ec = [self.a.embree, "-m", self.mesh(name, iso)] + d["cam"].split() + SIZE + [
-            "-j", "1", "-n", F, "-b", "1"]
-        e = self.pair([ec + ["-o", self.w(name, iso, "embree-pair%d.pfm" % k)] for k in (1, 2)])
+        e = self.pair([self.embree_cmd(name, iso, [
+            "-j", "1", "-n", F, "-b", "1", "-o",
+            self.w(name, iso, "embree-pair%d.pfm" % k)]) for k in (1, 2)])
         return (statistics.mean(x["frame_ms"] for x in v),
                 statistics.mean(x["render_ms"] for x in e))
 

@@ -1506,7 +1506,6 @@ typedef struct chunk_rows {
 	int nx;                   /* leaves in a row */
 } chunk_rows;
 
-
 /* CHUNK_PLANE: NAME(r, pl, y0, y1, pb, pa, ub, ua, nch) reads rows y0 to
  * y1 - 1 of the plane at pl as r plans, nch chunks of W samples of type T
  * in runs of R bytes, into below and above bits: a row's bits OR-ed with

@@ -1381,11 +1381,12 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	st->bin_seconds = (double)(tb1.tv_sec - tb0.tv_sec) +
 	    1e-9 * (double)(tb1.tv_nsec - tb0.tv_nsec);
 	if (binning && S.binoff != NULL && unseen && mask->nset > 0) {
-		int64_t before = vx_cellmask_built(mask);
+		uint64_t drawn = 0;
 
 		sparse = 1;
 #ifdef _OPENMP
-#pragma omp parallel for num_threads(nthr) schedule(dynamic, 16)
+#pragma omp parallel for num_threads(nthr) schedule(dynamic, 16) \
+    reduction(+:drawn)
 #endif
 		for (int64_t kb = 0; kb < (int64_t)S.nbx * S.nby; kb++) {
 #ifdef _OPENMP
@@ -1396,14 +1397,14 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 			int x = (int)(kb % S.nbx) * BIN + BIN / 2;
 			int y = (int)(kb / S.nbx) * BIN + BIN / 2;
 
-			if (x < cam->w && y < cam->h)
+			if (x < cam->w && y < cam->h) {
 				image_pixel(&S, L, x, y, aa, color, depth, normal);
+				drawn++;
+			}
 		}
-		/* the bins whose centre is on the image, along x and y */
-		st->first_pass = (uint64_t)(cam->w > BIN / 2 ? (cam->w - BIN /
-		    2 - 1) / BIN + 1 : 0) * (uint64_t)(cam->h > BIN / 2 ?
-		    (cam->h - BIN / 2 - 1) / BIN + 1 : 0);
-		if (vx_cellmask_built(mask) > before) {
+		st->first_pass = drawn;
+		/* (unseen: no bits were built before the pass) */
+		if (vx_cellmask_built(mask) > 0) {
 			/* the bins' time: the first pass's rays are not in it */
 			clock_gettime(CLOCK_MONOTONIC, &tb0);
 			bins_drop(&S);
