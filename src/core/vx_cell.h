@@ -142,7 +142,10 @@ vx_cell_face_value_fin(const float c[8], int axis, int side, double u,
  * their shared face; f(t0) and f(t1) from k are never used).
  * Method: the sign sequence f0, f(c_1), ..., f(c_m), f1 over the critical
  * points c_i of f strictly inside (t0, t1) (zeros of f', stable quadratic
- * formula) decides: the first segment whose ends differ in sign holds the
+ * formula; none where f' provably keeps one sign on [t0, t1], its three
+ * Bernstein coefficients beyond a margin rounding cannot close, so that
+ * most hits skip the square root and divisions) decides: the first
+ * segment whose ends differ in sign holds the
  * first crossing (f is monotone there, so exactly one).  An extremum whose
  * |f| is within VX_CELL_TOUCH_TOL (see there) ending a segment at or before
  * that one is a touch, reported at the extremum, even when rounding puts f

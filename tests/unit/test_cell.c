@@ -923,6 +923,50 @@ exact_full_precision(void **state)
 	assert_true(2 * evals <= 7 * (long)cross);
 }
 
+/* A critical point at, just inside and just beyond the segment's end:
+ * f = (t - p)^2 - 1/4 on [0, 1], p = 1 + e, crosses zero once, at p - 1/2
+ * (algebra; the oracle is that closed form in long double).  For e > 0
+ * f' = 2 (t - p) keeps its sign on [0, 1] but comes within 2 e of zero at
+ * the end: with e large, the solver sees a monotone segment and computes
+ * no critical point; with e tiny (2^-60) or 0 it must compute them (the
+ * Bernstein margin of f' is not met) and still find the one crossing; for
+ * e < 0 the extremum lies inside, below zero, and the crossing comes
+ * before it.  The same cubic times -1 and with a zero k3 written as
+ * 2^-600: the same root.  And f = (t - q)^2 - 1/16, q = 3/4 + e, whose
+ * extremum lies inside for every e here: its crossings p - 1/4 = 1/2 + e
+ * and 1 + e, both in the segment for e < 0 (f positive at both ends: a
+ * solver that took the segment for monotone would miss them). */
+static void
+crit_at_end(void **state)
+{
+	static const double es[] = { 0.25, 1e-3, 0x1p-20, 0x1p-40, 0x1p-60, 0,
+	    -0x1p-60, -0x1p-20, -1e-3, -0.25 };
+
+	(void)state;
+	for (size_t i = 0; i < sizeof es / sizeof es[0]; i++)
+		for (int sg = -1; sg <= 1; sg += 2)
+			for (int tiny = 0; tiny < 4; tiny++) {
+				int two = tiny >> 1;
+				long double p = (two ? 0.75L : 1) + es[i];
+				long double h = two ? 0.25L : 0.5L;
+				long double want = p - h;
+				double k[4], t = -1;
+
+				/* (t - p)^2 - h^2 = t^2 - 2 p t + p^2 - h^2 */
+				k[0] = sg * (double)(p * p - h * h);
+				k[1] = sg * (double)(-2 * p);
+				k[2] = sg * 1.0;
+				k[3] = tiny & 1 ? 0x1p-600 : 0;
+				assert_int_equal(vx_cell_first_root(k, 0, 1,
+				    k[0], vx_cell_poly_eval(k, 1), VX_CELL_EXACT,
+				    &t, NULL), VX_CELL_CROSS);
+				if (!(fabsl(t - want) <= 1e-15L))
+					fail_msg("e %g sign %d tiny %d: t %.17g, "
+					    "want %.17Lg", es[i], sg, tiny, t,
+					    want);
+			}
+}
+
 /* vx_cell_max on the double-root cell (iso 0): f = 27 t^2 (1-t) is 0 at
  * both faces and 4 at t = 2/3 (calculus).  Ties go to the smallest t.
  * Randomized: never below the dense-sampling maximum (beyond rounding),
@@ -1327,6 +1371,7 @@ main(void)
 		cmocka_unit_test(face_values_shared),
 		cmocka_unit_test(random_roots),
 		cmocka_unit_test(exact_full_precision),
+		cmocka_unit_test(crit_at_end),
 		cmocka_unit_test(cell_max),
 		cmocka_unit_test(gradient_normal),
 		cmocka_unit_test(normal_thresh_range),
