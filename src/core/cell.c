@@ -215,7 +215,7 @@ crit_points(const double k[4], double t0, double t1, double r[2], int ext[2])
 static inline int
 monotone(const double k[4], double t0, double t1)
 {
-	double T = fmax(fabs(t0), fabs(t1)), L = t1 - t0;
+	double T = fabs(t0) > fabs(t1) ? fabs(t0) : fabs(t1), L = t1 - t0;
 	double S = fabs(k[1]) + T * (2 * fabs(k[2]) + T * 3 * fabs(k[3]));
 	double d0 = (3 * k[3] * t0 + 2 * k[2]) * t0 + k[1];
 	double d2 = (3 * k[3] * t1 + 2 * k[2]) * t1 + k[1];
@@ -400,7 +400,9 @@ vx_cell_first_root(const double k[4], double t0, double t1, double f0,
 				    VX_CELL_NEUBAUER_ITERS, &n);
 				break;
 			default:
-				tol = 4 * 0x1p-52 * fmax(fabs(t0), fabs(t1));
+				/* t0, t1 finite: a plain max, no fmax call */
+				tol = 4 * 0x1p-52 * (fabs(t0) > fabs(t1) ?
+				    fabs(t0) : fabs(t1));
 				*t = refine_exact(kk, a, b, v[i], v[i + 1], tol, &n);
 				break;
 			}
