@@ -279,14 +279,18 @@ refine_exact(const double k[4], double a, double b, double fa, double fb,
 			b = x;
 		if (b - a <= tol)
 			break;
-		/* Halley if it stays strictly inside and at least halves the
+		/* Halley if it stays strictly inside, at least halves the
 		 * step before last (as Numerical Recipes' rtsafe does for
-		 * Newton); else bisect.  A zero or NaN denominator leaves the
-		 * bracket: bisection. */
+		 * Newton) and is at least a quarter of Newton's step f / f'
+		 * (near a zero of f' Halley's step shrinks towards f's
+		 * extremum, not its root, and would pass for converged);
+		 * else bisect.  A zero or NaN denominator, or f' = 0, fails
+		 * these tests: bisection. */
 		dxold = dx;
 		step = f * df / (df * df - 0.5 * f * d2f);
 		double xn = x - step;
-		if (!(xn > a && xn < b) || fabs(2 * step) > fabs(dxold)) {
+		if (!(xn > a && xn < b) || fabs(2 * step) > fabs(dxold) ||
+		    !(fabs(f) <= 4 * fabs(step * df))) {
 			dx = 0.5 * (b - a);
 			xn = a + dx;
 		} else {
