@@ -156,8 +156,8 @@ vx_cell_face_value_fin(const float c[8], int axis, int side, double u,
  * coefficient that is zero or tiny needs no special case.  The bracket is
  * then refined by `solver`:
  *   VX_CELL_EXACT: Halley steps (cubically convergent, from the secant
- *     point) kept inside the bracket, bisection when they leave it or
- *     converge slowly, until the bracket is 4 ulp of max(|t0|,|t1|) wide,
+ *     point) kept inside the bracket, bisection when they leave it,
+ *     converge slowly or fall below a quarter of Newton's step, until the bracket is 4 ulp of max(|t0|,|t1|) wide,
  *     f(t) == 0, or the step (or Halley's error estimate for the next
  *     iterate, |f''^2 / (4 f'^2) - f''' / (6 f')| step^3) is at most half
  *     of that: the root of the computed cubic to full precision (error
