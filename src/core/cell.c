@@ -107,12 +107,25 @@ vx_cell_poly_eval(const double k[4], double t)
 	return ((k[3] * t + k[2]) * t + k[1]) * t + k[0];
 }
 
+/* f' and f'' at t */
+static inline double
+deriv1(const double k[4], double t)
+{
+	return (3 * k[3] * t + 2 * k[2]) * t + k[1];
+}
+
+static inline double
+deriv2(const double k[4], double t)
+{
+	return 6 * k[3] * t + 2 * k[2];
+}
+
 /* f, f' and f'' together. */
 static inline double
 eval3(const double k[4], double t, double *df, double *d2f)
 {
-	*d2f = 6 * k[3] * t + 2 * k[2];
-	*df = (3 * k[3] * t + 2 * k[2]) * t + k[1];
+	*d2f = deriv2(k, t);
+	*df = deriv1(k, t);
 	return ((k[3] * t + k[2]) * t + k[1]) * t + k[0];
 }
 
@@ -199,7 +212,7 @@ crit_points(const double k[4], double t0, double t1, double r[2], int ext[2])
 }
 
 /* monotone: 1 when f' provably keeps one sign on [t0, t1] (t0 < t1,
- * finite; k normalized, |k_i| < 2^400), so that f has no critical point
+ * finite, T = max(|t0|, |t1|); k normalized, |k_i| < 2^400), so that f has no critical point
  * there and crit_points need not be called (its square root and divisions
  * are the longest wait of a hit's path).  Method: f' = k1 + 2 k2 t + 3 k3
  * t^2 is a quadratic; on [t0, t1] its Bernstein coefficients are f'(t0),
@@ -213,13 +226,11 @@ crit_points(const double k[4], double t0, double t1, double r[2], int ext[2])
  * (below 2^-900) or an overflowing one (inf, NaN) answers 0: the caller
  * then computes the critical points, as always before. */
 static inline int
-monotone(const double k[4], double t0, double t1)
+monotone(const double k[4], double t0, double t1, double T)
 {
-	double T = fabs(t0) > fabs(t1) ? fabs(t0) : fabs(t1), L = t1 - t0;
 	double S = fabs(k[1]) + T * (2 * fabs(k[2]) + T * 3 * fabs(k[3]));
-	double d0 = (3 * k[3] * t0 + 2 * k[2]) * t0 + k[1];
-	double d2 = (3 * k[3] * t1 + 2 * k[2]) * t1 + k[1];
-	double d1 = d0 + 0.5 * L * (6 * k[3] * t0 + 2 * k[2]);
+	double d0 = deriv1(k, t0), d2 = deriv1(k, t1);
+	double d1 = d0 + 0.5 * (t1 - t0) * deriv2(k, t0);
 	double mg = 0x1p-40 * S;
 
 	if (!(S >= 0x1p-900 && S <= 0x1p900))
@@ -348,7 +359,7 @@ int
 vx_cell_first_root(const double k[4], double t0, double t1, double f0,
     double f1, int solver, double *t, int *iters)
 {
-	double kk[4], r[2], p[4], v[4], tol;
+	double kk[4], r[2], p[4], v[4], tol, T;
 	int ext[2], m, i, n = 0;
 
 	if (iters)
@@ -365,8 +376,10 @@ vx_cell_first_root(const double k[4], double t0, double t1, double f0,
 	}
 	memcpy(kk, k, sizeof kk);
 	normalize(kk, &f0, &f1);
+	/* t0, t1 finite: a plain max, no fmax call */
+	T = fabs(t0) > fabs(t1) ? fabs(t0) : fabs(t1);
 	/* a segment where f is provably monotone has no critical point */
-	m = monotone(kk, t0, t1) ? 0 : crit_points(kk, t0, t1, r, ext);
+	m = monotone(kk, t0, t1, T) ? 0 : crit_points(kk, t0, t1, r, ext);
 	p[0] = t0;
 	v[0] = f0;
 	for (i = 0; i < m; i++) {
@@ -404,9 +417,7 @@ vx_cell_first_root(const double k[4], double t0, double t1, double f0,
 				    VX_CELL_NEUBAUER_ITERS, &n);
 				break;
 			default:
-				/* t0, t1 finite: a plain max, no fmax call */
-				tol = 4 * 0x1p-52 * (fabs(t0) > fabs(t1) ?
-				    fabs(t0) : fabs(t1));
+				tol = 4 * 0x1p-52 * T;
 				*t = refine_exact(kk, a, b, v[i], v[i + 1], tol, &n);
 				break;
 			}
