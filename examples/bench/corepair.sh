@@ -34,8 +34,8 @@ one() {
 	voxlux) out/isobench --scene $S --set "$CAM_CH2" --iso 127.5 -j 1 \
 	    -n 9 --warm 1 out/ch2-b.vx | awk '$1 == "frame_ms_min" { print $2 }' ;;
 	embree) out/embree_render -m $MESH -o "$T/e$2.pfm" -j 1 -n 9 -b 1 \
-	    --eye 295 495 123 --look 0 -17 19 --up 0 0 1 --fov 30 \
-	    --size 512 512 | awk '$1 == "render_ms" { print $2 }' ;;
+	    $(embree_flags "$CAM_CH2") --size 512 512 |
+	    awk '$1 == "render_ms" { print $2 }' ;;
 	esac
 }
 

@@ -212,14 +212,14 @@ crit_points(const double k[4], double t0, double t1, double r[2], int ext[2])
 }
 
 /* monotone: 1 when f' provably keeps one sign on [t0, t1] (t0 < t1,
- * finite, T = max(|t0|, |t1|); k normalized, |k_i| < 2^400), so that f has no critical point
- * there and crit_points need not be called (its square root and divisions
- * are the longest wait of a hit's path).  Method: f' = k1 + 2 k2 t + 3 k3
- * t^2 is a quadratic; on [t0, t1] its Bernstein coefficients are f'(t0),
- * f'(t0) + (L/2) f''(t0) and f'(t1) (L = t1 - t0), and f' lies in their
- * hull.  Each is computed with under 12 roundings of quantities bounded by
- * S = |k1| + 2 |k2| T + 3 |k3| T^2 times at most 3 (T = max(|t0|, |t1|),
- * L <= 2 T, so (L/2) |f''(t0)| <= 2 |k2| T + 6 |k3| T^2 <= 2 S): their
+ * finite, T = max(|t0|, |t1|); k normalized, |k_i| < 2^400), so that f
+ * has no critical point there and crit_points need not be called (its
+ * square root and divisions are the longest wait of a hit's path).
+ * Method: f' = k1 + 2 k2 t + 3 k3 t^2 is a quadratic; on [t0, t1] its
+ * Bernstein coefficients are f'(t0), f'(t0) + (L/2) f''(t0) and f'(t1)
+ * (L = t1 - t0), and f' lies in their hull.  Each is computed with under
+ * 12 roundings of quantities bounded by S = |k1| + 2 |k2| T + 3 |k3| T^2
+ * times at most 3 (L <= 2 T, so (L/2) |f''(t0)| <= 2 |k2| T + 6 |k3| T^2 <= 2 S): their
  * errors are under 40 u S < 2^-47 S, far below the margin 2^-40 S asked
  * of all three (S computed is within 6 u of S).  Gradual underflow adds
  * at most 2^-1074 a step; the margin is at least 2^-40 S, and a tiny S

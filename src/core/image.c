@@ -57,15 +57,13 @@ alloc(vx_image *img, int w, int h, int nc, int zero, vx_err *e)
 	vx_image_init(img);
 	if ((rc = check_size(w, h, nc, e)) != 0)
 		return rc;
-	/* check_size bounds w h by VX_IMAGE_MAX_PIXELS: n fits */
+	/* check_size bounds w h by VX_IMAGE_MAX_PIXELS: n fits; its bytes
+	 * may not where size_t is 32 bits */
 	n = (size_t)w * (size_t)h * (size_t)nc;
-	if (zero)
-		img->px = vx_calloc(n, sizeof(float), e);
-	else if (vx_mul_size(&bytes, n, sizeof(float)) != 0)
+	if (vx_mul_size(&bytes, n, sizeof(float)) != 0)
 		return vx_err_set(e, VX_ENOMEM, "image: %zu values: too many "
 		    "bytes", n);
-	else
-		img->px = vx_malloc(bytes, e);
+	img->px = zero ? vx_calloc(n, sizeof(float), e) : vx_malloc(bytes, e);
 	if (img->px == NULL)
 		return VX_ENOMEM;
 	img->w = w;
