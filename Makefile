@@ -9,8 +9,9 @@
 #   make bench        benchmarks (see examples/bench)
 #   make demo         the README's first command
 #
-# New modules, programs and tests are picked up by wildcard: a file in
-# src/core/ joins the library, src/tools/NAME.c becomes bin/NAME,
+# New modules, programs and tests are picked up by wildcard: a file in a
+# layer folder of src/core/ (LAYERS, in order) joins the library,
+# src/tools/NAME.c becomes bin/NAME,
 # tests/unit/test_NAME.c becomes a unit test, tests/cli/test_*.sh a CLI test.
 
 CC ?= cc
@@ -34,7 +35,10 @@ OPENMP ?= -fopenmp
 WARN := -Wall -Wextra -Wshadow -Wno-unused-parameter
 # `override`: a CFLAGS given on the command line (CI adds -Werror) keeps the
 # language level, warnings and OpenMP instead of replacing them.
-override CPPFLAGS += -Isrc/core -Isrc/tools/common -D_GNU_SOURCE
+# The core's layers, each using only those before it (make check-layers).
+LAYERS := util data io kernels light render bake dvr
+CORE_INC := $(addprefix -Isrc/core/,$(LAYERS))
+override CPPFLAGS += $(CORE_INC) -Isrc/tools/common -D_GNU_SOURCE
 CFLAGS ?= $(OPT) -g
 override CFLAGS += -std=c11 $(WARN) $(OPENMP) $(SANFLAGS) -MMD -MP
 PNG_CFLAGS := $(shell pkg-config --cflags libpng 2>/dev/null)
@@ -43,7 +47,7 @@ LDLIBS := $(PNG_LIBS) -lz -lm
 override LDFLAGS += $(OPENMP) $(SANFLAGS)
 override CPPFLAGS += $(PNG_CFLAGS)
 
-CORE_SRC := $(sort $(wildcard src/core/*.c))
+CORE_SRC := $(sort $(wildcard $(LAYERS:%=src/core/%/*.c)))
 CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/%.o)
 LIB := $(BUILD)/libvoxlux.a
 COMMON_SRC := $(sort $(wildcard src/tools/common/*.c))
@@ -54,7 +58,7 @@ UNIT_SRC := $(sort $(wildcard tests/unit/test_*.c))
 UNIT := $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
 UNIT_HELP := $(sort $(wildcard tests/unit/helper_*.c))
 UNIT_HELP_OBJ := $(UNIT_HELP:%.c=$(BUILD)/%.o)
-HEADERS := $(sort $(wildcard src/core/vx_*.h))
+HEADERS := $(sort $(wildcard $(LAYERS:%=src/core/%/vx_*.h)))
 FUZZ_SRC := $(sort $(wildcard tests/fuzz/fuzz_*.c))
 FUZZ := $(FUZZ_SRC:tests/fuzz/%.c=build/fuzz/%)
 FUZZ_TIME ?= 30
@@ -62,7 +66,7 @@ FUZZ_TIME ?= 30
 .SECONDARY:
 .DELETE_ON_ERROR:
 
-.PHONY: all test unit cli deps install uninstall fuzz fuzz-build bench demo \
+.PHONY: all test unit cli check-layers print-core-inc deps install uninstall fuzz fuzz-build bench demo \
 	studies clean check-deps
 all: $(LIB) $(TOOLS)
 
@@ -79,7 +83,8 @@ $(BUILD)/%.o: %.c Makefile
 # the FP flags or traps): sqrt needs no errno path, and floating-point
 # selects may be made without branches; 2-3% less time a frame.  Not under
 # the sanitizers.
-HOT_OBJ := $(addprefix $(BUILD)/src/core/,macro.o iso.o cell.o raycast.o camera.o)
+HOT_OBJ := $(addprefix $(BUILD)/src/core/,kernels/macro.o kernels/iso.o kernels/cell.o \
+	render/raycast.o data/camera.o)
 ifneq ($(SANITIZE),1)
 $(HOT_OBJ): override CFLAGS += -O3 -fno-math-errno -fno-trapping-math
 endif
@@ -97,7 +102,7 @@ $(BUILD)/tests/%: $(BUILD)/tests/unit/%.o $(UNIT_HELP_OBJ) $(LIB)
 	@mkdir -p $(@D)
 	$(CC) $(LDFLAGS) -o $@ $< $(UNIT_HELP_OBJ) $(LIB) -lcmocka $(LDLIBS)
 
-test: all $(UNIT)
+test: all $(UNIT) check-layers
 	@VX_BIN=$(BINDIR) VX_UNIT_DIR=$(BUILD)/tests sh tests/run.sh
 
 unit: $(UNIT)
@@ -105,6 +110,17 @@ unit: $(UNIT)
 
 cli: all
 	@VX_BIN=$(BINDIR) VX_UNIT_DIR=$(BUILD)/tests VX_ONLY=cli sh tests/run.sh
+
+# check-layers: no file of the core includes a header of a later layer, no
+# header sits outside a layer, and every symbol the library exports starts
+# with vx_ (tests/check-layers.sh says which file breaks which rule).
+check-layers: $(LIB)
+	@sh tests/check-layers.sh $(LIB) $(LAYERS)
+
+# The compiler flags that find the core's headers, for programs built
+# outside this Makefile (examples/bench): $(make -s print-core-inc).
+print-core-inc:
+	@echo $(CORE_INC)
 
 # ---- dependencies (Debian) ----
 DEB_BUILD := build-essential pkg-config libpng-dev zlib1g-dev libcmocka-dev
@@ -130,7 +146,7 @@ install: all
 	install -m 644 $(HEADERS) $(DESTDIR)$(PREFIX)/include/voxlux
 	for s in 1 5 7; do for f in man/man$$s/*.$$s; do [ -e "$$f" ] && \
 	  install -m 644 $$f $(DESTDIR)$(PREFIX)/share/man/man$$s; done; done; true
-	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|'"$$(sed -n 's/.*VX_VERSION "\(.*\)".*/\1/p' src/core/vx_version.h)"'|' \
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|'"$$(sed -n 's/.*VX_VERSION "\(.*\)".*/\1/p' src/core/util/vx_version.h)"'|' \
 	  voxlux.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/voxlux.pc
 
 uninstall:
@@ -147,7 +163,7 @@ uninstall:
 # build (clang needs libomp-dev); run.sh sets OMP_NUM_THREADS=1.  UBSan
 # findings abort, so libFuzzer keeps them as crashes.
 FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=undefined
-FUZZ_CFLAGS := -g -O1 -fno-omit-frame-pointer $(FUZZ_SAN) $(OPENMP) -Isrc/core -D_GNU_SOURCE $(PNG_CFLAGS)
+FUZZ_CFLAGS := -g -O1 -fno-omit-frame-pointer $(FUZZ_SAN) $(OPENMP) $(CORE_INC) -D_GNU_SOURCE $(PNG_CFLAGS)
 FUZZ_OBJ := $(CORE_SRC:src/core/%.c=build/fuzz/obj/%.o)
 FUZZ_LIB := build/fuzz/libvoxlux-fuzz.a
 build/fuzz/obj/%.o: src/core/%.c

@@ -39,7 +39,7 @@ vhf_FACE := back
 $(ISOBENCH): isobench.c $(VX_LIB)
 	@mkdir -p $(@D)
 	$(CC) -std=c11 -O2 -g -Wall -Wextra -Wshadow -Wno-unused-parameter -fopenmp \
-	  -I../../src/core -o $@ $< $(VX_LIB) -lpng -lz -lm
+	  $(VX_INC) -o $@ $< $(VX_LIB) -lpng -lz -lm
 
 # voxlux's streams: bricked + macrocells (the default pipeline) and linear +
 # macrocells (Table 3's unbricked columns)

@@ -6,7 +6,7 @@
 # the median over rounds of the per-round ratio B / A.  J=2 for 2 threads.
 # Run from examples/bench after `make -C examples/bench iso` has made out/:
 #
-#   gcc -std=c11 -O2 -fopenmp -I../../src/core -o /tmp/ib_old isobench.c \
+#   gcc -std=c11 -O2 -fopenmp $(make -s -C ../.. print-core-inc | sed 's|-I|-I../../|g') -o /tmp/ib_old isobench.c \
 #       ../../build/libvoxlux.a -lpng -lz -lm      # in the old checkout
 #   ...the same for /tmp/ib_new in the new one...
 #   sh isoab.sh /tmp/ib_old /tmp/ib_new 5

@@ -39,6 +39,7 @@
 #include "vx_camera.h"
 #include "vx_grid.h"
 #include "vx_image.h"
+#include "vx_imageio.h"
 #include "vx_macro.h"
 #include "vx_plan.h"
 #include "vx_raycast.h"

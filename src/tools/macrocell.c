@@ -13,7 +13,8 @@
 #include "vx_grid.h"
 #include "vx_macro.h"
 #include "vx_stream.h"
-#include "vx_tetmesh.h"
+#include "vx_tetimport.h"
+#include "vx_tetleaf.h"
 
 static const char usage[] =
     "macrocell [--levels N] [--sizes AxBxC[,DxExF...]] [--name NAME] "

@@ -10,11 +10,13 @@
 #include "vx_camera.h"
 #include "vx_grid.h"
 #include "vx_image.h"
+#include "vx_imageio.h"
 #include "vx_macro.h"
 #include "vx_plan.h"
 #include "vx_raycast.h"
 #include "vx_scene.h"
-#include "vx_tetmesh.h"
+#include "vx_tetimport.h"
+#include "vx_tetleaf.h"
 #include "vx_tonemap.h"
 
 static const char usage[] =

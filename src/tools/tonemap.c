@@ -11,6 +11,7 @@
 #include "tool.h"
 #include "vx_compare.h"
 #include "vx_image.h"
+#include "vx_imageio.h"
 #include "vx_tonemap.h"
 #include "vx_version.h"
 

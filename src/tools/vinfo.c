@@ -13,7 +13,8 @@
 #include "vx_macro.h"
 #include "vx_stats.h"
 #include "vx_stream.h"
-#include "vx_tetmesh.h"
+#include "vx_tetimport.h"
+#include "vx_tetleaf.h"
 
 static const char usage[] =
     "vinfo [--json] [--histogram N] [--chunks] [FILE|-]";

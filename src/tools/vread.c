@@ -14,7 +14,8 @@
 #include "vx_grid.h"
 #include "vx_import.h"
 #include "vx_stream.h"
-#include "vx_tetmesh.h"
+#include "vx_tetimport.h"
+#include "vx_tetleaf.h"
 
 static const char usage[] =
     "vread [-o out] [--format F] [--raw NX,NY,NZ --type T "

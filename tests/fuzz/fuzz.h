@@ -14,8 +14,10 @@
 #include "vx_err.h"
 #include "vx_grid.h"
 #include "vx_image.h"
+#include "vx_imageio.h"
 #include "vx_stream.h"
-#include "vx_tetmesh.h"
+#include "vx_tetimport.h"
+#include "vx_tetleaf.h"
 
 /* fuzz_fail: an invariant did not hold: say which and abort. */
 static inline void

@@ -13,7 +13,8 @@
 #include "fuzz.h"
 #include "vx_macro.h"
 #include "vx_scene.h"
-#include "vx_tetmesh.h"
+#include "vx_tetimport.h"
+#include "vx_tetleaf.h"
 
 static double
 touch_macro(const vx_macro *m)

@@ -8,7 +8,7 @@ set -eu
 out=tests/fuzz/corpus
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT INT TERM
 rm -rf "$out"; mkdir -p "$out/stream" "$out/nrrd" "$out/pfm" "$out/png"
-cc -Isrc/core -D_GNU_SOURCE -fopenmp -o "$tmp/mkseed" tests/fuzz/mkseed.c \
+cc $(make -s print-core-inc) -D_GNU_SOURCE -fopenmp -o "$tmp/mkseed" tests/fuzz/mkseed.c \
     build/libvoxlux.a -lpng -lz -lm
 "$tmp/mkseed" "$out/stream"
 bin/vread --synth sphere --size 3 -z 6 -o "$out/stream/synth-zlib.vxs"

@@ -15,7 +15,8 @@
 #include "vx_macro.h"
 #include "vx_scene.h"
 #include "vx_stream.h"
-#include "vx_tetmesh.h"
+#include "vx_tetimport.h"
+#include "vx_tetleaf.h"
 
 static vx_err err;
 

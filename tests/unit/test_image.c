@@ -14,6 +14,7 @@
 #include <zlib.h>
 
 #include "vx_image.h"
+#include "vx_imageio.h"
 
 /* ---- helpers ---- */
 

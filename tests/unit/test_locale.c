@@ -23,6 +23,7 @@
 #include "vx_export.h"
 #include "vx_grid.h"
 #include "vx_image.h"
+#include "vx_imageio.h"
 #include "vx_import.h"
 #include "vx_scene.h"
 #include "vx_stream.h"

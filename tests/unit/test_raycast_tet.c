@@ -19,7 +19,8 @@
 #include "vx_camera.h"
 #include "vx_import.h"
 #include "vx_raycast.h"
-#include "vx_tetmesh.h"
+#include "vx_tetimport.h"
+#include "vx_tetleaf.h"
 
 /* ---- helpers ---- */
 

@@ -14,7 +14,8 @@
 #include <unistd.h>
 #include <zlib.h>
 
-#include "vx_tetmesh.h"
+#include "vx_tetimport.h"
+#include "vx_tetleaf.h"
 
 /* ---- helpers ---- */
 

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The benchmark camera, and its translation into each peer's own camera.
 
-Convention: voxlux's explicit camera (src/core/vx_camera.h, vx_camera_ray), which
+Convention: voxlux's explicit camera (src/core/data/vx_camera.h, vx_camera_ray), which
 embree_render.c implements too and the README documents:
   f = unit(look - eye); u = unit(f x unit(up)) (image right); v = u x f (image up);
   (u, v, -f) is right-handed; if up is (nearly) parallel to f, up becomes z, or y when

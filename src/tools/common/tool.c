@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "vx_image.h"
+#include "vx_imageio.h"
 #include "vx_macro.h"
 #include "vx_scene.h"
 #include "vx_version.h"
