@@ -31,8 +31,10 @@ typedef struct rc_shared {
 	const vx_tetmesh *mesh;       /* non-NULL: draw this mesh, not g */
 	const vx_tetleaf *lg;         /* its leaf grid */
 	double mesh_off;              /* shadow-ray offset, world units */
-	double isod[VX_ISO_MAX];      /* the isovalues as double (meshes) */
-	float iso[VX_ISO_MAX];        /* drawn isovalues */
+	double isod[VX_ISO_MAX];      /* drawn isovalues, as given */
+	float iso[VX_ISO_MAX];        /* each rounded to float: the cell
+	                                 mask's and bins' bracket tests (a
+	                                 superset of isod's, vx_iso.h) */
 	int surf[VX_ISO_MAX];         /* iso index -> scene surface index */
 	int niso;
 	int composite;
@@ -786,7 +788,7 @@ visibility(const rc_shared *S, rc_local *L, const rc_surf *h,
 		for (a = 0; a < 3; a++)
 			oi[a] = h->pi[a] + S->o->shadow_offset * ni[a];
 		vx_world_to_index_dir(S->g, Ld, di);
-		vx_iso_trace(&S->tr, oi, di, 0, dist, S->iso, S->niso,
+		vx_iso_trace(&S->tr, oi, di, 0, dist, S->isod, S->niso,
 		    shadow_hit, &x, &L->st);
 	}
 	return x.T;
@@ -1120,10 +1122,10 @@ pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
 
 			vx_iso_trace_boxes(&S->tr, oi, di, S->binbox,
 			    S->binlist + t, (size_t)(S->binoff[bin + 1] - t), &pk,
-			    S->iso, S->niso, layer, &x, &L->st);
+			    S->isod, S->niso, layer, &x, &L->st);
 			L->binned += L->st.trav.rays == walked;
 		} else
-			vx_iso_trace(&S->tr, oi, di, 0, INFINITY, S->iso,
+			vx_iso_trace(&S->tr, oi, di, 0, INFINITY, S->isod,
 			    S->niso, layer, &x, &L->st);
 	}
 out:
@@ -1285,8 +1287,8 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	for (k = 0; k < s->nsurface && S.niso < VX_ISO_MAX; k++) {
 		if (!p->surface_on[k])
 			continue;
-		S.iso[S.niso] = (float)s->surface[k].iso;
-		S.isod[S.niso] = S.iso[S.niso];
+		S.isod[S.niso] = s->surface[k].iso;
+		S.iso[S.niso] = (float)S.isod[S.niso];
 		S.surf[S.niso++] = k;
 		if (p->texture_on[k] && tex != NULL && tex[k] != NULL) {
 			const vx_material *mt = &s->surface[k].m;
