@@ -359,10 +359,10 @@ main(int argc, char **argv)
 			    VX_MACRO_DEFAULT_LEVELS, sizes);
 
 			if (!o.dry && !o.flat)
-				fprintf(stderr, "raycast: note: %s leaf grid for "
-				    "mesh '%s'; building it (run macrocell(1) in "
-				    "the pipeline to keep it)\n", status ==
-				    VX_MACRO_STALE ? "stale" : "no", mesh.name);
+				tool_note("%s leaf grid for mesh '%s'; built it "
+				    "(run macrocell(1) in the pipeline to keep "
+				    "it)", status == VX_MACRO_STALE ? "stale" :
+				    "no", mesh.name);
 			if (!o.dry && vx_tetleaf_build_levels(&lg, &mesh, 1, 0,
 			    nlev, (const int (*)[3])sizes, nthr, &e) != 0)
 				tool_fail_err(&e);

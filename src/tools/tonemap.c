@@ -551,6 +551,7 @@ main(int argc, char **argv)
 
 	tool_init("tonemap", argc, argv);
 	parse(&o, argc, argv);
+	(void)tool_threads(0);   /* the parallel loops' threads, made safely */
 	load(&in, o.in, o.name, 0);
 	hist = history_text(&in);
 	vx_text text[2] = {

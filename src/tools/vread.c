@@ -308,9 +308,8 @@ main(int argc, char **argv)
 			tool_fail(VX_EUSAGE, "--spacing and --origin apply to "
 			    "volumes; %s is a tet mesh", o.in);
 		if (info.nskip_volume > 0)
-			fprintf(stderr, "vread: note: %s: skipped %zu volume "
-			    "cells that are not linear tetrahedra\n", o.in,
-			    info.nskip_volume);
+			tool_note("%s: skipped %zu volume cells that are not "
+			    "linear tetrahedra", o.in, info.nskip_volume);
 		if (o.name != NULL)
 			vx_tetmesh_set_name(&m, o.name);
 	} else {

@@ -39,4 +39,132 @@ for src in cube cube5; do
 		else ok "$src: iso $iso draws the block ($c%)"; fi
 	done
 done
+# 8. A signal during the output write removes the temporary: strace
+# delivers the signal as the process enters fsync (after every byte is
+# written, before the rename) or its first write; the run dies of it as it
+# would have, and neither the output nor a temporary is left.  SIGXFSZ
+# under a file size limit is a write error instead: one line, exit 74.
+# Oracle: the directory's listing.
+if command -v strace >/dev/null 2>&1 && strace -f -qq -o /dev/null true 2>/dev/null; then
+	mkdir -p "$T/sig"
+	for how in fsync:TERM fsync:INT write:HUP write:TERM fsync:PIPE; do
+		call=${how%%:*} sig=${how#*:}
+		ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0" \
+		    strace -f -qq -o /dev/null -e trace=$call \
+		    -e inject=$call:signal=SIG$sig:when=1 \
+		    "$VX_BIN/vread" --synth sphere --size 16 -o "$T/sig/s.vx" 2>/dev/null
+		rc=$?
+		left=$(ls "$T/sig" | tr '\n' ' ')
+		if [ "$rc" -ne 0 ] && [ -z "$left" ]; then ok "SIG$sig at $call: the run dies, nothing left ($rc)"
+		else not_ok "SIG$sig at $call: the run dies, nothing left" "exit $rc, left: $left"; fi
+		rm -f "$T/sig"/*
+	done
+	ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0" \
+	    strace -f -qq -o /dev/null -e trace=fsync -e inject=fsync:signal=SIGTERM \
+	    "$VX_BIN/raycast" --iso 0.5 --size 16x16 -o "$T/sig/r.png" "$T/cube.vx" 2>/dev/null
+	check_eq "raycast: SIGTERM at fsync leaves nothing" "$(ls "$T/sig")" ""
+else
+	skip "signals remove the temporary" "strace missing or not allowed to trace"
+fi
+(ulimit -f 40; vread --synth sphere --size 64 -o "$T/sig-big.vx") 2> "$T/xfsz.err"
+rc=$?
+check_eq "file size limit: exit 74" "$rc" 74
+check_eq "file size limit: one line" "$(wc -l < "$T/xfsz.err" | tr -d ' ')" 1
+check "file size limit: File too large" grep -q "^vread: .*sig-big.vx: .*File too large" "$T/xfsz.err"
+check_eq "file size limit: nothing left" "$(ls "$T" | grep -c sig-big)" 0
+
+# 9. A closed standard output is no error for a run that does not write
+# to it (-o FILE); one that does write there still fails, once, with 74.
+# Closed standard input and error are held the same way.  Oracle: the
+# output file equals the one written with the descriptors open.
+vread --synth sphere --size 16 -o "$T/open.vx"
+raycast --iso 0.5 --size 16x16 --hdr -o "$T/ref.vx" "$T/open.vx" 2>/dev/null
+for prog in vread vread-stdin raycast tonemap vwrite; do
+	case $prog in
+	vread*) cmd="vread --synth sphere --size 16 -o $T/closed.out" ;;
+	raycast) cmd="raycast --iso 0.5 --size 16x16 --hdr -o $T/closed.out $T/open.vx" ;;
+	tonemap) cmd="tonemap --pfm -o $T/closed.out $T/ref.vx" ;;
+	vwrite) cmd="vwrite -o $T/closed.out $T/open.vx" ;;
+	esac
+	# the reference: the same command with the descriptors open
+	$cmd 2>/dev/null && mv "$T/closed.out" "$T/ref.out"
+	if [ $prog = vread-stdin ]; then
+		$cmd <&- >&- 2>"$T/c.err"; rc=$?
+	else
+		$cmd >&- 2>"$T/c.err"; rc=$?
+	fi
+	if [ "$rc" -eq 0 ] && cmp -s "$T/closed.out" "$T/ref.out"; then ok "$prog -o FILE with stdout closed: exit 0, the same file"
+	else not_ok "$prog -o FILE with stdout closed" "exit $rc: $(head -2 "$T/c.err")"; fi
+	rm -f "$T/closed.out" "$T/ref.out"
+done
+vread --synth sphere --size 16 -o "$T/closed.vx" 2>&-
+check_eq "stderr closed: exit 0" "$?" 0
+expect_fail "vinfo writing to a closed stdout: one line, exit 74" 74 "write <stdout>" \
+    sh -c "vinfo '$T/open.vx' >&-"
+expect_fail "raycast writing a PNG to a closed stdout: one line, exit 74" 74 "Bad file descriptor" \
+    sh -c "raycast --iso 0.5 --size 8x8 '$T/open.vx' >&-"
+
+# 10. Threads that cannot be made: strace makes the thread creation calls
+# fail (EAGAIN, as a memory or process limit does).  An explicit -j N is
+# one line and exit 71; the default takes the threads that can be made.
+# Under a real address-space limit (not under the sanitizers, which need
+# far more address space), -j 64 fails the same way and the default runs.
+vread --synth sphere --size 24 | macrocell > "$T/sphm.vx"
+raycast --iso 0.5 --size 32x32 --hdr -j 1 -o "$T/j1.vx" "$T/sphm.vx"
+if command -v strace >/dev/null 2>&1 && strace -f -qq -o /dev/null true 2>/dev/null; then
+	for prog in raycast mip macrocell; do
+		case $prog in
+		raycast) args="--iso 0.5 --size 16x16 -o $T/tj.png $T/sphm.vx" ;;
+		mip) args="--size 16x16 -o $T/tj.png $T/sphm.vx" ;;
+		macrocell) args="-o $T/tj.vx $T/sphm.vx" ;;
+		esac
+		for when in 1 2; do
+			ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0" \
+			    strace -f -qq -o /dev/null -e trace=clone,clone3 \
+			    -e inject=clone3:error=EAGAIN:when=$when \
+			    -e inject=clone:error=EAGAIN:when=$when \
+			    "$VX_BIN/$prog" -j 3 $args > "$T/tj.out" 2> "$T/tj.err"
+			rc=$?
+			if [ "$rc" -eq 71 ] && [ "$(wc -l < "$T/tj.err")" -eq 1 ] &&
+			    grep -q "^$prog: -j 3: cannot start 3 threads: " "$T/tj.err" &&
+			    [ ! -e "$T/tj.png" ] && [ ! -e "$T/tj.vx" ]; then
+				ok "$prog -j 3, thread $when not made: one line, exit 71"
+			else
+				not_ok "$prog -j 3, thread $when not made" "exit $rc: $(head -3 "$T/tj.err")"
+			fi
+		done
+	done
+	ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0" \
+	    strace -f -qq -o /dev/null -e trace=clone,clone3 \
+	    -e inject=clone3:error=EAGAIN -e inject=clone:error=EAGAIN \
+	    "$VX_BIN/raycast" --iso 0.5 --size 32x32 --hdr -o "$T/j0.vx" "$T/sphm.vx"
+	check_eq "default -j with no thread to be made: exit 0" "$?" 0
+	check_eq "default -j with no thread to be made: the 1-thread picture" \
+	    "$(python3 tests/cli/vximg.py same "$T/j0.vx" "$T/j1.vx")" same
+else
+	skip "thread creation failures" "strace missing or not allowed to trace"
+fi
+if (ulimit -v 400000; vinfo "$T/sphm.vx") >/dev/null 2>&1; then
+	(ulimit -v 400000; raycast -j 64 --iso 0.5 --size 16x16 -o "$T/uj.png" "$T/sphm.vx") 2> "$T/uj.err"
+	rc=$?
+	if [ "$rc" -eq 71 ] && [ "$(wc -l < "$T/uj.err")" -eq 1 ] && [ ! -e "$T/uj.png" ]; then
+		ok "ulimit -v: -j 64 is one line, exit 71"
+	else
+		not_ok "ulimit -v: -j 64 is one line, exit 71" "exit $rc: $(head -3 "$T/uj.err")"
+	fi
+	(ulimit -v 400000; raycast --iso 0.5 --size 16x16 -o "$T/uj.png" "$T/sphm.vx")
+	check_eq "ulimit -v: the default -j runs" "$?" 0
+else
+	skip "ulimit -v: -j 64" "an address-space limit stops every run here (sanitizers)"
+	skip "ulimit -v: the default -j runs" "(as above)"
+fi
+
+# 11. One line on failure: the note that macrocells were built is kept
+# until the run succeeds, so an error found after the build is the only
+# line.
+vread --synth sphere --size 16 > "$T/nomc.vx"
+expect_fail "missing texture volume after the macrocell build: one line" 65 "tex" \
+    raycast --size 8x8 --set "surface iso 0.5 texture nosuch" -o "$T/o.png" "$T/nomc.vx"
+raycast --iso 0.5 --size 8x8 -o "$T/o.png" "$T/nomc.vx" 2> "$T/note.err"
+check "a successful run still notes the build" grep -q "^raycast: note: no macrocells for 'density'; built them" "$T/note.err"
 done_testing
