@@ -324,6 +324,8 @@ main(int argc, char **argv)
 			if (o.have_origin)
 				g.origin[a] = o.origin[a];
 		}
+		if (vx_grid_check_box(&g, &e) != 0)
+			tool_fail_err(&e);
 		if (o.split) {
 			/* the volume's tet split: vertices at the samples */
 			if (vx_tetsynth_from_grid(&m, &g, o.split, &e) != 0) {

@@ -161,10 +161,19 @@ fi
 
 # 11. One line on failure: the note that macrocells were built is kept
 # until the run succeeds, so an error found after the build is the only
-# line.
+# line; vread refuses a volume whose extent overflows (oracle: the box's
+# far corner, origin + (n - 1) spacing, is not a double).
 vread --synth sphere --size 16 > "$T/nomc.vx"
 expect_fail "missing texture volume after the macrocell build: one line" 65 "tex" \
     raycast --size 8x8 --set "surface iso 0.5 texture nosuch" -o "$T/o.png" "$T/nomc.vx"
 raycast --iso 0.5 --size 8x8 -o "$T/o.png" "$T/nomc.vx" 2> "$T/note.err"
 check "a successful run still notes the build" grep -q "^raycast: note: no macrocells for 'density'; built them" "$T/note.err"
+for sp in 1e308,1e308,1e308 1,1e307,1 2.4e306,1,2.4e306; do
+	expect_fail "vread --spacing $sp: extent overflows" 65 "extent overflows" \
+	    vread --synth sphere --size 64 --spacing $sp -o "$T/o.vx"
+done
+expect_fail "vread --origin -1.7e308 --spacing 1e307: the box's side overflows" 65 "extent overflows" \
+    vread --synth sphere --size 64 --origin -1.7e308,0,0 --spacing 1e307,1,1 -o "$T/o.vx"
+vread --synth sphere --size 64 --spacing 1e300,1,1 -o "$T/big.vx"
+check_eq "a huge but finite extent is kept" "$?" 0
 done_testing

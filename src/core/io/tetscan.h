@@ -6,6 +6,7 @@
 #define VX_TETSCAN_H
 
 #include <errno.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -124,7 +125,8 @@ scan_parse_double(const char *t, double *v)
 	if (t[0] == '\0')
 		return 0;
 	*v = vx_strtod(t, &q);
-	return *q == '\0';
+	/* overflow is malformed, as everywhere (underflow rounds) */
+	return *q == '\0' && !(errno == ERANGE && isinf(*v));
 }
 
 static inline int
