@@ -176,4 +176,24 @@ expect_fail "vread --origin -1.7e308 --spacing 1e307: the box's side overflows" 
     vread --synth sphere --size 64 --origin -1.7e308,0,0 --spacing 1e307,1,1 -o "$T/o.vx"
 vread --synth sphere --size 64 --spacing 1e300,1,1 -o "$T/big.vx"
 check_eq "a huge but finite extent is kept" "$?" 0
+# 12. No undefined behaviour from far or degenerate cameras: eyes at
+# 1e308 (their |eye| overflows), orthographic and perspective, mip and
+# raycast with shadows.  The oracle is the sanitizer build (SANITIZE=1
+# adds -fsanitize=float-cast-overflow): no runtime error, exit 0.
+for e in "1e308 1e308 1e308" "-1.7e308 1.7e308 1e308" "1e308 1e-308 0"; do
+	for cam in "perspective eye $e look 0 0 0 up 0 0 1 fov 30" \
+	    "orthographic eye $e look 0 0 0 up 0 0 1 width 1e300"; do
+		printf 'camera %s\n' "$cam" > "$T/far.scn"
+		mip --scene "$T/far.scn" --size 8x8 -o "$T/far.png" "$T/sphm.vx" 2> "$T/far.err"
+		rc=$?
+		raycast --scene "$T/far.scn" --iso 0.5 --effects shadows --size 8x8 \
+		    -o "$T/far.png" "$T/sphm.vx" 2>> "$T/far.err"
+		rc=$((rc + $?))
+		if [ "$rc" -eq 0 ] && ! grep -q "runtime error" "$T/far.err"; then
+			ok "far camera ($cam): no undefined behaviour"
+		else
+			not_ok "far camera ($cam)" "$(head -3 "$T/far.err")"
+		fi
+	done
+done
 done_testing

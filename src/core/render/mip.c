@@ -241,8 +241,12 @@ walk_start(const double o[3], const double d[3], double ta,
 	int a;
 
 	for (a = 0; a < 3; a++) {
-		double p = o[a] + ta * d[a];
-		int64_t k = (int64_t)floor(p / (double)w[a]);
+		double p = o[a] + ta * d[a], q = floor(p / (double)w[a]);
+		/* q clamped before the conversion (NaN too: a far camera's p
+		 * can be NaN or beyond int64), to a range the clamps below
+		 * map as they would q itself */
+		int64_t k = !(q >= (double)(clo[a] - 1)) ? clo[a] - 1 :
+		    q > (double)(chi[a] + 1) ? chi[a] + 1 : (int64_t)q;
 
 		/* on a plane going down: the cell below */
 		if (d[a] < 0 && (double)(k * w[a]) == p)
@@ -1260,18 +1264,18 @@ vx_mip_ray(const vx_grid *g, const vx_macro *m, vx_mip_work *w,
 
 		for (a = 0; a < 3; a++) {
 			p[a] = o[a] + ts * d[a];
-			c[a] = (int64_t)floor(p[a]);
-			if (c[a] > n[a] - 1)
-				c[a] = n[a] - 1;
-			if (c[a] < 0)
-				c[a] = 0;
+			/* floor(p) in [0, n - 1], clamped before the
+			 * conversion (a far camera's p can be NaN: cell 0) */
+			c[a] = !(p[a] >= 1) ? 0 : p[a] >= (double)(n[a] - 1) ?
+			    n[a] - 1 : (int64_t)p[a];
 			l[a] = p[a] - (double)c[a];
 		}
 		vx_grid_cell(g, c[0], c[1], c[2], v);
 		if (vx_cell_finite(v)) {
 			double s = vx_cell_trilinear(v, l);
 
-			x.lb = s - fabs(s) * 1e-9 - 1e-300;
+			if (isfinite(s))
+				x.lb = s - fabs(s) * 1e-9 - 1e-300;
 		}
 	}
 	col = -1;
