@@ -61,6 +61,26 @@ expect_fail "resume: other settings" 65 "other settings" \
 expect_fail "no light to bake (only the default headlight)" 64 "no light to bake" \
     bake-irr --iso 0.5 "$T/s.vx"
 
+# 3b. lazy illumination: bake-irr --lazy records the settings and bakes
+# nothing; raycast --lazy bakes the texels its view reads: the picture equals
+# the one drawn from the full bake, and the lazy texels merge onto the full
+# bake as the very same samples (a texel that differed would not join)
+L --samples 8 --lazy "$T/s.vx" > "$T/empty.vx"
+L --samples 8 "$T/s.vx" > "$T/full.vx"
+R() { raycast --light sky --light "point position 0 0 3 intensity 2" \
+    --set "interreflection bounces 1" --effects +interreflection --iso 0.5 \
+    --set "illumination irradiance" --size 48x48 --hdr "$@"; }
+R "$T/full.vx" > "$T/rfull.vx"
+R --lazy --lazy-save "$T/lazy.vx" --stats "$T/empty.vx" > "$T/rlazy.vx" 2>"$T/lst"
+check_eq "lazy: the picture of the full bake" "$(px same "$T/rfull.vx" "$T/rlazy.vx")" same
+check "lazy: says what it baked" grep -q "lazy: the view reads [1-9][0-9]* texels: [1-9][0-9]* baked now" "$T/lst"
+L --merge "$T/lazy.vx" "$T/full.vx" > "$T/lm.vx"
+check_eq "lazy texels = the full bake's, bit for bit" "$(irrv "$T/lm.vx")" "$(irrv "$T/full.vx")"
+R --lazy --stats "$T/lazy.vx" 2>"$T/lst2" >/dev/null
+check "lazy: the saved texels are reused" grep -q "texels: 0 baked now" "$T/lst2"
+expect_fail "lazy: a scene whose lights differ from the bake's" 65 "other settings" \
+    raycast --light sky --iso 0.5 --set "illumination irradiance" --lazy "$T/empty.vx"
+
 # 4. texel bands: --iso-range bakes fewer texels than --all; a render at an
 # isovalue outside the band finds no texel and says so
 bake-irr --light sky --iso-range 0.45,0.55 --side high --samples 2 --stats \

@@ -874,6 +874,13 @@ shade(const rc_shared *S, rc_local *L, const rc_surf *h,
 		double E[3];
 
 		/* Lambertian under the baked irradiance: a kd E / pi */
+		if (S->o->irr_need != NULL) {
+			vx_irr_reach(S->o->irr, h->pi, S->o->irr_interp,
+			    S->o->irr_need, S->o->irr_need_ctx);
+			col[0] = col[1] = col[2] = 0;
+			L->shaded++;
+			return;
+		}
 		if (!vx_irr_lookup(S->o->irr, h->pi, S->o->irr_interp, S->g,
 		    S->iso[h->iso], E))
 			L->irr_missing++;

@@ -85,6 +85,8 @@ typedef struct vx_gi {
 	int has_env;
 	vx_gi_env env;
 	int env_mis;              /* 1: importance-sample the environment */
+	char env_id[96];          /* names the environment in a bake's
+	                             settings (its file's content hash) */
 	int bounces;              /* indirect bounces: 0 = direct light only */
 	int nalbedo;              /* albedo as a function of the value: */
 	double albedo_v[VX_GI_MAX_ALBEDO];     /* at these values (sorted), */

@@ -65,6 +65,13 @@ typedef struct vx_raycast_opts {
 	const vx_irrvol *irr;    /* the plan's irradiance volume (volumes
 	                            only; required when plan.irradiance) */
 	vx_irr_interp irr_interp;   /* how it is read */
+	vx_irr_need_fn irr_need; /* non-NULL: a collecting pass for lazy
+	                            illumination: instead of reading irr,
+	                            each shaded point reports the texels its
+	                            lookup will read (vx_irr_reach; called
+	                            from every thread: it must be safe so)
+	                            and is drawn black */
+	void *irr_need_ctx;
 } vx_raycast_opts;
 
 /* Primary rays are binned with the boxes of the bracketing leaves of each
