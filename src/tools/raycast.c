@@ -30,12 +30,12 @@ static const char usage[] =
     "        [--no-cellmask] [--no-binning] [--bin-block N] [--aa N] [-j N]\n"
     "        [--stats] [--explain] [-n] [--hdr] [-z LEVEL] [--bits 8|16]\n"
     "        [--exposure STOPS] [--depth FILE.pfm] [--normals FILE.pfm]\n"
-    "        [--lazy] [--lazy-save STREAM] [-o OUT] [STREAM|-]";
+    "        [--lazy] [--lazy-save STREAM] [--spp N] [-o OUT] [STREAM|-]";
 
 typedef struct opts {
 	const char *in, *out, *scene, *name, *depth, *normals;
 	int hdr, zlevel, bits, stats, explain, dry, flat, aa, solver, nomask;
-	int nobin, binblock, lazy;
+	int nobin, binblock, lazy, spp;
 	const char *lazy_save;
 	long threads;
 	double exposure;
@@ -60,7 +60,7 @@ parse(opts *o, int argc, char **argv)
 	enum { O_SCENE = 256, O_ISO, O_SIZE, O_VIEW, O_ORTHO, O_FOV, O_LIGHT,
 	    O_LIGHTS, O_EFFECTS, O_BG, O_SET, O_NAME, O_SOLVER, O_FLAT, O_AA,
 	    O_STATS, O_EXPLAIN, O_HDR, O_BITS, O_EXPOSURE, O_DEPTH, O_NORMALS,
-	    O_NOMASK, O_NOBIN, O_BINBLOCK, O_LAZY, O_LAZYSAVE };
+	    O_NOMASK, O_NOBIN, O_BINBLOCK, O_LAZY, O_LAZYSAVE, O_SPP };
 	static const struct option lo[] = {
 		{ "scene", 1, 0, O_SCENE }, { "iso", 1, 0, O_ISO },
 		{ "size", 1, 0, O_SIZE }, { "view", 1, 0, O_VIEW },
@@ -73,6 +73,7 @@ parse(opts *o, int argc, char **argv)
 		{ "no-binning", 0, 0, O_NOBIN },
 		{ "bin-block", 1, 0, O_BINBLOCK },
 		{ "lazy", 0, 0, O_LAZY }, { "lazy-save", 1, 0, O_LAZYSAVE },
+		{ "spp", 1, 0, O_SPP },
 		{ "aa", 1, 0, O_AA }, { "stats", 0, 0, O_STATS },
 		{ "explain", 0, 0, O_EXPLAIN }, { "dry-run", 0, 0, 'n' },
 		{ "hdr", 0, 0, O_HDR }, { "bits", 1, 0, O_BITS },
@@ -120,6 +121,9 @@ parse(opts *o, int argc, char **argv)
 		case O_NOMASK: o->nomask = 1; break;
 		case O_NOBIN: o->nobin = 1; break;
 		case O_LAZY: o->lazy = 1; break;
+		case O_SPP:
+			o->spp = (int)tool_parse_long("--spp", optarg, 1, 1000000);
+			break;
 		case O_LAZYSAVE: o->lazy = 1; o->lazy_save = optarg; break;
 		case O_BINBLOCK:
 			o->binblock = (int)tool_parse_long("--bin-block", optarg, 1,
@@ -194,6 +198,12 @@ print_stats(const vx_raycast_stats *st, const vx_macro *m, int w, int h,
 		    (unsigned long long)st->certified,
 		    (unsigned long long)st->hits, (unsigned long long)st->shaded,
 		    (unsigned long long)st->nonfinite);
+	if (st->paths > 0)
+		fprintf(stderr, "raycast: pathtrace: %llu paths, %llu rays "
+		    "(bounce and shadow), %.0f paths/s\n",
+		    (unsigned long long)st->paths,
+		    (unsigned long long)st->gi_rays,
+		    (double)st->paths / (st->seconds > 0 ? st->seconds : 1e-9));
 	if (st->irr_missing > 0)
 		fprintf(stderr, "raycast: irradiance: %llu of %llu shaded points "
 		    "found no baked texel (drawn black: outside the bake's "
@@ -379,6 +389,7 @@ main(int argc, char **argv)
 	vx_raycast_opts ro;
 	vx_raycast_stats rs;
 	vx_irrvol irr;
+	vx_gi pgi;
 	vx_image color, depth, normal;
 	const vx_grid *tex[VX_SCENE_MAX_SURFACES];
 	vx_grid texg[VX_SCENE_MAX_SURFACES];
@@ -396,6 +407,8 @@ main(int argc, char **argv)
 	tool_read_stream(&st, o.in);
 	vx_scene_init(&s);
 	load_scene(&s, &o, &st);
+	if (o.spp > 0)
+		s.pt_samples = o.spp;
 	/* what to draw: the named (or first) volume or mesh */
 	want = o.name ? o.name : (s.volume[0] ? s.volume : NULL);
 	vx_grid_init(&g);
@@ -590,6 +603,13 @@ main(int argc, char **argv)
 	} else if (o.lazy) {
 		tool_fail(VX_EUSAGE, "--lazy: the scene's illumination is not "
 		    "irradiance (add --set \"illumination irradiance\")");
+	}
+	if (plan.pathtrace) {
+		if (is_mesh)
+			tool_fail(VX_EUSAGE, "illumination pathtrace: volumes "
+			    "only, not meshes");
+		tool_gi_setup(&pgi, &s, &g, o.flat ? NULL : &m);
+		ro.gi = &pgi;
 	}
 	vx_image_init(&color);
 	vx_image_init(&depth);

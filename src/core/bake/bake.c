@@ -292,7 +292,7 @@ vx_bake_texel(const vx_irrvol *v, const vx_gi *gi, const vx_grid *g,
 	if (fl & (VX_TEXEL_NAN | VX_TEXEL_FLAT))
 		return;
 	vx_index_to_world(g, start, sw);
-	vx_gi_direct(gi, sw, start, n, rho, D, st);
+	vx_gi_direct(gi, sw, start, n, rho, gi->high, D, st);
 	if (o->target > 0) {
 		uint32_t cap = o->samples, r = o->round ? o->round : 16;
 
@@ -304,7 +304,7 @@ vx_bake_texel(const vx_irrvol *v, const vx_gi *gi, const vx_grid *g,
 			while (a->count < goal) {
 				double rgb[3];
 
-				vx_gi_sample(gi, start, n, rho, D, id,
+				vx_gi_sample(gi, start, n, rho, gi->high, D, id,
 				    (uint64_t)v->first + a->count, rgb, st);
 				vx_irr_acc_add(a, rgb, v->fixed);
 			}
@@ -317,8 +317,8 @@ vx_bake_texel(const vx_irrvol *v, const vx_gi *gi, const vx_grid *g,
 	while (a->count < goal) {
 		double rgb[3];
 
-		vx_gi_sample(gi, start, n, rho, D, id, (uint64_t)v->first +
-		    a->count, rgb, st);
+		vx_gi_sample(gi, start, n, rho, gi->high, D, id,
+		    (uint64_t)v->first + a->count, rgb, st);
 		vx_irr_acc_add(a, rgb, v->fixed);
 	}
 }
