@@ -190,7 +190,8 @@ void vx_sh_rot_from_axis(int order, const double axis[3], double angle,
  * (Ry(beta) = Rx(-90 deg) Rz(beta) Rx(90 deg)): rotations about z in closed
  * form (cos, sin of m angle on each (m, -m) pair), X(+90) by exact
  * quadrature of eq. 16 (Gauss-Legendre x uniform phi), X(-90) its transpose.
- * A check on vx_sh_rot_from_matrix; slower (O(order^4)). */
+ * A check on vx_sh_rot_from_matrix; slower (O(order^4)), and uses about
+ * 100 KB of stack. */
 void vx_sh_rot_from_zyz(int order, double alpha, double beta, double gamma,
     double *rot);
 
