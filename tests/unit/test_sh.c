@@ -888,8 +888,9 @@ special_rotations(void **state)
 }
 
 /* 3x3 rotations: ZYZ angles back from the matrix rebuild it (1e-12), at
- * the hard cases (gimbal lock included) and at random rotations; beta lies
- * in [0, pi].  Rodrigues agrees with the ZYZ form about z, and turns x
+ * the hard cases (gimbal lock included), at random rotations, and within
+ * 1e-12 of gimbal lock with noise of 1e-16 on the entries that carry
+ * sin beta (where alpha is a ratio of noise); beta lies in [0, pi].  Rodrigues agrees with the ZYZ form about z, and turns x
  * into y about z, y into z about x. */
 static void
 rot3(void **state)
@@ -913,6 +914,22 @@ rot3(void **state)
 				worst = fmax(worst, fabs(q[i][j] - r[i][j]));
 		if (!(worst < 1e-12))
 			fail_msg("case %zu: %.3g", k, worst);
+	}
+	/* near gimbal lock, with rounding noise where sin beta lives: the
+	 * angles still rebuild the matrix */
+	for (int k = 0; k < 4; k++) {
+		double a, b, g, worst = 0;
+
+		vx_rot3_zyz(0.3, k < 2 ? 1e-12 : PI - 1e-12, 0.5, r);
+		r[0][2] += k & 1 ? 1e-16 : -2e-16;
+		r[1][2] -= 1e-16;
+		vx_rot3_to_zyz(r, &a, &b, &g);
+		vx_rot3_zyz(a, b, g, q);
+		for (int i = 0; i < 3; i++)
+			for (int j = 0; j < 3; j++)
+				worst = fmax(worst, fabs(q[i][j] - r[i][j]));
+		if (!(worst < 1e-12))
+			fail_msg("near gimbal lock %d: %.3g", k, worst);
 	}
 	vx_rot3_axis((double[3]){ 0, 0, 2 }, 0.8, r);
 	vx_rot3_zyz(0.8, 0, 0, q);

@@ -73,22 +73,19 @@ vx_rot3_to_zyz(const double r[3][3], double *alpha, double *beta,
     double *gamma)
 {
 	/* r = Rz(a) Ry(b) Rz(g): r22 = cos b, (r02, r12) = sin b (cos a,
-	 * sin a), (r20, r21) = sin b (-cos g, sin g) */
-	double sb = hypot(r[0][2], r[1][2]);
+	 * sin a).  Near gimbal lock a is ill-determined (a ratio of tiny
+	 * numbers), so g is not taken from r's third row but from
+	 * Rz(-a) r = Ry(b) Rz(g), whose second row is (sin g, cos g, 0)
+	 * whatever b: the three angles then rebuild r to rounding even where
+	 * a itself is arbitrary. */
+	double sb = hypot(r[0][2], r[1][2]), ca, sa;
 
 	*beta = atan2(sb, r[2][2]);
-	if (sb > 1e-12) {
-		*alpha = atan2(r[1][2], r[0][2]);
-		*gamma = atan2(r[2][1], -r[2][0]);
-	} else if (r[2][2] > 0) {
-		/* Rz(a + g): gamma = 0 */
-		*alpha = atan2(r[1][0], r[0][0]);
-		*gamma = 0;
-	} else {
-		/* Rz(a) diag(-1, 1, -1): r00 = -cos a, r10 = -sin a */
-		*alpha = atan2(-r[1][0], -r[0][0]);
-		*gamma = 0;
-	}
+	*alpha = sb > 0 ? atan2(r[1][2], r[0][2]) : 0;
+	ca = cos(*alpha);
+	sa = sin(*alpha);
+	*gamma = atan2(ca * r[1][0] - sa * r[0][0],
+	    ca * r[1][1] - sa * r[0][1]);
 }
 
 /* ---- Ivanic and Ruedenberg ----

@@ -147,8 +147,10 @@ void vx_rot3_zyz(double alpha, double beta, double gamma, double r[3][3]);
 void vx_rot3_axis(const double axis[3], double angle, double r[3][3]);
 
 /* vx_rot3_to_zyz: ZYZ angles of the rotation r: beta in [0, pi], alpha and
- * gamma in (-pi, pi].  At gimbal lock (sin beta below 1e-12) gamma = 0 and
- * alpha carries the whole turn about z. */
+ * gamma in [-pi, pi].  At gimbal lock (sin beta = 0: beta = 0 or pi) alpha
+ * = 0 and gamma carries the whole turn about z.  Near it alpha is
+ * ill-determined, but gamma is computed from r and alpha, so the three
+ * angles rebuild r to rounding always. */
 void vx_rot3_to_zyz(const double r[3][3], double *alpha, double *beta,
     double *gamma);
 
