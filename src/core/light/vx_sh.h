@@ -13,10 +13,9 @@
  * phase (-1)^m (P_1^1(x) = -sqrt(1 - x^2)), as Green's code does, so
  *   Y_1^-1 = -sqrt(3/(4 pi)) y,  Y_1^0 = sqrt(3/(4 pi)) z,
  *   Y_1^1  = -sqrt(3/(4 pi)) x.
- * Ramamoorthi and Hanrahan 2001 (and Ivanic and Ruedenberg's band 1, and
- * Sloan's "Stupid SH tricks" tables) use the basis without the phase, whose
- * functions are (-1)^m times these (Y_1^1 = +0.488603 x there):
- * vx_sh_flip_phase converts coefficients either way.
+ * Ramamoorthi and Hanrahan 2001 (and Ivanic and Ruedenberg) use the basis
+ * without the phase, whose functions are (-1)^m times these (Y_1^1 =
+ * +0.488603 x there): vx_sh_flip_phase converts coefficients either way.
  *
  * Coefficients of an order-n expansion (bands l = 0 .. n-1) are n*n doubles
  * per channel, (l, m) at vx_sh_index(l, m) = l*l + l + m.  Several channels
@@ -35,8 +34,10 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/* Bands 0 .. 31.  Evaluation is by the fully normalized Legendre recurrence
- * (no factorials, no overflow), accurate to a few ulps at every order here. */
+/* Bands 0 .. 31.  Evaluation is by the fully normalized Legendre recurrence,
+ * whose terms stay of the size of the result (no factorials, no overflow,
+ * no cancellation that grows with the band): stable through band 31
+ * (test_sh checks orthonormality and the addition theorem there). */
 #define VX_SH_MAX_ORDER 32
 #define VX_SH_MAX_COEF (VX_SH_MAX_ORDER * VX_SH_MAX_ORDER)
 
@@ -192,8 +193,9 @@ void vx_sh_rot_from_axis(int order, const double axis[3], double angle,
  * (Ry(beta) = Rx(-90 deg) Rz(beta) Rx(90 deg)): rotations about z in closed
  * form (cos, sin of m angle on each (m, -m) pair), X(+90) by exact
  * quadrature of eq. 16 (Gauss-Legendre x uniform phi), X(-90) its transpose.
- * A check on vx_sh_rot_from_matrix; slower (O(order^4)), and uses about
- * 100 KB of stack. */
+ * A check on vx_sh_rot_from_matrix, much slower (the quadrature is
+ * O(order^5)) and using about 100 KB of stack; for speed, turn Euler angles
+ * into a matrix (vx_rot3_zyz) and use vx_sh_rot_from_matrix. */
 void vx_sh_rot_from_zyz(int order, double alpha, double beta, double gamma,
     double *rot);
 
