@@ -701,6 +701,11 @@ static const vtk_case vtk_cases[] = {
 	{ "binary int", "int", VX_S_I32, 1, 0, 0, 0, 0 },
 	{ "binary float gz", "float", VX_S_F32, 1, 1, 0, 0, 0 },
 	{ "binary double", "double", VX_S_F64, 1, 0, 1, 0, 0 },
+	/* the names VTK's own writers use (the table tet meshes share) */
+	{ "binary long", "long", VX_S_I64, 1, 0, 0, 0, 0 },
+	{ "binary vtkIdType", "vtkIdType", VX_S_I32, 1, 0, 0, 0, 0 },
+	{ "ascii vtktypeuint16", "vtktypeuint16", VX_S_U16, 0, 0, 0, 0, 0 },
+	{ "binary vtktypefloat64", "VTKTYPEFLOAT64", VX_S_F64, 1, 0, 0, 0, 0 },
 };
 
 static void

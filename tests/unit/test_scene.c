@@ -375,7 +375,8 @@ static const struct {
 	{ "camera auto fov 0", 1, "outside (0, 180)" },
 	{ "camera auto distance 0", 1, "distance" },
 	{ "camera auto projection orthographic fov 20", 1, "perspective cameras" },
-	{ "camera auto projection fisheye", 1, "unknown value 'fisheye'" },
+	{ "camera auto projection fisheye", 1, "unknown value 'fisheye' (one "
+	  "of: perspective, orthographic)" },
 	{ "camera auto up 0 0 0", 1, "zero vector" },
 	{ "camera auto fov 30 fov 40", 1, "given twice" },
 	{ "camera auto fov", 1, "expected 1 number" },
@@ -397,10 +398,14 @@ static const struct {
 	{ "background color 1 1", 1, "expected 3 numbers" },
 	{ "ambient intensity -1", 1, "outside" },
 	{ "effects", 1, "expected effect names" },
-	{ "effects shadows glitter", 1, "unknown effect 'glitter'" },
+	{ "effects shadows glitter", 1, "unknown effect 'glitter' (shadows, "
+	  "specular, transparency, texture, interreflection, "
+	  "volumetric-shadows, scattering; or none)" },
 	{ "effects none shadows", 1, "unknown effect 'none'" },
-	{ "light", 1, "expected a type" },
-	{ "light laser", 1, "unknown value 'laser'" },
+	{ "light", 1, "expected a type (point, directional, headlight, "
+	  "environment, sky) or none" },
+	{ "light laser", 1, "type: unknown value 'laser' (one of: point, "
+	  "directional, headlight, environment, sky)" },
 	{ "light point color 1 1 1", 1, "key 'position' missing" },
 	{ "light directional direction 0 0 0", 1, "zero vector" },
 	{ "light directional direction 0 0 1 position 1 1 1", 1,

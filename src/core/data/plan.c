@@ -6,14 +6,16 @@
 #include <stdio.h>
 #include <string.h>
 
-static const char *const state_names[VX_PLAN_LAST] = {
-	"?", "on", "off", "unsupported"
+static const vx_enum_name state_names[] = {
+	{ "on", VX_PLAN_ON }, { "off", VX_PLAN_OFF },
+	{ "unsupported", VX_PLAN_UNSUPPORTED }, { NULL, VX_PLAN_UNKNOWN }
 };
+const vx_enum vx_plan_state_enum = { "plan state", state_names, "?", 0 };
 
 const char *
 vx_plan_state_name(vx_plan_state st)
 {
-	return st > 0 && st < VX_PLAN_LAST ? state_names[st] : "?";
+	return vx_enum_str(&vx_plan_state_enum, st);
 }
 
 void

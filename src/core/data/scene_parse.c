@@ -16,93 +16,106 @@
 
 /* ---- names ---- */
 
-static const char *const light_names[VX_LIGHT_LAST] = {
-	NULL, "point", "directional", "headlight", "environment", "sky"
+static const vx_enum_name light_names[] = {
+	{ "point", VX_LIGHT_POINT }, { "directional", VX_LIGHT_DIRECTIONAL },
+	{ "headlight", VX_LIGHT_HEADLIGHT },
+	{ "environment", VX_LIGHT_ENVIRONMENT }, { "sky", VX_LIGHT_SKY },
+	{ NULL, VX_LIGHT_UNKNOWN }
 };
-static const char *const falloff_names[VX_FALLOFF_LAST] = {
-	NULL, "none", "inverse-square"
-};
-static const char *const cmap_names[VX_COLORMAP_LAST] = {
-	NULL, "gray", "hot", "coolwarm", "viridis"
-};
-static const char *const illum_names[VX_ILLUM_LAST] = {
-	NULL, "local", "irradiance", "sh"
-};
-static const char *const interp_names[VX_INTERP_LAST] = {
-	NULL, "nearest", "trilinear", "tricubic", "nearest-iso"
-};
-static const char *const phase_names[VX_PHASE_LAST] = {
-	NULL, "isotropic", "henyey-greenstein"
-};
-/* in bit order: VX_FX_SHADOWS is bit 0 */
-static const char *const effect_names[] = {
-	"shadows", "specular", "transparency", "texture", "interreflection",
-	"volumetric-shadows", "scattering", NULL
-};
+const vx_enum vx_light_type_enum = { "light type", light_names, "unknown",
+    0 };
 
-/* lookup: index of s in names[1..last-1], or 0. */
-static int
-lookup(const char *const *names, int last, const char *s)
-{
-	int i;
+static const vx_enum_name falloff_names[] = {
+	{ "none", VX_FALLOFF_NONE },
+	{ "inverse-square", VX_FALLOFF_INVERSE_SQUARE },
+	{ NULL, VX_FALLOFF_UNKNOWN }
+};
+const vx_enum vx_falloff_enum = { "falloff", falloff_names, "unknown", 0 };
 
-	for (i = 1; i < last; i++)
-		if (strcmp(names[i], s) == 0)
-			return i;
-	return 0;
-}
+static const vx_enum_name colormap_names[] = {
+	{ "gray", VX_COLORMAP_GRAY }, { "hot", VX_COLORMAP_HOT },
+	{ "coolwarm", VX_COLORMAP_COOLWARM }, { "viridis", VX_COLORMAP_VIRIDIS },
+	{ NULL, VX_COLORMAP_UNKNOWN }
+};
+const vx_enum vx_colormap_enum = { "colormap", colormap_names, "unknown",
+    0 };
+
+static const vx_enum_name illum_names[] = {
+	{ "local", VX_ILLUM_LOCAL }, { "irradiance", VX_ILLUM_IRRADIANCE },
+	{ "sh", VX_ILLUM_SH }, { NULL, VX_ILLUM_UNKNOWN }
+};
+const vx_enum vx_illum_enum = { "illumination", illum_names, "unknown", 0 };
+
+static const vx_enum_name interp_names[] = {
+	{ "nearest", VX_INTERP_NEAREST }, { "trilinear", VX_INTERP_TRILINEAR },
+	{ "tricubic", VX_INTERP_TRICUBIC },
+	{ "nearest-iso", VX_INTERP_NEAREST_ISO }, { NULL, VX_INTERP_UNKNOWN }
+};
+const vx_enum vx_interp_enum = { "interpolation", interp_names, "unknown",
+    0 };
+
+static const vx_enum_name phase_names[] = {
+	{ "isotropic", VX_PHASE_ISOTROPIC },
+	{ "henyey-greenstein", VX_PHASE_HENYEY_GREENSTEIN },
+	{ NULL, VX_PHASE_UNKNOWN }
+};
+const vx_enum vx_phase_enum = { "phase", phase_names, "unknown", 0 };
+
+static const vx_enum_name effect_names[] = {
+	{ "shadows", VX_FX_SHADOWS }, { "specular", VX_FX_SPECULAR },
+	{ "transparency", VX_FX_TRANSPARENCY }, { "texture", VX_FX_TEXTURE },
+	{ "interreflection", VX_FX_INTERREFLECTION },
+	{ "volumetric-shadows", VX_FX_VOLUMETRIC_SHADOWS },
+	{ "scattering", VX_FX_SCATTERING }, { NULL, 0 }
+};
+const vx_enum vx_effect_enum = { "effect", effect_names, NULL, 0 };
 
 const char *
 vx_light_type_name(vx_light_type t)
 {
-	return t > 0 && t < VX_LIGHT_LAST ? light_names[t] : "unknown";
+	return vx_enum_str(&vx_light_type_enum, t);
 }
 
 const char *
 vx_falloff_name(vx_falloff f)
 {
-	return f > 0 && f < VX_FALLOFF_LAST ? falloff_names[f] : "unknown";
+	return vx_enum_str(&vx_falloff_enum, f);
 }
 
 const char *
 vx_illum_name(vx_illum m)
 {
-	return m > 0 && m < VX_ILLUM_LAST ? illum_names[m] : "unknown";
+	return vx_enum_str(&vx_illum_enum, m);
 }
 
 const char *
 vx_interp_name(vx_interp m)
 {
-	return m > 0 && m < VX_INTERP_LAST ? interp_names[m] : "unknown";
+	return vx_enum_str(&vx_interp_enum, m);
 }
 
 const char *
 vx_phase_name(vx_phase p)
 {
-	return p > 0 && p < VX_PHASE_LAST ? phase_names[p] : "unknown";
+	return vx_enum_str(&vx_phase_enum, p);
 }
 
 const char *
 vx_colormap_name(vx_colormap m)
 {
-	return m > 0 && m < VX_COLORMAP_LAST ? cmap_names[m] : "unknown";
+	return vx_enum_str(&vx_colormap_enum, m);
 }
 
 vx_colormap
 vx_colormap_parse(const char *s)
 {
-	return (vx_colormap)lookup(cmap_names, VX_COLORMAP_LAST, s);
+	return (vx_colormap)vx_enum_val(&vx_colormap_enum, s);
 }
 
 const char *
 vx_effect_name(unsigned bit)
 {
-	int i;
-
-	for (i = 0; effect_names[i] != NULL; i++)
-		if (bit == 1u << i)
-			return effect_names[i];
-	return NULL;
+	return bit != 0 ? vx_enum_str(&vx_effect_enum, (int)bit) : NULL;
 }
 
 /* ---- numbers in the C locale, whatever the process locale ---- */
@@ -415,22 +428,17 @@ need_nonzero(pctx *P, const char *dir, const char *key, const double v[3])
 	return 0;
 }
 
+/* need_word: *out = the value w names in en (whose unknown value is 0). */
 static int
 need_word(pctx *P, const char *dir, const char *key, const char *w,
-    const char *const *names, int last, int *out)
+    const vx_enum *en, int *out)
 {
 	char list[256];
-	size_t m = 0;
-	int i;
 
-	if ((*out = lookup(names, last, w)) != 0)
+	if ((*out = vx_enum_val(en, w)) != 0)
 		return 0;
-	list[0] = '\0';
-	for (i = 1; i < last && m < sizeof list; i++)
-		m += (size_t)snprintf(list + m, sizeof list - m, "%s%s",
-		    i > 1 ? ", " : "", names[i]);
 	return perr(P, "%s: %s: unknown value '%.40s' (one of: %s)", dir, key, w,
-	    list);
+	    vx_enum_list(en, list, sizeof list));
 }
 
 /* copy_name: NUL-terminated copy into a fixed field, whole field written. */
@@ -510,8 +518,7 @@ do_camera(pctx *P)
 		int p;
 
 		if ((rc = need_word(P, kind, "projection", kv[C_PROJ].w,
-		    (const char *const[]){ NULL, "perspective", "orthographic" },
-		    VX_PROJECTION_LAST, &p)) != 0)
+		    &vx_projection_enum, &p)) != 0)
 			return rc;
 		c.projection = (vx_projection)p;
 	}
@@ -667,6 +674,7 @@ do_effects(pctx *P)
 {
 	unsigned set = P->s->effects;
 	int i, signless = 0;
+	char list[256];
 
 	if (P->ntok < 2)
 		return perr(P, "effects: expected effect names or none");
@@ -681,21 +689,20 @@ do_effects(pctx *P)
 		set = 0;
 	for (i = 1; i < P->ntok; i++) {
 		const char *w = P->tok[i];
-		int remove = w[0] == '-', k;
+		int remove = w[0] == '-';
+		unsigned bit;
 
 		if (w[0] == '+' || w[0] == '-')
 			w++;
-		for (k = 0; effect_names[k] != NULL; k++)
-			if (strcmp(effect_names[k], w) == 0)
-				break;
-		if (effect_names[k] == NULL || P->quoted[i])
-			return perr(P, "effects: unknown effect '%.40s' (shadows, "
-			    "specular, transparency, texture, interreflection, "
-			    "volumetric-shadows, scattering; or none)", P->tok[i]);
+		bit = (unsigned)vx_enum_val(&vx_effect_enum, w);
+		if (bit == 0 || P->quoted[i])
+			return perr(P, "effects: unknown effect '%.40s' (%s; or "
+			    "none)", P->tok[i], vx_enum_list(&vx_effect_enum,
+			    list, sizeof list));
 		if (remove)
-			set &= ~(1u << k);
+			set &= ~bit;
 		else
-			set |= 1u << k;
+			set |= bit;
 	}
 	P->s->effects = set;
 	return 0;
@@ -744,11 +751,11 @@ do_light(pctx *P)
 	kval kv[L_N];
 	vx_light l;
 	int type, rc, k;
-	char dir[40];
+	char dir[40], list[256];
 
 	if (P->ntok < 2 || P->quoted[1])
-		return perr(P, "light: expected a type (point, directional, "
-		    "headlight, environment, sky) or none");
+		return perr(P, "light: expected a type (%s) or none",
+		    vx_enum_list(&vx_light_type_enum, list, sizeof list));
 	if (strcmp(P->tok[1], "none") == 0) {
 		if (P->ntok != 2)
 			return perr(P, "light none: takes no keys");
@@ -756,10 +763,10 @@ do_light(pctx *P)
 		s->default_lights = 0;
 		return 0;
 	}
-	if ((rc = need_word(P, "light", "type", P->tok[1], light_names,
-	    VX_LIGHT_LAST, &type)) != 0)
+	if ((rc = need_word(P, "light", "type", P->tok[1],
+	    &vx_light_type_enum, &type)) != 0)
 		return rc;
-	snprintf(dir, sizeof dir, "light %s", light_names[type]);
+	snprintf(dir, sizeof dir, "light %s", vx_light_type_name(type));
 	if ((rc = parse_keys(P, dir, 2, defs, kv)) != 0)
 		return rc;
 	for (k = 0; k < L_N; k++)
@@ -793,7 +800,7 @@ do_light(pctx *P)
 		int f;
 
 		if ((rc = need_word(P, dir, "falloff", kv[L_FALL].w,
-		    falloff_names, VX_FALLOFF_LAST, &f)) != 0)
+		    &vx_falloff_enum, &f)) != 0)
 			return rc;
 		l.falloff = (vx_falloff)f;
 	}
@@ -898,8 +905,8 @@ do_surface(pctx *P)
 	if (kv[S_CMAP].seen) {
 		int m;
 
-		if ((rc = need_word(P, dir, "colormap", kv[S_CMAP].w, cmap_names,
-		    VX_COLORMAP_LAST, &m)) != 0)
+		if ((rc = need_word(P, dir, "colormap", kv[S_CMAP].w,
+		    &vx_colormap_enum, &m)) != 0)
 			return rc;
 		sf.m.colormap = (vx_colormap)m;
 	}
@@ -961,8 +968,8 @@ do_illumination(pctx *P)
 
 	if (P->ntok < 2 || P->quoted[1])
 		return perr(P, "illumination: expected local, irradiance or sh");
-	if ((rc = need_word(P, "illumination", "mode", P->tok[1], illum_names,
-	    VX_ILLUM_LAST, &mode)) != 0)
+	if ((rc = need_word(P, "illumination", "mode", P->tok[1],
+	    &vx_illum_enum, &mode)) != 0)
 		return rc;
 	if ((rc = parse_keys(P, "illumination", 2, defs, kv)) != 0)
 		return rc;
@@ -979,7 +986,7 @@ do_illumination(pctx *P)
 			return perr(P, "illumination: interpolation does not "
 			    "apply to local");
 		if ((rc = need_word(P, "illumination", "interpolation", kv[1].w,
-		    interp_names, VX_INTERP_LAST, &in)) != 0)
+		    &vx_interp_enum, &in)) != 0)
 			return rc;
 		P->s->interp = (vx_interp)in;
 	}
@@ -1055,8 +1062,8 @@ do_medium(pctx *P)
 	if ((rc = parse_keys(P, "medium", 1, defs, kv)) != 0)
 		return rc;
 	if (kv[0].seen) {
-		if ((rc = need_word(P, "medium", "phase", kv[0].w, phase_names,
-		    VX_PHASE_LAST, &p)) != 0)
+		if ((rc = need_word(P, "medium", "phase", kv[0].w,
+		    &vx_phase_enum, &p)) != 0)
 			return rc;
 		ph = (vx_phase)p;
 	}

@@ -17,6 +17,7 @@
 #include <stdio.h>
 
 #include "vx_camera.h"
+#include "vx_enum.h"
 #include "vx_err.h"
 #include "vx_stream.h"
 
@@ -244,7 +245,11 @@ int vx_scene_from_stream(vx_scene *s, const vx_stream *st, long *index,
 /* vx_scene_to_stream: replace st's first SCNE chunk by s, or append one. */
 int vx_scene_to_stream(const vx_scene *s, vx_stream *st, vx_err *e);
 
-/* ---- names and helpers ---- */
+/* ---- names and helpers ----
+ * The words of the format (vx_enum.h): each namer gives "unknown" for a
+ * value it does not know (vx_effect_name: NULL). */
+extern const vx_enum vx_light_type_enum, vx_falloff_enum, vx_illum_enum,
+    vx_interp_enum, vx_phase_enum, vx_colormap_enum, vx_effect_enum;
 const char *vx_light_type_name(vx_light_type t);   /* "point", ... */
 const char *vx_falloff_name(vx_falloff f);         /* "inverse-square" */
 const char *vx_illum_name(vx_illum m);             /* "irradiance" */

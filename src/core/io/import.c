@@ -7,26 +7,28 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *format_names[VX_FORMAT_LAST] = {
-	"unknown", "raw", "nrrd", "nifti", "vtk"
+static const vx_enum_name format_names[] = {
+	{ "raw", VX_FORMAT_RAW }, { "nrrd", VX_FORMAT_NRRD },
+	{ "nifti", VX_FORMAT_NIFTI }, { "vtk", VX_FORMAT_VTK },
+	{ NULL, VX_FORMAT_UNKNOWN }
 };
+const vx_enum vx_format_enum = { "format", format_names, "unknown", 0 };
+
+static const vx_enum_name endian_names[] = {
+	{ "little", 0 }, { "big", 1 }, { NULL, -1 }
+};
+const vx_enum vx_endian_enum = { "byte order", endian_names, "unknown", 1 };
 
 const char *
 vx_format_name(vx_format f)
 {
-	return f > VX_FORMAT_UNKNOWN && f < VX_FORMAT_LAST ? format_names[f] :
-	    "unknown";
+	return vx_enum_str(&vx_format_enum, f);
 }
 
 vx_format
 vx_format_parse(const char *s)
 {
-	int f;
-
-	for (f = VX_FORMAT_UNKNOWN + 1; f < VX_FORMAT_LAST; f++)
-		if (strcmp(s, format_names[f]) == 0)
-			return (vx_format)f;
-	return VX_FORMAT_UNKNOWN;
+	return (vx_format)vx_enum_val(&vx_format_enum, s);
 }
 
 void

@@ -10,10 +10,13 @@
 
 /* ---- source sample types ---- */
 
-static const char *scalar_names[VX_SCALAR_LAST] = {
-	"unknown", "u8", "i8", "u16", "i16", "u32", "i32", "u64", "i64",
-	"f32", "f64"
+static const vx_enum_name scalar_names[] = {
+	{ "u8", VX_S_U8 }, { "i8", VX_S_I8 }, { "u16", VX_S_U16 },
+	{ "i16", VX_S_I16 }, { "u32", VX_S_U32 }, { "i32", VX_S_I32 },
+	{ "u64", VX_S_U64 }, { "i64", VX_S_I64 }, { "f32", VX_S_F32 },
+	{ "f64", VX_S_F64 }, { NULL, VX_SCALAR_UNKNOWN }
 };
+const vx_enum vx_scalar_enum = { "type", scalar_names, "unknown", 0 };
 
 size_t
 vx_scalar_size(vx_scalar t)
@@ -27,19 +30,13 @@ vx_scalar_size(vx_scalar t)
 const char *
 vx_scalar_name(vx_scalar t)
 {
-	return t > VX_SCALAR_UNKNOWN && t < VX_SCALAR_LAST ? scalar_names[t] :
-	    "unknown";
+	return vx_enum_str(&vx_scalar_enum, t);
 }
 
 vx_scalar
 vx_scalar_parse(const char *s)
 {
-	int t;
-
-	for (t = VX_SCALAR_UNKNOWN + 1; t < VX_SCALAR_LAST; t++)
-		if (strcmp(s, scalar_names[t]) == 0)
-			return (vx_scalar)t;
-	return VX_SCALAR_UNKNOWN;
+	return (vx_scalar)vx_enum_val(&vx_scalar_enum, s);
 }
 
 vx_type

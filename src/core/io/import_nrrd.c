@@ -27,7 +27,7 @@ enum {
 	F_LAST
 };
 
-static const struct { const char *name; int f; } fields[] = {
+static const vx_enum_name field_names[] = {
 	{ "dimension", F_DIMENSION }, { "type", F_TYPE },
 	{ "encoding", F_ENCODING }, { "endian", F_ENDIAN },
 	{ "sizes", F_SIZES }, { "spacings", F_SPACINGS },
@@ -51,21 +51,17 @@ static const struct { const char *name; int f; } fields[] = {
 	{ "labels", F_LABELS }, { "units", F_UNITS },
 	{ "space units", F_SPACE_UNITS }, { "spaceunits", F_SPACE_UNITS },
 	{ "measurement frame", F_MEASUREMENT_FRAME },
-	{ "measurementframe", F_MEASUREMENT_FRAME },
+	{ "measurementframe", F_MEASUREMENT_FRAME }, { NULL, -1 }
 };
+static const vx_enum fields = { "field", field_names, "?", 1 };
 
 static const char *
 field_name(int f)
 {
-	size_t i;
-
-	for (i = 0; i < sizeof fields / sizeof fields[0]; i++)
-		if (fields[i].f == f)
-			return fields[i].name;
-	return "?";
+	return vx_enum_str(&fields, f);
 }
 
-enum { ENC_RAW = 1, ENC_GZIP, ENC_ASCII, ENC_HEX };
+enum { ENC_RAW = 1, ENC_GZIP, ENC_ASCII, ENC_HEX, ENC_UNSUPPORTED };
 
 typedef struct nrrd {
 	char *text;                 /* copy of the header; values point in */
@@ -111,17 +107,6 @@ norm(const char *p, size_t n, char *buf, size_t cap)
 	}
 	buf[k] = '\0';
 	return buf;
-}
-
-static int
-find_field(const char *p, size_t n)
-{
-	size_t i;
-
-	for (i = 0; i < sizeof fields / sizeof fields[0]; i++)
-		if (vx_imp_word_eq(p, n, fields[i].name))
-			return fields[i].f;
-	return -1;
 }
 
 static int
@@ -191,7 +176,8 @@ nrrd_lines(nrrd *h, const unsigned char *p, size_t n, int at_end, vx_err *e)
 			}
 		if (colon == NULL && len > 0 && line[len - 1] == ':')
 			colon = line + len - 1;       /* "field:" empty desc */
-		f = colon ? find_field(line, (size_t)(colon - line)) : -1;
+		f = colon ? vx_enum_val_n(&fields, line, (size_t)(colon -
+		    line)) : -1;
 		if (f < 0) {
 			for (k = 0; k + 1 < len; k++)
 				if (line[k] == ':' && line[k + 1] == '=')
@@ -226,7 +212,7 @@ nrrd_lines(nrrd *h, const unsigned char *p, size_t n, int at_end, vx_err *e)
 static int
 parse_type(nrrd *h, vx_err *e)
 {
-	static const struct { const char *name; vx_scalar t; } types[] = {
+	static const vx_enum_name type_names[] = {
 		{ "signed char", VX_S_I8 }, { "int8", VX_S_I8 },
 		{ "int8_t", VX_S_I8 },
 		{ "uchar", VX_S_U8 }, { "unsigned char", VX_S_U8 },
@@ -249,19 +235,17 @@ parse_type(nrrd *h, vx_err *e)
 		{ "unsigned long long int", VX_S_U64 }, { "uint64", VX_S_U64 },
 		{ "uint64_t", VX_S_U64 },
 		{ "float", VX_S_F32 }, { "double", VX_S_F64 },
+		{ NULL, VX_SCALAR_UNKNOWN }
 	};
+	static const vx_enum types = { "type", type_names, "?", 0 };
 	char buf[64];
 	const char *t;
-	size_t i;
 
 	if (h->val[F_TYPE] == NULL)
 		return vx_err_set(e, VX_EDATA, "nrrd: type: missing");
 	t = norm(h->val[F_TYPE], h->vlen[F_TYPE], buf, sizeof buf);
-	for (i = 0; i < sizeof types / sizeof types[0]; i++)
-		if (strcmp(t, types[i].name) == 0) {
-			h->type = types[i].t;
-			return 0;
-		}
+	if ((h->type = (vx_scalar)vx_enum_val(&types, t)) != VX_SCALAR_UNKNOWN)
+		return 0;
 	if (strcmp(t, "block") == 0)
 		return vx_err_set(e, VX_EDATA, "nrrd: type: block is not "
 		    "supported (scalar volumes only)");
@@ -272,26 +256,25 @@ parse_type(nrrd *h, vx_err *e)
 static int
 parse_encoding(nrrd *h, vx_err *e)
 {
+	static const vx_enum_name enc_names[] = {
+		{ "raw", ENC_RAW }, { "gzip", ENC_GZIP }, { "gz", ENC_GZIP },
+		{ "ascii", ENC_ASCII }, { "text", ENC_ASCII },
+		{ "txt", ENC_ASCII }, { "hex", ENC_HEX },
+		{ "bzip2", ENC_UNSUPPORTED }, { "bz2", ENC_UNSUPPORTED },
+		{ "zrl", ENC_UNSUPPORTED }, { NULL, 0 }
+	};
+	static const vx_enum encs = { "encoding", enc_names, "?", 0 };
 	char buf[32];
 	const char *s;
 
 	if (h->val[F_ENCODING] == NULL)
 		return vx_err_set(e, VX_EDATA, "nrrd: encoding: missing");
 	s = norm(h->val[F_ENCODING], h->vlen[F_ENCODING], buf, sizeof buf);
-	if (strcmp(s, "raw") == 0)
-		h->enc = ENC_RAW;
-	else if (strcmp(s, "gzip") == 0 || strcmp(s, "gz") == 0)
-		h->enc = ENC_GZIP;
-	else if (strcmp(s, "ascii") == 0 || strcmp(s, "text") == 0 ||
-	    strcmp(s, "txt") == 0)
-		h->enc = ENC_ASCII;
-	else if (strcmp(s, "hex") == 0)
-		h->enc = ENC_HEX;
-	else if (strcmp(s, "bzip2") == 0 || strcmp(s, "bz2") == 0 ||
-	    strcmp(s, "zrl") == 0)
+	h->enc = vx_enum_val(&encs, s);
+	if (h->enc == ENC_UNSUPPORTED)
 		return vx_err_set(e, VX_EDATA, "nrrd: encoding: %s is not "
 		    "supported (raw, gzip, ascii, hex are)", s);
-	else
+	if (h->enc == 0)
 		return vx_err_set(e, VX_EDATA, "nrrd: encoding: unknown "
 		    "encoding '%s'", vx_imp_show(h->val[F_ENCODING],
 		    h->vlen[F_ENCODING]));
@@ -1052,11 +1035,9 @@ nrrd_header(nrrd *h, vx_imp_src *s, vx_imp_frame *f, vx_err *e)
 	    (rc = parse_space(h, e)) != 0 || (rc = parse_skips(h, e)) != 0)
 		return rc;
 	if (h->val[F_ENDIAN] != NULL) {
-		if (vx_imp_word_eq(h->val[F_ENDIAN], h->vlen[F_ENDIAN], "little"))
-			h->big = 0;
-		else if (vx_imp_word_eq(h->val[F_ENDIAN], h->vlen[F_ENDIAN], "big"))
-			h->big = 1;
-		else
+		h->big = vx_enum_val_n(&vx_endian_enum, h->val[F_ENDIAN],
+		    h->vlen[F_ENDIAN]);
+		if (h->big < 0)
 			return vx_err_set(e, VX_EDATA, "nrrd: endian: '%s' is not "
 			    "little or big", vx_imp_show(h->val[F_ENDIAN],
 			    h->vlen[F_ENDIAN]));

@@ -147,6 +147,10 @@ void vx_imp_conv_abort(vx_imp_conv *c);
 int vx_imp_total(const int64_t dims[3], size_t size, uint64_t *total,
     uint64_t *bytes, const char *what, vx_err *e);
 
+/* vx_imp_vtk_types: the data type names of VTK legacy files (any ASCII
+ * case), as source sample types. */
+extern const vx_enum vx_imp_vtk_types;
+
 /* ---- text (import_text.c) ---- */
 
 /* vx_imp_word_eq: case-insensitive comparison of p[0..n) with a word. */

@@ -2,6 +2,7 @@
  * BINARY big-endian; legacy CELLS lists or the 5.1 OFFSETS/CONNECTIVITY
  * form) as tet meshes with one point scalar. */
 #include "vx_tetimport.h"
+#include "import_priv.h"
 #include "tetscan.h"
 
 #include <float.h>
@@ -9,35 +10,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-enum {
-	T_NONE = 0, T_U8, T_I8, T_U16, T_I16, T_U32, T_I32, T_U64, T_I64,
-	T_F32, T_F64
-};
-
-static const struct { const char *name; int t; } types[] = {
-	{ "unsigned_char", T_U8 }, { "char", T_I8 }, { "signed_char", T_I8 },
-	{ "unsigned_short", T_U16 }, { "short", T_I16 },
-	{ "unsigned_int", T_U32 }, { "int", T_I32 },
-	/* LP64: VTK writes long as 8 bytes on 64-bit Unix */
-	{ "unsigned_long", T_U64 }, { "long", T_I64 },
-	{ "unsigned_long_long", T_U64 }, { "long_long", T_I64 },
-	/* the legacy writer writes vtkIdType arrays as int */
-	{ "vtkIdType", T_I32 },
-	{ "vtktypeint8", T_I8 }, { "vtktypeuint8", T_U8 },
-	{ "vtktypeint16", T_I16 }, { "vtktypeuint16", T_U16 },
-	{ "vtktypeint32", T_I32 }, { "vtktypeuint32", T_U32 },
-	{ "vtktypeint64", T_I64 }, { "vtktypeuint64", T_U64 },
-	{ "float", T_F32 }, { "double", T_F64 },
-	{ "vtktypefloat32", T_F32 }, { "vtktypefloat64", T_F64 },
-};
-
-static size_t
-type_size(int t)
-{
-	static const size_t sz[] = { 0, 1, 1, 2, 2, 4, 4, 8, 8, 4, 8 };
-	return sz[t];
-}
 
 typedef struct vtkr {
 	scan s;
@@ -58,13 +30,8 @@ fail(vtkr *r, const char *fmt, const char *a, const char *b)
 static int
 parse_type(vtkr *r, const char *t, int *out)
 {
-	size_t i;
-
-	for (i = 0; i < sizeof types / sizeof types[0]; i++)
-		if (scan_is(t, types[i].name)) {
-			*out = types[i].t;
-			return 0;
-		}
+	if ((*out = vx_enum_val(&vx_imp_vtk_types, t)) != VX_SCALAR_UNKNOWN)
+		return 0;
 	return fail(r, "data type '%.40s' is not supported", t, NULL);
 }
 
@@ -89,32 +56,32 @@ be(const unsigned char *p, size_t n)
 static void
 decode(int t, const unsigned char *p, double *f, int64_t *i)
 {
-	uint64_t u = be(p, type_size(t));
+	uint64_t u = be(p, vx_scalar_size((vx_scalar)t));
 	float f32;
 	double f64;
 
 	switch (t) {
-	case T_U8: case T_U16: case T_U32:
+	case VX_S_U8: case VX_S_U16: case VX_S_U32:
 		*i = (int64_t)u;
 		*f = (double)u;
 		return;
-	case T_I8:
+	case VX_S_I8:
 		*i = (int8_t)u;
 		break;
-	case T_I16:
+	case VX_S_I16:
 		*i = (int16_t)u;
 		break;
-	case T_I32:
+	case VX_S_I32:
 		*i = (int32_t)(uint32_t)u;
 		break;
-	case T_U64:
+	case VX_S_U64:
 		*i = u > INT64_MAX ? -1 : (int64_t)u;
 		*f = (double)u;
 		return;
-	case T_I64:
+	case VX_S_I64:
 		*i = (int64_t)u;
 		break;
-	case T_F32: {
+	case VX_S_F32: {
 		uint32_t w = (uint32_t)u;
 		memcpy(&f32, &w, 4);
 		*f = f32;
@@ -149,7 +116,7 @@ read_values(vtkr *r, int t, size_t count, double *fo, int64_t *io,
 	size_t i, left = scan_left(&r->s);
 
 	if (r->binary) {
-		size_t sz = type_size(t);
+		size_t sz = vx_scalar_size((vx_scalar)t);
 		if (count > left / sz)
 			return fail(r, "truncated: %s needs more bytes than the "
 			    "file has", what, NULL);
@@ -161,7 +128,7 @@ read_values(vtkr *r, int t, size_t count, double *fo, int64_t *io,
 				decode(t, p, &f, &v);
 				if (fo != NULL)
 					fo[i] = f;
-				else if (t == T_F32 || t == T_F64) {
+				else if (t == VX_S_F32 || t == VX_S_F64) {
 					if (!(f == floor(f) && fabs(f) < 9e15))
 						return fail(r, "%s: a non-integer "
 						    "value", what, NULL);
@@ -244,7 +211,7 @@ attr_array(vtkimp *v, int mode, const char *name, int t, int64_t n,
 	if (ncomp < 1 || ncomp > 1 << 20 || n < 0 || n > (int64_t)1 << 40)
 		return fail(r, "%s: bad component or tuple count", what, NULL);
 	count = (size_t)(n * ncomp);
-	if (!fits(r, count, type_size(t)))
+	if (!fits(r, count, vx_scalar_size((vx_scalar)t)))
 		return fail(r, "truncated: %s needs more data than the file has",
 		    what, NULL);
 	if (mode == 'p' && ncomp == 1 && v->info)
@@ -329,7 +296,7 @@ cells(vtkimp *v, int64_t a, int64_t b)
 		if ((v->conn = vx_malloc((size_t)b * sizeof *v->conn, r->e)) ==
 		    NULL)
 			return VX_ENOMEM;
-		return read_values(r, T_I32, (size_t)b, NULL, v->conn, "CELLS");
+		return read_values(r, VX_S_I32, (size_t)b, NULL, v->conn, "CELLS");
 	}
 	/* 5.1: CELLS noffsets nconnectivity, then OFFSETS and CONNECTIVITY */
 	if (a < 1)
@@ -343,7 +310,7 @@ cells(vtkimp *v, int64_t a, int64_t b)
 	if ((rc = parse_type(r, tok, &t)) != 0)
 		return rc;
 	end_line(r);
-	if (!fits(r, (uint64_t)a, type_size(t)))
+	if (!fits(r, (uint64_t)a, vx_scalar_size((vx_scalar)t)))
 		return fail(r, "truncated: OFFSETS", NULL, NULL);
 	if ((v->offs = vx_malloc((size_t)a * sizeof *v->offs, r->e)) == NULL)
 		return VX_ENOMEM;
@@ -355,7 +322,7 @@ cells(vtkimp *v, int64_t a, int64_t b)
 	if ((rc = parse_type(r, tok, &t)) != 0)
 		return rc;
 	end_line(r);
-	if (!fits(r, (uint64_t)b, type_size(t)))
+	if (!fits(r, (uint64_t)b, vx_scalar_size((vx_scalar)t)))
 		return fail(r, "truncated: CONNECTIVITY", NULL, NULL);
 	if ((v->conn = vx_malloc((size_t)b * sizeof *v->conn, r->e)) == NULL)
 		return VX_ENOMEM;
@@ -551,7 +518,7 @@ parse(vtkimp *v, vx_tetmesh *m)
 			if ((rc = parse_type(r, tok, &t)) != 0)
 				return rc;
 			end_line(r);
-			if (!fits(r, 3 * (uint64_t)a, type_size(t)))
+			if (!fits(r, 3 * (uint64_t)a, vx_scalar_size((vx_scalar)t)))
 				return fail(r, "truncated: POINTS needs more data "
 				    "than the file has", NULL, NULL);
 			v->npoint = a;
@@ -582,7 +549,7 @@ parse(vtkimp *v, vx_tetmesh *m)
 			if ((v->ctype = vx_malloc((size_t)a * sizeof *v->ctype,
 			    r->e)) == NULL && a > 0)
 				return VX_ENOMEM;
-			if ((rc = read_values(r, T_I32, (size_t)a, NULL,
+			if ((rc = read_values(r, VX_S_I32, (size_t)a, NULL,
 			    v->ctype, "CELL_TYPES")) != 0)
 				return rc;
 		} else if (scan_is(tok, "POINT_DATA") ||
@@ -634,8 +601,8 @@ parse(vtkimp *v, vx_tetmesh *m)
 				return fail(r, "%s: expected a name and a size",
 				    tok, NULL);
 			end_line(r);
-			if ((rc = attr_array(v, 'x', name, r->binary ? T_U8 :
-			    T_F32, lut ? a : ntuple, lut ? 4 : a, tok)) != 0)
+			if ((rc = attr_array(v, 'x', name, r->binary ? VX_S_U8 :
+			    VX_S_F32, lut ? a : ntuple, lut ? 4 : a, tok)) != 0)
 				return rc;
 		} else if (scan_is(tok, "VECTORS") || scan_is(tok, "NORMALS") ||
 		    scan_is(tok, "TENSORS") || scan_is(tok, "TENSORS6") ||

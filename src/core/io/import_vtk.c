@@ -66,24 +66,25 @@ line(cur *c, const char **l, size_t *ll)
 	return 1;
 }
 
-static vx_scalar
-vtk_type(const char *t, size_t tl)
-{
-	static const struct { const char *name; vx_scalar s; } types[] = {
-		{ "unsigned_char", VX_S_U8 }, { "char", VX_S_I8 },
-		{ "signed_char", VX_S_I8 },
-		{ "unsigned_short", VX_S_U16 }, { "short", VX_S_I16 },
-		{ "unsigned_int", VX_S_U32 }, { "int", VX_S_I32 },
-		{ "vtktypeuint64", VX_S_U64 }, { "vtktypeint64", VX_S_I64 },
-		{ "float", VX_S_F32 }, { "double", VX_S_F64 },
-	};
-	size_t i;
-
-	for (i = 0; i < sizeof types / sizeof types[0]; i++)
-		if (vx_imp_word_eq(t, tl, types[i].name))
-			return types[i].s;
-	return VX_SCALAR_UNKNOWN;
-}
+static const vx_enum_name vtk_type_names[] = {
+	{ "unsigned_char", VX_S_U8 }, { "char", VX_S_I8 },
+	{ "signed_char", VX_S_I8 },
+	{ "unsigned_short", VX_S_U16 }, { "short", VX_S_I16 },
+	{ "unsigned_int", VX_S_U32 }, { "int", VX_S_I32 },
+	/* LP64: VTK writes long as 8 bytes on 64-bit Unix */
+	{ "unsigned_long", VX_S_U64 }, { "long", VX_S_I64 },
+	{ "unsigned_long_long", VX_S_U64 }, { "long_long", VX_S_I64 },
+	/* the legacy writer writes vtkIdType arrays as int */
+	{ "vtkIdType", VX_S_I32 },
+	{ "vtktypeint8", VX_S_I8 }, { "vtktypeuint8", VX_S_U8 },
+	{ "vtktypeint16", VX_S_I16 }, { "vtktypeuint16", VX_S_U16 },
+	{ "vtktypeint32", VX_S_I32 }, { "vtktypeuint32", VX_S_U32 },
+	{ "vtktypeint64", VX_S_I64 }, { "vtktypeuint64", VX_S_U64 },
+	{ "float", VX_S_F32 }, { "double", VX_S_F64 },
+	{ "vtktypefloat32", VX_S_F32 }, { "vtktypefloat64", VX_S_F64 },
+	{ NULL, VX_SCALAR_UNKNOWN }
+};
+const vx_enum vx_imp_vtk_types = { "VTK data type", vtk_type_names, "?", 1 };
 
 static int
 vtk_read(vx_grid *g, vx_imp_src *s, vx_err *e)
@@ -183,7 +184,8 @@ vtk_read(vx_grid *g, vx_imp_src *s, vx_err *e)
 		return vx_err_set(e, VX_EDATA, "vtk: SCALARS: missing name");
 	if (!tok(&k, &t, &tl))
 		return vx_err_set(e, VX_EDATA, "vtk: SCALARS: missing type");
-	if ((st = vtk_type(t, tl)) == VX_SCALAR_UNKNOWN)
+	st = (vx_scalar)vx_enum_val_n(&vx_imp_vtk_types, t, tl);
+	if (st == VX_SCALAR_UNKNOWN)
 		return vx_err_set(e, VX_EDATA, "vtk: SCALARS: type '%s' is not "
 		    "supported", vx_imp_show(t, tl));
 	/* optional component count, then LOOKUP_TABLE name */

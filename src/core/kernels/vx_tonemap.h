@@ -22,6 +22,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "vx_enum.h"
 #include "vx_err.h"
 #include "vx_image.h"
 
@@ -68,8 +69,9 @@ typedef struct vx_tonemap_stats {
  * (unused), no flattening, black background, no dither. */
 void vx_tonemap_defaults(vx_tonemap_opts *o);
 
-/* vx_tonemap_op_parse / vx_tonemap_op_name: "clamp", "reinhard", "aces";
- * parse returns VX_TM_UNKNOWN for anything else. */
+/* vx_tonemap_op_parse / vx_tonemap_op_name: "clamp", "reinhard", "aces"
+ * (vx_enum.h); parse returns VX_TM_UNKNOWN for anything else. */
+extern const vx_enum vx_tonemap_op_enum;
 int vx_tonemap_op_parse(const char *s);
 const char *vx_tonemap_op_name(int op);
 
