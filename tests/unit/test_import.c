@@ -996,6 +996,17 @@ static void mk_nrrd_noendian(buf *b)
 	    "encoding: raw\n\n");
 	put_samples(b, VX_S_I16, 0, 60, 0, 0);
 }
+/* header numbers: vx_scan.h's grammar (no hexadecimal, no overflow to
+ * infinity) */
+static void
+nrrd_spacings(buf *b, const char *sp)
+{
+	nrrd_head(b, "uchar", "5 4 3", "raw");
+	putf(b, "spacings: %s\n\n", sp);
+	put_samples(b, VX_S_U8, 0, 60, 0, 0);
+}
+static void mk_nrrd_hex_spacing(buf *b) { nrrd_spacings(b, "1 0x1p-1 1"); }
+static void mk_nrrd_inf_spacing(buf *b) { nrrd_spacings(b, "1 1 1e999"); }
 static void mk_nrrd_version(buf *b) { putf(b, "NRRD0009\ntype: uchar\n\n"); }
 static void mk_nrrd_dim4(buf *b)
 {
@@ -1204,6 +1215,12 @@ static void mk_vtk_ascii_word(buf *b)
 }
 static void mk_vtk_mode(buf *b) { vtk_head(b, "EBCDIC", "2 1 1", "2",
 	"float"); }
+static void mk_vtk_inf_origin(buf *b)
+{
+	putf(b, "# vtk DataFile Version 3.0\nt\nASCII\nDATASET "
+	    "STRUCTURED_POINTS\nDIMENSIONS 1 1 1\nORIGIN 0 -1e999 0\n"
+	    "POINT_DATA 1\nSCALARS v float\nLOOKUP_TABLE default\n1\n");
+}
 
 static void
 raw_case(buf *b, size_t n)
@@ -1336,6 +1353,12 @@ static const bad_case bad[] = {
 	{ "vtk ascii word", 65, "'abc' is not a number", mk_vtk_ascii_word,
 	  R_VTK },
 	{ "vtk mode", 65, "expected ASCII or BINARY", mk_vtk_mode, R_VTK },
+	{ "vtk overflowing origin", 65, "ORIGIN: expected 3 numbers",
+	  mk_vtk_inf_origin, R_VTK },
+	{ "nrrd hexadecimal spacing", 65, "spacings: '0x1p-1' is not a number",
+	  mk_nrrd_hex_spacing, R_NRRD },
+	{ "nrrd overflowing spacing", 65, "spacings: '1e999' is not a number",
+	  mk_nrrd_inf_spacing, R_NRRD },
 	{ "raw short", 65, "truncated", mk_raw_short, R_RAW },
 	{ "raw long", 65, "input is longer", mk_raw_long, R_RAW },
 	{ "raw gzip decompresses long", 65, "input is longer", mk_raw_gz_long,

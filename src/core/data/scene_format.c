@@ -2,6 +2,7 @@
  * so that it reads back exactly, names quoted where the tokenizer needs. */
 #include "vx_scene.h"
 #include "scene_text.h"
+#include "vx_scan.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -18,7 +19,7 @@ fmt_num(char *b, size_t n, double v)
 
 	for (prec = 15; prec <= 17; prec++) {
 		vx_snprintf_c(b, n, "%.*g", prec, v);
-		if (vx_scn_number(b, &back) == 0 &&
+		if (vx_num_f64(b, strlen(b), 0, &back) == 0 &&
 		    memcmp(&back, &v, sizeof v) == 0)
 			return;
 	}

@@ -3,8 +3,8 @@
  * directive, vx_scene_parse and vx_scene_apply. */
 #include "vx_scene.h"
 #include "scene_text.h"
+#include "vx_scan.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
@@ -12,7 +12,6 @@
 #include <string.h>
 
 #define MAXTOK 1024        /* words per line */
-#define NUM_MAX 400        /* characters per number */
 
 /* ---- names ---- */
 
@@ -118,65 +117,22 @@ vx_effect_name(unsigned bit)
 	return bit != 0 ? vx_enum_str(&vx_effect_enum, (int)bit) : NULL;
 }
 
-/* ---- numbers in the C locale, whatever the process locale ---- */
+/* ---- numbers (vx_scan.h's grammar, finite) ---- */
 
-/* vx_scn_number: a finite double written as [+-]digits[.digits][e[+-]digits]
- * (no hex, inf or nan); 0 on success. */
-int
-vx_scn_number(const char *t, double *out)
+static int
+number(const char *t, double *out)
 {
-	const char *q = t;
-	char *end;
-	size_t len = strlen(t);
-	int digits = 0;
-	double v;
-
-	if (len == 0 || len > NUM_MAX)
-		return -1;
-	if (*q == '+' || *q == '-')
-		q++;
-	for (; *q >= '0' && *q <= '9'; q++)
-		digits++;
-	if (*q == '.')
-		for (q++; *q >= '0' && *q <= '9'; q++)
-			digits++;
-	if (digits == 0)
-		return -1;
-	if (*q == 'e' || *q == 'E') {
-		q++;
-		if (*q == '+' || *q == '-')
-			q++;
-		if (!(*q >= '0' && *q <= '9'))
-			return -1;
-		while (*q >= '0' && *q <= '9')
-			q++;
-	}
-	if (*q != '\0')
-		return -1;
-	v = vx_strtod(t, &end);    /* the grammar is checked: a '.' only */
-	if (end != t + len || !isfinite(v))
-		return -1;
-	*out = v;
-	return 0;
+	return vx_num_f64(t, strlen(t), 0, out);
 }
 
-/* vx_scn_int: decimal integer in [lo, hi]. */
-int
-vx_scn_int(const char *t, long lo, long hi, long *out)
+static int
+integer(const char *t, long lo, long hi, long *out)
 {
-	const char *q = t;
-	char *end;
-	long v;
+	int64_t v;
 
-	if (*q == '+' || *q == '-')
-		q++;
-	if (!(*q >= '0' && *q <= '9'))
+	if (vx_num_i64(t, strlen(t), lo, hi, &v) != 0)
 		return -1;
-	errno = 0;
-	v = strtol(t, &end, 10);
-	if (*end != '\0' || errno == ERANGE || v < lo || v > hi)
-		return -1;
-	*out = v;
+	*out = (long)v;
 	return 0;
 }
 
@@ -337,14 +293,14 @@ parse_keys(pctx *P, const char *dir, int start, const keydef *defs,
 		}
 		for (j = 0; j < want; j++, i++)
 			if (i >= P->ntok || P->quoted[i] ||
-			    vx_scn_number(P->tok[i], &kv[k].v[j]) != 0)
+			    number(P->tok[i], &kv[k].v[j]) != 0)
 				return perr(P, "%s: %s: expected %d number%s, got "
 				    "'%.40s'", dir, key, want, want > 1 ? "s" : "",
 				    i < P->ntok ? P->tok[i] : "");
 		switch (defs[k].kind) {
 		case K_INT:
 			if (i >= P->ntok || P->quoted[i] ||
-			    vx_scn_int(P->tok[i], -1000000000L, 1000000000L,
+			    integer(P->tok[i], -1000000000L, 1000000000L,
 			    &kv[k].i) != 0)
 				return perr(P, "%s: %s: expected an integer, got "
 				    "'%.40s'", dir, key,
@@ -383,7 +339,7 @@ parse_keys(pctx *P, const char *dir, int start, const keydef *defs,
 			}
 			for (j = 0; j < 2; j++, i++)
 				if (i >= P->ntok || P->quoted[i] ||
-				    vx_scn_number(P->tok[i], &kv[k].v[j]) != 0)
+				    number(P->tok[i], &kv[k].v[j]) != 0)
 					return perr(P, "%s: %s: expected auto or 2 "
 					    "numbers, got '%.40s'", dir, key,
 					    i < P->ntok ? P->tok[i] : "");
@@ -464,7 +420,7 @@ do_version(pctx *P)
 	if (P->ndirective != 0)
 		return perr(P, "voxlux-scene: only as the first directive");
 	if (P->ntok != 2 || P->quoted[1] ||
-	    vx_scn_int(P->tok[1], 1, 1000000, &v) != 0)
+	    integer(P->tok[1], 1, 1000000, &v) != 0)
 		return perr(P, "voxlux-scene: expected a version number");
 	if (v > VX_SCENE_VERSION)
 		return perr(P, "voxlux-scene: version %ld is newer than this "
@@ -848,7 +804,7 @@ do_surface(pctx *P)
 	}
 	if (P->ntok < 3 || P->quoted[1] || strcmp(P->tok[1], "iso") != 0)
 		return perr(P, "surface: expected iso VALUE (or none)");
-	if (P->quoted[2] || vx_scn_number(P->tok[2], &iso) != 0)
+	if (P->quoted[2] || number(P->tok[2], &iso) != 0)
 		return perr(P, "surface: iso: expected a number, got '%.40s'",
 		    P->tok[2]);
 	snprintf(dir, sizeof dir, "surface iso %.20s", P->tok[2]);
@@ -1021,7 +977,7 @@ do_transfer(pctx *P)
 		for (j = 0; j < per; j++) {
 			int t = 2 + i * per + j;
 
-			if (P->quoted[t] || vx_scn_number(P->tok[t], &pts[i][j]) != 0)
+			if (P->quoted[t] || number(P->tok[t], &pts[i][j]) != 0)
 				return perr(P, "transfer %s: expected a number, got "
 				    "'%.40s'", P->tok[1], P->tok[t]);
 			if (j > 0 && (rc = need_range(P, "transfer",
@@ -1171,30 +1127,22 @@ dispatch(pctx *P)
 static int
 parse_lines(pctx *P, const char *text, size_t n)
 {
-	size_t i = 0;
+	const char *l;
+	size_t len;
+	vx_scan s;
 	int rc;
 
-	while (i < n) {
-		size_t j = i, len;
-
-		while (j < n && text[j] != '\n') {
-			if (text[j] == '\0') {
-				P->line++;
-				return perr(P, "NUL byte");
-			}
-			j++;
-		}
-		len = j - i;
+	vx_scan_init(&s, text, n);
+	while (vx_scan_line(&s, 1, &l, &len)) {
 		P->line++;
+		if (memchr(l, '\0', len) != NULL)
+			return perr(P, "NUL byte");
 		if (len > VX_SCENE_LINE_MAX)
 			return perr(P, "longer than %d bytes", VX_SCENE_LINE_MAX);
-		if (len > 0 && text[i + len - 1] == '\r')
-			len--;
-		if ((rc = tokenize(P, text + i, len)) != 0)
+		if ((rc = tokenize(P, l, len)) != 0)
 			return rc;
 		if (P->ntok > 0 && (rc = dispatch(P)) != 0)
 			return rc;
-		i = j + 1;
 	}
 	return 0;
 }

@@ -1,6 +1,7 @@
 /* import.c: format names, detection from magic bytes and names, and the
  * file and any-format entry points of the importers. */
 #include "import_priv.h"
+#include "vx_scan.h"
 
 #include <libgen.h>
 #include <unistd.h>
@@ -44,7 +45,7 @@ ends(const char *name, size_t n, const char *suffix)
 {
 	size_t k = strlen(suffix);
 
-	return n >= k && vx_imp_word_eq(name + n - k, k, suffix);
+	return n >= k && vx_word_eq(name + n - k, k, suffix, 1);
 }
 
 static vx_format

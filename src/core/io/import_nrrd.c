@@ -1,6 +1,7 @@
 /* import_nrrd.c: NRRD files (teem.sourceforge.net/nrrd/format.html):
  * attached and detached headers, raw/gzip/ascii/hex encodings. */
 #include "import_priv.h"
+#include "vx_scan.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -133,11 +134,13 @@ list_add(nrrd *h, const char *p, size_t n, vx_err *e)
 static int
 nrrd_lines(nrrd *h, const unsigned char *p, size_t n, int at_end, vx_err *e)
 {
-	size_t pos = 0, len;
 	const char *line;
+	size_t len;
 	int lineno = 1, in_list = 0, f;
+	vx_scan s;
 
-	if (!vx_imp_next_line(p, n, &pos, at_end, &line, &len))
+	vx_scan_init(&s, p, n);
+	if (!vx_scan_line(&s, at_end, &line, &len))
 		return vx_err_set(e, VX_EDATA, "nrrd: no magic line");
 	if (len < 4 || memcmp(line, "NRRD", 4) != 0)
 		return vx_err_set(e, VX_EDATA, "nrrd: not a NRRD file (magic "
@@ -146,7 +149,7 @@ nrrd_lines(nrrd *h, const unsigned char *p, size_t n, int at_end, vx_err *e)
 	    line[7] <= '6') || (len == 9 && memcmp(line, "NRRD00.01", 9) == 0)))
 		return vx_err_set(e, VX_EDATA, "nrrd: unsupported version '%s' "
 		    "(NRRD0001..NRRD0006 are read)", vx_imp_show(line, len));
-	while (vx_imp_next_line(p, n, &pos, at_end, &line, &len)) {
+	while (vx_scan_line(&s, at_end, &line, &len)) {
 		const char *colon;
 		size_t k;
 
@@ -205,7 +208,7 @@ nrrd_lines(nrrd *h, const unsigned char *p, size_t n, int at_end, vx_err *e)
 		    h->val[f][4] == '\t'))
 			in_list = 1;    /* the rest of the header lists files */
 	}
-	h->hdr_len = pos;
+	h->hdr_len = (size_t)(s.p - s.base);
 	return 0;
 }
 
@@ -321,7 +324,7 @@ per_axis_f64(const nrrd *h, int f, double v[3], vx_err *e)
 	if (words(h, f, w, wl, e) != 0)
 		return e->code;
 	for (a = 0; a < h->dim; a++)
-		if (vx_imp_parse_f64(w[a], wl[a], &v[a]) != 0)
+		if (vx_num_f64(w[a], wl[a], VX_NUM_NONFINITE, &v[a]) != 0)
 			return vx_err_set(e, VX_EDATA, "nrrd: %s: '%s' is not a "
 			    "number", field_name(f), vx_imp_show(w[a], wl[a]));
 	return 0;
@@ -337,8 +340,8 @@ parse_sizes(nrrd *h, vx_err *e)
 
 	if (h->val[F_DIMENSION] == NULL)
 		return vx_err_set(e, VX_EDATA, "nrrd: dimension: missing");
-	if (vx_imp_parse_i64(h->val[F_DIMENSION], h->vlen[F_DIMENSION], &v) != 0 ||
-	    v < 1)
+	if (vx_num_i64(h->val[F_DIMENSION], h->vlen[F_DIMENSION], 1,
+	    INT64_MAX, &v) != 0)
 		return vx_err_set(e, VX_EDATA, "nrrd: dimension: '%s' is not a "
 		    "positive integer", vx_imp_show(h->val[F_DIMENSION],
 		    h->vlen[F_DIMENSION]));
@@ -355,8 +358,7 @@ parse_sizes(nrrd *h, vx_err *e)
 			h->sizes[a] = 1;
 			continue;
 		}
-		if (vx_imp_parse_i64(w[a], wl[a], &h->sizes[a]) != 0 ||
-		    h->sizes[a] < 1)
+		if (vx_num_i64(w[a], wl[a], 1, INT64_MAX, &h->sizes[a]) != 0)
 			goto bad;
 	}
 	return 0;
@@ -381,7 +383,7 @@ parse_kinds(const nrrd *h, vx_err *e)
 		return e->code;
 	for (a = 0; a < h->dim; a++) {
 		for (i = 0; i < sizeof ok / sizeof ok[0]; i++)
-			if (vx_imp_word_eq(w[a], wl[a], ok[i]))
+			if (vx_word_eq(w[a], wl[a], ok[i], 1))
 				break;
 		if (i == sizeof ok / sizeof ok[0])
 			return vx_err_set(e, VX_EDATA, "nrrd: kinds: axis %d is "
@@ -426,8 +428,8 @@ parse_space(nrrd *h, vx_err *e)
 			    "'%s'", vx_imp_show(h->val[F_SPACE], h->vlen[F_SPACE]));
 		h->space_dim = spaces[i].dim;
 	} else if (h->val[F_SPACE_DIM] != NULL) {
-		if (vx_imp_parse_i64(h->val[F_SPACE_DIM], h->vlen[F_SPACE_DIM],
-		    &v) != 0 || v < 1)
+		if (vx_num_i64(h->val[F_SPACE_DIM], h->vlen[F_SPACE_DIM], 1,
+		    INT64_MAX, &v) != 0)
 			return vx_err_set(e, VX_EDATA, "nrrd: space dimension: "
 			    "'%s' is not a positive integer",
 			    vx_imp_show(h->val[F_SPACE_DIM], h->vlen[F_SPACE_DIM]));
@@ -450,7 +452,7 @@ vector(const nrrd *h, const char **p, const char *end, double v[3])
 
 	while (q < end && (*q == ' ' || *q == '\t'))
 		q++;
-	if (end - q >= 4 && vx_imp_word_eq(q, 4, "none") &&
+	if (end - q >= 4 && vx_word_eq(q, 4, "none", 1) &&
 	    (end - q == 4 || q[4] == ' ' || q[4] == '\t')) {
 		*p = q + 4;
 		return 1;
@@ -527,8 +529,8 @@ nrrd_frame(const nrrd *h, vx_imp_frame *f, vx_err *e)
 		if (words(h, F_CENTERS, w, wl, e) != 0)
 			return e->code;
 		for (a = 0; a < h->dim; a++)
-			center[a] = vx_imp_word_eq(w[a], wl[a], "node") ? 2 :
-			    vx_imp_word_eq(w[a], wl[a], "cell") ? 1 : 0;
+			center[a] = vx_word_eq(w[a], wl[a], "node", 1) ? 2 :
+			    vx_word_eq(w[a], wl[a], "cell", 1) ? 1 : 0;
 	}
 	if (h->val[F_SPACINGS] != NULL) {
 		if ((rc = per_axis_f64(h, F_SPACINGS, sp, e)) != 0)
@@ -572,14 +574,14 @@ static int
 parse_skips(nrrd *h, vx_err *e)
 {
 	if (h->val[F_LINE_SKIP] != NULL &&
-	    (vx_imp_parse_i64(h->val[F_LINE_SKIP], h->vlen[F_LINE_SKIP],
-	    &h->line_skip) != 0 || h->line_skip < 0))
+	    vx_num_i64(h->val[F_LINE_SKIP], h->vlen[F_LINE_SKIP], 0,
+	    INT64_MAX, &h->line_skip) != 0)
 		return vx_err_set(e, VX_EDATA, "nrrd: line skip: '%s' is not a "
 		    "non-negative integer", vx_imp_show(h->val[F_LINE_SKIP],
 		    h->vlen[F_LINE_SKIP]));
 	if (h->val[F_BYTE_SKIP] != NULL &&
-	    (vx_imp_parse_i64(h->val[F_BYTE_SKIP], h->vlen[F_BYTE_SKIP],
-	    &h->byte_skip) != 0 || h->byte_skip < -1))
+	    vx_num_i64(h->val[F_BYTE_SKIP], h->vlen[F_BYTE_SKIP], -1,
+	    INT64_MAX, &h->byte_skip) != 0)
 		return vx_err_set(e, VX_EDATA, "nrrd: byte skip: '%s' is not an "
 		    "integer >= -1", vx_imp_show(h->val[F_BYTE_SKIP],
 		    h->vlen[F_BYTE_SKIP]));
@@ -877,9 +879,12 @@ files_plan(const nrrd *h, files *fl, vx_err *e)
 
 	memset(fl, 0, sizeof *fl);
 	if (n >= 4 && memcmp(v, "LIST", 4) == 0) {
+		const char *d = v + 4;
+		size_t dn = n - 4;
 		int64_t sd = h->dim - 1;
 
-		if (n > 4 && (vx_imp_parse_i64(v + 4, n - 4, &sd) != 0))
+		vx_imp_trim(&d, &dn);
+		if (dn > 0 && vx_num_i64(d, dn, INT64_MIN, INT64_MAX, &sd) != 0)
 			return vx_err_set(e, VX_EDATA, "data file: LIST: '%s' is "
 			    "not a piece dimension", vx_imp_show(v + 4, n - 4));
 		fl->mode = 1;

@@ -1,30 +1,9 @@
 /* enum.c: names of enumerated values (vx_enum.h). */
 #include "vx_enum.h"
+#include "vx_scan.h"
 
 #include <stdio.h>
 #include <string.h>
-
-static int
-lower(int c)
-{
-	return c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c;
-}
-
-/* same: name equals the n bytes at p (ASCII case folded when fold). */
-static int
-same(const char *name, const char *p, size_t n, int fold)
-{
-	size_t i;
-
-	for (i = 0; i < n; i++) {
-		if (name[i] == '\0')
-			return 0;
-		if (fold ? lower((unsigned char)name[i]) !=
-		    lower((unsigned char)p[i]) : name[i] != p[i])
-			return 0;
-	}
-	return name[n] == '\0';
-}
 
 const char *
 vx_enum_str(const vx_enum *en, int value)
@@ -43,7 +22,7 @@ vx_enum_val_n(const vx_enum *en, const char *p, size_t n)
 	const vx_enum_name *k;
 
 	for (k = en->names; k->name != NULL; k++)
-		if (same(k->name, p, n, en->fold))
+		if (vx_word_eq(p, n, k->name, en->fold))
 			return k->value;
 	return k->value;
 }
@@ -91,7 +70,7 @@ vx_enum_parse(const vx_enum *en, const char *s, int *value, int code,
 	char list[256];
 
 	for (k = en->names; k->name != NULL; k++)
-		if (same(k->name, s, strlen(s), en->fold)) {
+		if (vx_word_eq(s, strlen(s), k->name, en->fold)) {
 			*value = k->value;
 			return 0;
 		}
