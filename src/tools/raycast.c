@@ -11,6 +11,7 @@
 #include "vx_grid.h"
 #include "vx_image.h"
 #include "vx_imageio.h"
+#include "vx_irrvol.h"
 #include "vx_macro.h"
 #include "vx_plan.h"
 #include "vx_raycast.h"
@@ -187,6 +188,11 @@ print_stats(const vx_raycast_stats *st, const vx_macro *m, int w, int h,
 		    (unsigned long long)st->certified,
 		    (unsigned long long)st->hits, (unsigned long long)st->shaded,
 		    (unsigned long long)st->nonfinite);
+	if (st->irr_missing > 0)
+		fprintf(stderr, "raycast: irradiance: %llu of %llu shaded points "
+		    "found no baked texel (drawn black: outside the bake's "
+		    "isovalue band)\n", (unsigned long long)st->irr_missing,
+		    (unsigned long long)st->shaded);
 	if (!st->mesh && st->mask_bytes > 0)
 		fprintf(stderr, "raycast: cell mask: %llu of %llu level-1 "
 		    "macrocells bracket, %llu of them masked (bits built); "
@@ -243,6 +249,7 @@ main(int argc, char **argv)
 	vx_plan plan;
 	vx_raycast_opts ro;
 	vx_raycast_stats rs;
+	vx_irrvol irr;
 	vx_image color, depth, normal;
 	const vx_grid *tex[VX_SCENE_MAX_SURFACES];
 	vx_grid texg[VX_SCENE_MAX_SURFACES];
@@ -409,6 +416,33 @@ main(int argc, char **argv)
 	ro.no_cellmask = o.nomask;
 	ro.no_binning = o.nobin;
 	ro.bin_block = o.binblock;
+	vx_irr_init(&irr);
+	if (plan.irradiance) {
+		long ii;
+
+		if (is_mesh)
+			tool_fail(VX_EUSAGE, "illumination irradiance: "
+			    "irradiance volumes are baked for volumes, not "
+			    "meshes");
+		if (vx_irr_from_stream(&irr, &st, g.name, &ii, &e) != 0)
+			tool_fail_err(&e);
+		if (ii < 0)
+			tool_fail(VX_EDATA, "illumination irradiance: no "
+			    "irradiance volume of '%s' in the stream (bake one "
+			    "with bake-irr)", g.name);
+		for (int a = 0; a < 3; a++)
+			if (irr.vdims[a] != g.dims[a])
+				tool_fail(VX_EDATA, "illumination irradiance: the "
+				    "irradiance volume was baked for dims %lld %lld "
+				    "%lld, not these", (long long)irr.vdims[0],
+				    (long long)irr.vdims[1],
+				    (long long)irr.vdims[2]);
+		ro.irr = &irr;
+		ro.irr_interp = s.interp == VX_INTERP_NEAREST ? VX_IRR_NEAREST :
+		    s.interp == VX_INTERP_NEAREST_ISO ? VX_IRR_NEAREST_ISO :
+		    s.interp == VX_INTERP_TRICUBIC ? VX_IRR_TRICUBIC :
+		    VX_IRR_TRILINEAR;
+	}
 	vx_image_init(&color);
 	vx_image_init(&depth);
 	vx_image_init(&normal);
@@ -498,6 +532,7 @@ main(int argc, char **argv)
 	vx_image_free(&normal);
 	vx_tetleaf_free(&lg);
 	vx_tetmesh_free(&mesh);
+	vx_irr_free(&irr);
 	vx_macro_free(&m);
 	vx_grid_free(&g);
 	vx_stream_free(&st);

@@ -70,7 +70,7 @@ typedef struct rc_shared {
 typedef struct rc_local {
 	_Alignas(64) vx_iso_stats st;
 	vx_tettrace_stats tst;
-	uint64_t primary, shadow, shaded, covered, binned;
+	uint64_t primary, shadow, shaded, covered, binned, irr_missing;
 	uint64_t cyc_total, cyc_shade, cyc_shadow;
 	double busy;                  /* seconds in tiles */
 	/* the entry masks of the bins last walked (bin_em): em[s][p], bit
@@ -870,6 +870,18 @@ shade(const rc_shared *S, rc_local *L, const rc_surf *h,
 		vx_colormap_eval(m->colormap, t, alb);
 	} else
 		memcpy(alb, m->color, sizeof alb);
+	if (p->irradiance) {
+		double E[3];
+
+		/* Lambertian under the baked irradiance: a kd E / pi */
+		if (!vx_irr_lookup(S->o->irr, h->pi, S->o->irr_interp, S->g,
+		    S->iso[h->iso], E))
+			L->irr_missing++;
+		for (a = 0; a < 3; a++)
+			col[a] = m->kd * alb[a] * E[a] * (1 / 3.14159265358979323846);
+		L->shaded++;
+		return;
+	}
 	for (a = 0; a < 3; a++) {
 		amb[a] = s->ambient[a] * s->ambient_intensity;
 		col[a] = amb[a] * alb[a];
@@ -1242,6 +1254,7 @@ add_local(vx_raycast_stats *st, const rc_local *L, double *cyc)
 	st->entries += L->tst.entries;
 	st->nonfinite += L->st.nonfinite;
 	st->shaded += L->shaded;
+	st->irr_missing += L->irr_missing;
 	st->covered += L->covered;
 	st->binned += L->binned;
 	for (l = 0; l <= VX_MACRO_MAXLEV; l++)

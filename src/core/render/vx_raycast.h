@@ -18,6 +18,7 @@
 
 #include "vx_grid.h"
 #include "vx_image.h"
+#include "vx_irrvol.h"
 #include "vx_iso.h"
 #include "vx_macro.h"
 #include "vx_plan.h"
@@ -61,6 +62,9 @@ typedef struct vx_raycast_opts {
 	                            (first_pass 0): a camera that turns to new
 	                            macrocells walks them whole in that frame,
 	                            building their bits (the same picture) */
+	const vx_irrvol *irr;    /* the plan's irradiance volume (volumes
+	                            only; required when plan.irradiance) */
+	vx_irr_interp irr_interp;   /* how it is read */
 } vx_raycast_opts;
 
 /* Primary rays are binned with the boxes of the bracketing leaves of each
@@ -88,6 +92,9 @@ typedef struct vx_raycast_stats {
 	                                    without a visit (not bracketing) */
 	uint64_t nonfinite;              /* cells skipped for NaN/Inf corners */
 	uint64_t shaded;                 /* surface points shaded */
+	uint64_t irr_missing;            /* of them, irradiance lookups that
+	                                    found no usable texel (drawn
+	                                    black) */
 	uint64_t covered;                /* pixels with a hit */
 	double seconds;                  /* wall time of the render (the
 	                                    cell mask's build included) */
