@@ -207,7 +207,7 @@ parse_args(opts *o, int argc, char **argv)
 	if (o->raw && o->imp.format != VX_FORMAT_UNKNOWN &&
 	    o->imp.format != VX_FORMAT_RAW)
 		tool_fail(VX_EUSAGE, "--raw contradicts --format %s",
-		    vx_format_name(o->imp.format));
+		    vx_enum_str(&vx_format_enum, o->imp.format));
 	if (o->imp.format == VX_FORMAT_RAW && !o->raw)
 		tool_fail(VX_EUSAGE, "--format raw needs --raw NX,NY,NZ and "
 		    "--type T");

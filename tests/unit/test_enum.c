@@ -186,10 +186,10 @@ library_tables(void **state)
 	/* effects: one name per bit */
 	for (v = 0; v < 7; v++)
 		assert_int_equal(vx_enum_val(&vx_effect_enum,
-		    vx_effect_name(1u << v)), 1 << v);
+		    vx_enum_str(&vx_effect_enum, 1u << v)), 1 << v);
 	assert_true(VX_FX_ALL == (1u << 7) - 1);
-	assert_null(vx_effect_name(1u << 7));
-	assert_null(vx_effect_name(0));
+	assert_null(vx_enum_str(&vx_effect_enum, 1u << 7));
+	assert_null(vx_enum_str(&vx_effect_enum, 0));
 }
 
 int

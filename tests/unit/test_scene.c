@@ -1021,11 +1021,6 @@ colormaps(void **state)
 				fail_msg("case %zu channel %d: %g want %g", i, k,
 				    rgb[k], t[i].rgb[k]);
 	}
-	for (k = VX_COLORMAP_UNKNOWN + 1; k < VX_COLORMAP_LAST; k++)
-		assert_int_equal(vx_colormap_parse(vx_colormap_name(
-		    (vx_colormap)k)), k);
-	assert_string_equal(vx_effect_name(VX_FX_SCATTERING), "scattering");
-	assert_null(vx_effect_name(3));
 }
 
 /* The example scenes in examples/scenes parse (run from the repository

@@ -37,30 +37,6 @@ vx_camera_init(vx_camera *c)
 	c->h = 512;
 }
 
-const char *
-vx_view_name(vx_view v)
-{
-	return vx_enum_str(&vx_view_enum, v);
-}
-
-vx_view
-vx_view_parse(const char *s)
-{
-	return (vx_view)vx_enum_val(&vx_view_enum, s);
-}
-
-const char *
-vx_projection_name(vx_projection p)
-{
-	return vx_enum_str(&vx_projection_enum, p);
-}
-
-vx_projection
-vx_projection_parse(const char *s)
-{
-	return (vx_projection)vx_enum_val(&vx_projection_enum, s);
-}
-
 /* Named views as (azimuth, elevation); the table keeps them exact (cos 90
  * degrees is not 0 in floating point). */
 void

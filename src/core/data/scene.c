@@ -203,7 +203,7 @@ vx_scene_option(vx_scene *s, const char *name, const char *value,
 			rc = 0;
 		}
 	} else if (strcmp(name, "view") == 0) {
-		vx_view vw = vx_view_parse(value);
+		vx_view vw = (vx_view)vx_enum_val(&vx_view_enum, value);
 
 		if (vw != VX_VIEW_UNKNOWN && vw != VX_VIEW_ANGLES)
 			rc = vx_scene_set_view(s, vw, 0, 0, e);

@@ -69,52 +69,10 @@ static const vx_enum_name effect_names[] = {
 };
 const vx_enum vx_effect_enum = { "effect", effect_names, NULL, 0 };
 
-const char *
-vx_light_type_name(vx_light_type t)
-{
-	return vx_enum_str(&vx_light_type_enum, t);
-}
-
-const char *
-vx_falloff_name(vx_falloff f)
-{
-	return vx_enum_str(&vx_falloff_enum, f);
-}
-
-const char *
-vx_illum_name(vx_illum m)
-{
-	return vx_enum_str(&vx_illum_enum, m);
-}
-
-const char *
-vx_interp_name(vx_interp m)
-{
-	return vx_enum_str(&vx_interp_enum, m);
-}
-
-const char *
-vx_phase_name(vx_phase p)
-{
-	return vx_enum_str(&vx_phase_enum, p);
-}
-
-const char *
-vx_colormap_name(vx_colormap m)
-{
-	return vx_enum_str(&vx_colormap_enum, m);
-}
-
 vx_colormap
 vx_colormap_parse(const char *s)
 {
 	return (vx_colormap)vx_enum_val(&vx_colormap_enum, s);
-}
-
-const char *
-vx_effect_name(unsigned bit)
-{
-	return bit != 0 ? vx_enum_str(&vx_effect_enum, (int)bit) : NULL;
 }
 
 /* ---- numbers (vx_scan.h's grammar, finite) ---- */
@@ -444,7 +402,7 @@ do_camera(pctx *P)
 	static const int explicit_only[] = { C_EYE, C_LOOK, C_WIDTH };
 	vx_camera c = P->s->camera;
 	kval kv[C_N];
-	int start = 1, rc, k;
+	int start = 1, rc, k, proj;
 	const char *kind;
 
 	if (P->ntok < 2)
@@ -453,15 +411,16 @@ do_camera(pctx *P)
 	if (!P->quoted[1] && strcmp(P->tok[1], "auto") == 0) {
 		c.is_auto = 1;
 		start = 2;
-	} else if (!P->quoted[1] &&
-	    vx_projection_parse(P->tok[1]) != VX_PROJECTION_UNKNOWN) {
+	} else if (!P->quoted[1] && (proj = vx_enum_val(&vx_projection_enum,
+	    P->tok[1])) != VX_PROJECTION_UNKNOWN) {
 		c.is_auto = 0;
-		c.projection = vx_projection_parse(P->tok[1]);
+		c.projection = (vx_projection)proj;
 		start = 2;
 	}
 	if ((rc = parse_keys(P, "camera", start, defs, kv)) != 0)
 		return rc;
-	kind = c.is_auto ? "camera auto" : vx_projection_name(c.projection);
+	kind = c.is_auto ? "camera auto" : vx_enum_str(&vx_projection_enum,
+	    c.projection);
 	for (k = 0; k < 5; k++)
 		if (kv[auto_only[k]].seen && !c.is_auto)
 			return perr(P, "camera: key '%s' applies to auto cameras "
@@ -471,15 +430,13 @@ do_camera(pctx *P)
 			return perr(P, "camera: key '%s' does not apply to auto "
 			    "cameras", defs[explicit_only[k]].name);
 	if (kv[C_PROJ].seen) {
-		int p;
-
 		if ((rc = need_word(P, kind, "projection", kv[C_PROJ].w,
-		    &vx_projection_enum, &p)) != 0)
+		    &vx_projection_enum, &proj)) != 0)
 			return rc;
-		c.projection = (vx_projection)p;
+		c.projection = (vx_projection)proj;
 	}
 	if (kv[C_VIEW].seen) {
-		vx_view v = vx_view_parse(kv[C_VIEW].w);
+		vx_view v = (vx_view)vx_enum_val(&vx_view_enum, kv[C_VIEW].w);
 
 		if (v == VX_VIEW_UNKNOWN || v == VX_VIEW_ANGLES)
 			return perr(P, "%s: view: unknown view '%.40s' (front, "
@@ -722,7 +679,8 @@ do_light(pctx *P)
 	if ((rc = need_word(P, "light", "type", P->tok[1],
 	    &vx_light_type_enum, &type)) != 0)
 		return rc;
-	snprintf(dir, sizeof dir, "light %s", vx_light_type_name(type));
+	snprintf(dir, sizeof dir, "light %s",
+	    vx_enum_str(&vx_light_type_enum, type));
 	if ((rc = parse_keys(P, dir, 2, defs, kv)) != 0)
 		return rc;
 	for (k = 0; k < L_N; k++)

@@ -28,8 +28,9 @@ typedef enum vx_type {
 } vx_type;
 
 size_t vx_type_size(vx_type t);
-/* Names (vx_enum.h): "u8", "u16", "i16", "f32"; VX_TYPE_UNKNOWN and
- * "unknown" for the others. */
+/* The names (vx_enum.h): "u8", "u16", "i16", "f32"; VX_TYPE_UNKNOWN and
+ * "unknown" for the others.  vx_type_name, vx_type_parse: shorthands for
+ * vx_enum_str and vx_enum_val on vx_type_enum. */
 extern const vx_enum vx_type_enum;
 const char *vx_type_name(vx_type t);
 vx_type vx_type_parse(const char *s);

@@ -20,18 +20,6 @@ static const vx_enum_name endian_names[] = {
 };
 const vx_enum vx_endian_enum = { "byte order", endian_names, "unknown", 1 };
 
-const char *
-vx_format_name(vx_format f)
-{
-	return vx_enum_str(&vx_format_enum, f);
-}
-
-vx_format
-vx_format_parse(const char *s)
-{
-	return (vx_format)vx_enum_val(&vx_format_enum, s);
-}
-
 void
 vx_import_opts_init(vx_import_opts *o)
 {

@@ -27,18 +27,6 @@ vx_scalar_size(vx_scalar t)
 	return t > VX_SCALAR_UNKNOWN && t < VX_SCALAR_LAST ? sz[t] : 0;
 }
 
-const char *
-vx_scalar_name(vx_scalar t)
-{
-	return vx_enum_str(&vx_scalar_enum, t);
-}
-
-vx_scalar
-vx_scalar_parse(const char *s)
-{
-	return (vx_scalar)vx_enum_val(&vx_scalar_enum, s);
-}
-
 vx_type
 vx_scalar_target(vx_scalar t)
 {
@@ -391,7 +379,7 @@ ascii_store(const vx_imp_conv *c, double v, unsigned char *q, const char *tok,
 	    (v != floor(v) || v < lo[c->st] || v > hi[c->st]))
 		return vx_err_set(e, VX_EDATA, "value %llu '%s' is not a %s",
 		    (unsigned long long)idx, vx_imp_show(tok, strlen(tok)),
-		    vx_scalar_name(c->st));
+		    vx_enum_str(&vx_scalar_enum, c->st));
 	switch (c->st) {
 	case VX_S_U8: u.u8 = (uint8_t)v; break;
 	case VX_S_I8: u.i8 = (int8_t)v; break;

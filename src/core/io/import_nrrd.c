@@ -1049,9 +1049,9 @@ nrrd_header(nrrd *h, vx_imp_src *s, vx_imp_frame *f, vx_err *e)
 	} else if (vx_scalar_size(h->type) > 1 && (h->enc == ENC_RAW ||
 	    h->enc == ENC_GZIP || h->enc == ENC_HEX))
 		return vx_err_set(e, VX_EDATA, "nrrd: endian: missing (needed "
-		    "for type %s with %s encoding)", vx_scalar_name(h->type),
-		    h->enc == ENC_HEX ? "hex" : h->enc == ENC_GZIP ? "gzip" :
-		    "raw");
+		    "for type %s with %s encoding)",
+		    vx_enum_str(&vx_scalar_enum, h->type), h->enc == ENC_HEX ?
+		    "hex" : h->enc == ENC_GZIP ? "gzip" : "raw");
 	if ((rc = nrrd_frame(h, f, e)) != 0)
 		return rc;
 	if (h->val[F_DATA_FILE] == NULL)

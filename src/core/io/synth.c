@@ -11,18 +11,6 @@ static const vx_enum_name synth_names[] = {
 };
 const vx_enum vx_synth_enum = { "field", synth_names, "unknown", 0 };
 
-const char *
-vx_synth_name(vx_synth_kind k)
-{
-	return vx_enum_str(&vx_synth_enum, k);
-}
-
-vx_synth_kind
-vx_synth_parse(const char *s)
-{
-	return (vx_synth_kind)vx_enum_val(&vx_synth_enum, s);
-}
-
 double
 vx_synth_coord(int64_t i, int64_t n)
 {

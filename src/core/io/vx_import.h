@@ -46,11 +46,9 @@ typedef enum vx_scalar {
 } vx_scalar;
 
 size_t vx_scalar_size(vx_scalar t);          /* bytes per sample, 0 if unknown */
-/* Names (vx_enum.h): "u8", "i8", ..., "f64"; VX_SCALAR_UNKNOWN and
+/* The names (vx_enum.h): "u8", "i8", ..., "f64"; VX_SCALAR_UNKNOWN and
  * "unknown" for the others. */
 extern const vx_enum vx_scalar_enum;
-const char *vx_scalar_name(vx_scalar t);
-vx_scalar vx_scalar_parse(const char *s);
 vx_type vx_scalar_target(vx_scalar t);       /* the voxlux type it is stored as */
 
 /* ---- formats ---- */
@@ -61,11 +59,9 @@ typedef enum vx_format {
 	VX_FORMAT_LAST
 } vx_format;
 
-/* Names (vx_enum.h): "raw", "nrrd", "nifti", "vtk"; VX_FORMAT_UNKNOWN and
- * "unknown" for the others. */
+/* The names (vx_enum.h): "raw", "nrrd", "nifti", "vtk"; VX_FORMAT_UNKNOWN
+ * and "unknown" for the others. */
 extern const vx_enum vx_format_enum;
-const char *vx_format_name(vx_format f);
-vx_format vx_format_parse(const char *s);
 
 /* vx_import_detect: the format of buf (decompressing a gzip prefix if need
  * be) from its magic bytes: "NRRD000x", a NIfTI-1 header (sizeof_hdr 348 in
@@ -181,11 +177,9 @@ typedef enum vx_synth_kind {
 	VX_SYNTH_LAST
 } vx_synth_kind;
 
-/* Names (vx_enum.h): "sphere", "torus", "linear", "ml", "saddle";
+/* The names (vx_enum.h): "sphere", "torus", "linear", "ml", "saddle";
  * VX_SYNTH_UNKNOWN and "unknown" for the others. */
 extern const vx_enum vx_synth_enum;
-const char *vx_synth_name(vx_synth_kind k);
-vx_synth_kind vx_synth_parse(const char *s);
 /* vx_synth_coord: world coordinate of sample i of n along one axis. */
 double vx_synth_coord(int64_t i, int64_t n);
 /* vx_synth_eval: the field at a world point (NaN for an unknown kind). */

@@ -24,18 +24,6 @@ vx_tonemap_defaults(vx_tonemap_opts *o)
 	o->gamma = 2.2;
 }
 
-int
-vx_tonemap_op_parse(const char *s)
-{
-	return vx_enum_val(&vx_tonemap_op_enum, s);
-}
-
-const char *
-vx_tonemap_op_name(int op)
-{
-	return vx_enum_str(&vx_tonemap_op_enum, op);
-}
-
 double
 vx_srgb_oetf(double x)
 {

@@ -74,8 +74,9 @@ enum {
 	VX_NORMAL_RAY = 3        /* both vanished: -d normalized */
 };
 
-/* vx_cell_solver_name: "exact", "neubauer", "linear" ("unknown" otherwise;
- * vx_enum.h).  vx_cell_solver_parse: the inverse; -1 for an unknown name. */
+/* The solvers' names (vx_enum.h): "exact", "neubauer", "linear"; -1 and
+ * "unknown" for the others.  vx_cell_solver_name, vx_cell_solver_parse:
+ * shorthands for vx_enum_str and vx_enum_val on vx_cell_solver_enum. */
 extern const vx_enum vx_cell_solver_enum;
 const char *vx_cell_solver_name(int solver);
 int vx_cell_solver_parse(const char *s);
