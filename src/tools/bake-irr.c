@@ -28,12 +28,12 @@ static const char usage[] =
     "    [--samples N] [--target-error E] [--round N] [--min-samples N]\n"
     "    [--bounces N] [--offset VOXELS] [--seed N] [--first-sample N]\n"
     "    [--iso-range A,B] [--margin M] [--all] [--side low|high]\n"
-    "    [--merge STREAM] [--fresh] [--half|--final] [--fixed BITS]\n"
+    "    [--merge STREAM] [--fresh] [--lazy] [--half|--final] [--fixed BITS]\n"
     "    [-z LEVEL] [-j N] [--stats] [--explain] [-n] [-o OUT] [IN|-]";
 
 typedef struct opts {
 	const char *in, *out, *scene, *name, *merge;
-	int stats, explain, dry, fresh, all, zlevel, fixed;
+	int stats, explain, dry, fresh, all, zlevel, fixed, lazy;
 	int has_bounces, bounces, has_range, has_first, has_samples, high;
 	vx_irr_store store;
 	double range[2], margin;
@@ -60,7 +60,8 @@ parse(opts *o, int argc, char **argv)
 	enum { O_SCENE = 256, O_SET, O_LIGHT, O_LIGHTS, O_EFFECTS, O_ISO,
 	    O_NAME, O_SCALE, O_SAMPLES, O_TARGET, O_ROUND, O_MIN, O_BOUNCES,
 	    O_OFFSET, O_SEED, O_FIRST, O_RANGE, O_MARGIN, O_ALL, O_MERGE,
-	    O_FRESH, O_HALF, O_FINAL, O_FIXED, O_STATS, O_EXPLAIN, O_SIDE };
+	    O_FRESH, O_HALF, O_FINAL, O_FIXED, O_STATS, O_EXPLAIN, O_SIDE,
+	    O_LAZY };
 	static const struct option lo[] = {
 		{ "scene", 1, 0, O_SCENE }, { "set", 1, 0, O_SET },
 		{ "light", 1, 0, O_LIGHT }, { "lights", 1, 0, O_LIGHTS },
@@ -76,7 +77,7 @@ parse(opts *o, int argc, char **argv)
 		{ "fresh", 0, 0, O_FRESH }, { "half", 0, 0, O_HALF },
 		{ "final", 0, 0, O_FINAL }, { "fixed", 1, 0, O_FIXED },
 		{ "stats", 0, 0, O_STATS }, { "explain", 0, 0, O_EXPLAIN },
-		{ "side", 1, 0, O_SIDE },
+		{ "side", 1, 0, O_SIDE }, { "lazy", 0, 0, O_LAZY },
 		{ "dry-run", 0, 0, 'n' }, { "output", 1, 0, 'o' },
 		{ "threads", 1, 0, 'j' }, { "help", 0, 0, 'h' },
 		{ 0, 0, 0, 0 }
@@ -162,6 +163,7 @@ parse(opts *o, int argc, char **argv)
 			break;
 		case O_MERGE: o->merge = optarg; break;
 		case O_FRESH: o->fresh = 1; break;
+		case O_LAZY: o->lazy = 1; break;
 		case O_HALF: o->store = VX_IRR_F16; break;
 		case O_FINAL: o->store = VX_IRR_F32; break;
 		case O_FIXED:
@@ -227,43 +229,6 @@ show_progress(void *ctx, uint64_t done, uint64_t total)
 	p->shown = 1;
 }
 
-/* ---- the bake's settings and key ---- */
-
-static void
-settings_text(const vx_gi *gi, const vx_bake_opts *b, const opts *o,
-    char *buf, size_t n)
-{
-	size_t k = 0;
-
-#define PUT(...) do { int w_ = snprintf(buf + k, n - k, __VA_ARGS__); \
-	if (w_ > 0) k += (size_t)w_ < n - k ? (size_t)w_ : n - k - 1; } while (0)
-	PUT("scale %.17g offset %.17g seed %llu bounces %d eps %.17g "
-	    "solver exact fixed %d side %s", b->scale, b->offset,
-	    (unsigned long long)o->seed, gi->bounces, gi->eps, o->fixed,
-	    gi->high ? "high" : "low");
-	for (int i = 0; i < gi->nlight; i++) {
-		const vx_gi_light *l = &gi->light[i];
-
-		if (l->point)
-			PUT("; point %.17g %.17g %.17g", l->pos[0], l->pos[1],
-			    l->pos[2]);
-		else
-			PUT("; directional %.17g %.17g %.17g", l->dir[0],
-			    l->dir[1], l->dir[2]);
-		PUT(" rgb %.17g %.17g %.17g%s%s", l->rgb[0], l->rgb[1],
-		    l->rgb[2], l->inverse_square ? " inverse-square" : "",
-		    l->shadows ? " shadows" : "");
-	}
-	if (gi->has_sky)
-		PUT("; sky %.17g %.17g %.17g", gi->sky[0], gi->sky[1],
-		    gi->sky[2]);
-	PUT("; albedo");
-	for (int i = 0; i < gi->nalbedo; i++)
-		PUT(" %.17g:%.17g,%.17g,%.17g", gi->albedo_v[i],
-		    gi->albedo_c[i][0], gi->albedo_c[i][1], gi->albedo_c[i][2]);
-#undef PUT
-}
-
 static void
 print_stats(const vx_bake_stats *bs, const vx_irrvol *v, int nthr)
 {
@@ -306,7 +271,7 @@ main(int argc, char **argv)
 	vx_err e = { 0, "" };
 	long gidx, iidx = -1;
 	int nthr, resumed = 0;
-	char settings[1024], key[17];
+	char settings[2048], key[17];
 	progress pr;
 
 	tool_init("bake-irr", argc, argv);
@@ -320,21 +285,11 @@ main(int argc, char **argv)
 	    s.volume : NULL), &gidx, &e) != 0)
 		tool_fail_err(&e);
 	nthr = tool_threads(o.threads);
-	if (vx_gi_setup(&gi, &s, &g, NULL, &e) != 0)
-		tool_fail_err(&e);
-	for (int k = 0; k < s.nlight; k++)
-		if (s.light[k].type == VX_LIGHT_ENVIRONMENT)
-			tool_fail(VX_EUSAGE, "light %d: environment lights are "
-			    "not baked yet", k + 1);
+	tool_gi_setup(&gi, &s, &g, NULL);
 	if (o.has_bounces)
 		gi.bounces = o.bounces;
 	gi.seed = o.seed;
 	gi.high = o.high;
-	if (gi.nlight == 0 && !gi.has_sky && !gi.has_env)
-		tool_fail(VX_EUSAGE, "no light to bake: the scene has %s; add "
-		    "a sky, point or directional light (--light \"sky\")",
-		    gi.skipped_headlights ? "only a headlight, which moves with "
-		    "the camera" : "no light");
 	/* which texels */
 	o.b.all = o.all || (!o.has_range && s.nsurface == 0);
 	if (o.has_range) {
@@ -350,8 +305,17 @@ main(int argc, char **argv)
 		    VX_BAKE_MAX_BANDS;
 	}
 	o.b.threads = nthr;
-	settings_text(&gi, &o.b, &o, settings, sizeof settings);
-	vx_bake_key(settings, key);
+	if (!o.has_samples)
+		o.b.samples = s.has_interreflection ? (uint32_t)s.samples : 64;
+	{
+		vx_irrvol tmp;
+
+		vx_irr_init(&tmp);
+		tmp.scale = o.b.scale;
+		tmp.fixed = o.fixed;
+		vx_bake_settings(&tmp, &gi, &o.b, settings, sizeof settings);
+		vx_bake_key(settings, key);
+	}
 	/* the stream's bake of this volume: resumed unless --fresh */
 	vx_irr_init(&v);
 	if (vx_irr_from_stream(&old, &st, g.name, &iidx, &e) != 0)
@@ -390,8 +354,7 @@ main(int argc, char **argv)
 				tool_fail_err(&e);
 			v.fixed = o.fixed;
 			v.first = o.first;
-			memcpy(v.key, key, sizeof v.key);
-			snprintf(v.settings, sizeof v.settings, "%s", settings);
+			vx_bake_sign(&v, &gi, &o.b);
 		}
 		if (resumed && o.b.scale != v.scale)
 			tool_fail(VX_EUSAGE, "--scale %g: the stream's bake has "
@@ -476,8 +439,10 @@ main(int argc, char **argv)
 		o.b.progress = show_progress;
 		o.b.progress_ctx = &pr;
 	}
-	if (o.b.samples > 0 && vx_bake_run(&v, &gi, &g, &o.b, &bs, &e) != 0)
+	if (!o.lazy && o.b.samples > 0 &&
+	    vx_bake_run(&v, &gi, &g, &o.b, &bs, &e) != 0)
 		tool_fail_err(&e);
+	v.samples += o.b.samples;
 	if (o.store != VX_IRR_ACCUM && vx_irr_finalize(&v, o.store, &e) != 0)
 		tool_fail_err(&e);
 	if (o.stats)

@@ -432,7 +432,8 @@ static const struct {
 	{ "surface iso 90 glossy 3", 1, "unknown key 'glossy'" },
 	{ "interreflection bounces -1", 1, "outside 0..1000" },
 	{ "interreflection samples 0", 1, "outside 1..1000000" },
-	{ "illumination", 1, "expected local" },
+	{ "illumination", 1, "expected a mode (local, irradiance, sh, "
+	  "pathtrace)" },
 	{ "illumination global", 1, "unknown value 'global'" },
 	{ "illumination irradiance order 3", 1, "sh only" },
 	{ "illumination local interpolation nearest", 1, "does not apply" },

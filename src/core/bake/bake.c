@@ -39,6 +39,54 @@ vx_bake_key(const char *settings, char key[17])
 	key[16] = 0;
 }
 
+void
+vx_bake_settings(const vx_irrvol *v, const vx_gi *gi, const vx_bake_opts *o,
+    char *buf, size_t n)
+{
+	size_t k = 0;
+
+#define PUT(...) do { int w_ = snprintf(buf + k, n - k, __VA_ARGS__); \
+	if (w_ > 0) k += (size_t)w_ < n - k ? (size_t)w_ : n - k - 1; } while (0)
+	buf[0] = 0;
+	PUT("scale %.17g offset %.17g seed %llu bounces %d eps %.17g "
+	    "solver exact fixed %d side %s", v->scale, o->offset,
+	    (unsigned long long)gi->seed, gi->bounces, gi->eps, v->fixed,
+	    gi->high ? "high" : "low");
+	for (int i = 0; i < gi->nlight; i++) {
+		const vx_gi_light *l = &gi->light[i];
+
+		if (l->point)
+			PUT("; point %.17g %.17g %.17g", l->pos[0], l->pos[1],
+			    l->pos[2]);
+		else
+			PUT("; directional %.17g %.17g %.17g", l->dir[0],
+			    l->dir[1], l->dir[2]);
+		PUT(" rgb %.17g %.17g %.17g%s%s", l->rgb[0], l->rgb[1],
+		    l->rgb[2], l->inverse_square ? " inverse-square" : "",
+		    l->shadows ? " shadows" : "");
+	}
+	if (gi->has_sky)
+		PUT("; sky %.17g %.17g %.17g", gi->sky[0], gi->sky[1],
+		    gi->sky[2]);
+	if (gi->has_env)
+		PUT("; environment %s%s", gi->env_id, gi->env_mis ? " mis" : "");
+	PUT("; albedo");
+	for (int i = 0; i < gi->nalbedo; i++)
+		PUT(" %.17g:%.17g,%.17g,%.17g", gi->albedo_v[i],
+		    gi->albedo_c[i][0], gi->albedo_c[i][1], gi->albedo_c[i][2]);
+#undef PUT
+}
+
+void
+vx_bake_sign(vx_irrvol *v, const vx_gi *gi, const vx_bake_opts *o)
+{
+	vx_bake_settings(v, gi, o, v->settings, sizeof v->settings);
+	vx_bake_key(v->settings, v->key);
+	v->offset = o->offset;
+	v->seed = gi->seed;
+	v->high = gi->high;
+}
+
 static double
 wall(void)
 {
@@ -244,7 +292,7 @@ vx_bake_texel(const vx_irrvol *v, const vx_gi *gi, const vx_grid *g,
 	if (fl & (VX_TEXEL_NAN | VX_TEXEL_FLAT))
 		return;
 	vx_index_to_world(g, start, sw);
-	vx_gi_direct(gi, sw, start, n, rho, D, st);
+	vx_gi_direct(gi, sw, start, n, rho, gi->high, D, st);
 	if (o->target > 0) {
 		uint32_t cap = o->samples, r = o->round ? o->round : 16;
 
@@ -256,21 +304,21 @@ vx_bake_texel(const vx_irrvol *v, const vx_gi *gi, const vx_grid *g,
 			while (a->count < goal) {
 				double rgb[3];
 
-				vx_gi_sample(gi, start, n, rho, D, id,
+				vx_gi_sample(gi, start, n, rho, gi->high, D, id,
 				    (uint64_t)v->first + a->count, rgb, st);
 				vx_irr_acc_add(a, rgb, v->fixed);
 			}
 		}
 		return;
 	}
-	goal = a->count + o->samples;
-	if (goal < a->count)
+	goal = o->topup ? o->samples : a->count + o->samples;
+	if (!o->topup && goal < a->count)
 		goal = UINT32_MAX;
 	while (a->count < goal) {
 		double rgb[3];
 
-		vx_gi_sample(gi, start, n, rho, D, id, (uint64_t)v->first +
-		    a->count, rgb, st);
+		vx_gi_sample(gi, start, n, rho, gi->high, D, id,
+		    (uint64_t)v->first + a->count, rgb, st);
 		vx_irr_acc_add(a, rgb, v->fixed);
 	}
 }
@@ -313,6 +361,8 @@ vx_bake_run(vx_irrvol *v, const vx_gi *gi, const vx_grid *g,
 
 			if (i >= v->dims[0] || j >= v->dims[1] ||
 			    k >= v->dims[2] || !(v->flags[s] & VX_TEXEL_WANTED))
+				continue;
+			if (o->only != NULL && !o->only[texel_id(v, i, j, k)])
 				continue;
 			todo[n++] = (uint64_t)i | (uint64_t)j << 21 |
 			    (uint64_t)k << 42;

@@ -47,6 +47,12 @@ typedef struct vx_bake_opts {
 	int all;                  /* 1: every texel; 0: the bands' */
 	int nband;
 	double band[VX_BAKE_MAX_BANDS][2];   /* value intervals [lo, hi] */
+	int topup;                /* 1: bring each texel to `samples` in all
+	                             (lazy texels) instead of adding
+	                             `samples` more (resumed bakes) */
+	const uint8_t *only;      /* NULL, or one byte a texel of the lattice
+	                             (i + n0 (j + n1 k)): bake only the wanted
+	                             texels whose byte is nonzero */
 	int threads;              /* 0: OpenMP's default */
 	vx_bake_progress_fn progress;        /* called from one thread */
 	void *progress_ctx;
@@ -93,8 +99,19 @@ void vx_bake_texel(const vx_irrvol *v, const vx_gi *gi, const vx_grid *g,
 int vx_bake_run(vx_irrvol *v, const vx_gi *gi, const vx_grid *g,
     const vx_bake_opts *o, vx_bake_stats *st, vx_err *e);
 
+/* vx_bake_settings: the settings text of a bake of v's lattice with gi and
+ * o: everything that determines a sample's value (scale, offset, seed,
+ * bounces, ray offset, solver, fixed point, lit side, lights, albedo), as
+ * one line (formats/irradiance.md, key `settings`). */
+void vx_bake_settings(const vx_irrvol *v, const vx_gi *gi,
+    const vx_bake_opts *o, char *buf, size_t n);
+
 /* vx_bake_key: the 16-hex-digit key of a bake: FNV-1a 64 of the settings
- * text (everything that determines a sample's value), into key[17]. */
+ * text, into key[17]. */
 void vx_bake_key(const char *settings, char key[17]);
+
+/* vx_bake_sign: set v's settings, key, offset, seed and side from gi and
+ * o (a new bake). */
+void vx_bake_sign(vx_irrvol *v, const vx_gi *gi, const vx_bake_opts *o);
 
 #endif

@@ -34,6 +34,8 @@ vx_irr_init(vx_irrvol *v)
 	memset(v, 0, sizeof *v);
 	v->fixed = VX_IRR_FIXED;
 	v->scale = 1;
+	v->offset = 0.5;
+	v->seed = 1;
 }
 
 void
@@ -611,6 +613,10 @@ vx_irr_merge(vx_irrvol *a, const vx_irrvol *b, vx_err *e)
 			vx_irr_acc_merge(&pa[t], &pb[t]);
 		}
 	}
+	if ((uint64_t)a->first + a->samples == b->first)
+		a->samples += b->samples;
+	else if (b->samples > a->samples)
+		a->samples = b->samples;
 	vx_irr_finish(a);
 	return 0;
 }
@@ -692,6 +698,11 @@ vx_irr_to_chunk(const vx_irrvol *v, int zlevel, vx_chunk *c, vx_err *e)
 	    (v->store == VX_IRR_ACCUM &&
 	    (rc = vx_hdr_set(&h, "fixed", e, "%d", v->fixed))) ||
 	    (rc = vx_hdr_set(&h, "first-sample", e, "%u", v->first)) ||
+	    (rc = vx_hdr_set(&h, "samples", e, "%u", v->samples)) ||
+	    (rc = vx_hdr_set(&h, "offset", e, "%.17g", v->offset)) ||
+	    (rc = vx_hdr_set(&h, "seed", e, "%llu",
+	    (unsigned long long)v->seed)) ||
+	    (rc = vx_hdr_set(&h, "side", e, "%s", v->high ? "high" : "low")) ||
 	    (rc = vx_hdr_set(&h, "key", e, "%s", v->key[0] ? v->key :
 	    "0000000000000000")) ||
 	    (v->settings[0] &&
@@ -833,6 +844,35 @@ from_chunk(vx_irrvol *v, const vx_chunk *c, vx_err *e)
 	snprintf(v->key, sizeof v->key, "%s", vx_hdr_get(&h, "key"));
 	if ((s = vx_hdr_get(&h, "settings")) != NULL)
 		snprintf(v->settings, sizeof v->settings, "%s", s);
+	{
+		int found = 0;
+		double x2;
+
+		if ((rc = vx_hdr_get_f64_opt(&h, "offset", &v->offset, 1, &found,
+		    e)) != 0)
+			goto out;
+		if ((rc = vx_hdr_get_f64_opt(&h, "seed", &x2, 1, &found, e)) != 0)
+			goto out;
+		if (found) {
+			if (!(x2 >= 0 && x2 <= 9007199254740992.0)) {
+				rc = vx_err_set(e, VX_EDATA, "seed: out of range");
+				goto out;
+			}
+			v->seed = (uint64_t)x2;
+		}
+		if ((rc = vx_hdr_get_f64_opt(&h, "samples", &x2, 1, &found,
+		    e)) != 0)
+			goto out;
+		if (found) {
+			if (!(x2 >= 0 && x2 <= 4294967295.0)) {
+				rc = vx_err_set(e, VX_EDATA, "samples: out of range");
+				goto out;
+			}
+			v->samples = (uint32_t)x2;
+		}
+		s = vx_hdr_get(&h, "side");
+		v->high = s != NULL && strcmp(s, "high") == 0;
+	}
 	if (brick != VX_IRR_BRICK) {
 		rc = vx_err_set(e, VX_EDATA, "brick %u: only %d is supported",
 		    brick, VX_IRR_BRICK);

@@ -175,7 +175,10 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 	p->composite = ntransp > 0;
 	p->irradiance = s->has_illumination &&
 	    s->illumination == VX_ILLUM_IRRADIANCE;
-	p->specular = (fx & VX_FX_SPECULAR) && nspec > 0 && !p->irradiance;
+	p->pathtrace = s->has_illumination &&
+	    s->illumination == VX_ILLUM_PATHTRACE;
+	p->specular = (fx & VX_FX_SPECULAR) && nspec > 0 && !p->irradiance &&
+	    !p->pathtrace;
 	/* Shaded hits per covered pixel: a closed transparent surface is met
 	 * twice, then the first opaque one ends the ray. */
 	layers = p->nsurface_on == 0 ? 0 :
@@ -194,6 +197,16 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 
 		snprintf(name, sizeof name, "light %d %s", k + 1,
 		    vx_enum_str(&vx_light_type_enum, l->type));
+		if (p->pathtrace) {
+			vx_plan_add(p, name, l->type == VX_LIGHT_HEADLIGHT ||
+			    l->type == VX_LIGHT_ENVIRONMENT ? VX_PLAN_OFF :
+			    VX_PLAN_ON, 0, "%s", l->type == VX_LIGHT_HEADLIGHT ?
+			    "illumination pathtrace: a headlight is not part of "
+			    "global illumination" : l->type == VX_LIGHT_ENVIRONMENT ?
+			    "illumination pathtrace: environment maps not yet" :
+			    "illumination pathtrace: sampled at every path vertex");
+			continue;
+		}
 		if (p->irradiance) {
 			vx_plan_add(p, name, VX_PLAN_OFF, 0, "%s",
 			    l->type == VX_LIGHT_HEADLIGHT ? "illumination "
@@ -237,7 +250,7 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 			    "shadow rays (%.0f per covered pixel)", layers);
 		}
 	}
-	if (nl == 0 && !p->irradiance)
+	if (nl == 0 && !p->irradiance && !p->pathtrace)
 		vx_plan_add(p, "lights", VX_PLAN_OFF, 0, "no lights: ambient "
 		    "term only");
 
@@ -245,6 +258,11 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 	if (p->irradiance)
 		vx_plan_add(p, "shadows", VX_PLAN_OFF, 0, "illumination "
 		    "irradiance: baked into the irradiance volume");
+	else if (p->pathtrace)
+		vx_plan_add(p, "shadows", (fx & VX_FX_SHADOWS) ? VX_PLAN_ON :
+		    VX_PLAN_OFF, 0, "illumination pathtrace: %s",
+		    (fx & VX_FX_SHADOWS) ? "shadow rays at every path vertex" :
+		    "not in effects");
 	else if (p->nshadow > 0)
 		vx_plan_add(p, "shadows", VX_PLAN_ON, 0, "shadow rays to %d "
 		    "light%s", p->nshadow, p->nshadow > 1 ? "s" : "");
@@ -266,9 +284,9 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 	else
 		vx_plan_add(p, "transparency", VX_PLAN_OFF, 0, "every drawn "
 		    "surface is opaque: first hit only, no compositing");
-	if (p->irradiance)
-		vx_plan_add(p, "specular", VX_PLAN_OFF, 0, "illumination "
-		    "irradiance: diffuse only");
+	if (p->irradiance || p->pathtrace)
+		vx_plan_add(p, "specular", VX_PLAN_OFF, 0, "illumination %s: "
+		    "diffuse only", p->irradiance ? "irradiance" : "pathtrace");
 	else if (p->specular)
 		vx_plan_add(p, "specular", VX_PLAN_ON, 0, "Blinn-Phong on %d "
 		    "surface%s with ks > 0", nspec, nspec > 1 ? "s" : "");
@@ -299,6 +317,13 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 	if (p->irradiance && (fx & VX_FX_INTERREFLECTION)) {
 		vx_plan_add(p, "interreflection", VX_PLAN_OFF, 0, "illumination "
 		    "irradiance: baked into the irradiance volume");
+	} else if (p->pathtrace) {
+		int nb = (fx & VX_FX_INTERREFLECTION) && s->has_interreflection ?
+		    s->bounces : 0;
+
+		vx_plan_add(p, "interreflection", nb > 0 ? VX_PLAN_ON :
+		    VX_PLAN_OFF, 0, "illumination pathtrace: %d bounce%s", nb,
+		    nb == 1 ? "" : "s");
 	} else if (fx & VX_FX_INTERREFLECTION) {
 		if (s->has_interreflection && s->bounces > 0)
 			vx_plan_add(p, "interreflection", VX_PLAN_UNSUPPORTED, 0,
@@ -318,7 +343,12 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 	if (fx & VX_FX_SCATTERING)
 		vx_plan_add(p, "scattering", VX_PLAN_UNSUPPORTED, 0,
 		    "not supported by raycast yet");
-	if (p->irradiance)
+	if (p->pathtrace)
+		vx_plan_add(p, "illumination", VX_PLAN_ON, 2.0 * s->pt_samples *
+		    layers, "pathtrace: albedo E / pi, E from %d paths per pixel "
+		    "sample (cosine-weighted, counter-based), the reference",
+		    s->pt_samples);
+	else if (p->irradiance)
 		vx_plan_add(p, "illumination", VX_PLAN_ON, 0, "irradiance: "
 		    "albedo E / pi, E interpolated (%s) from the irradiance "
 		    "volume; no rays beyond the primary ones",

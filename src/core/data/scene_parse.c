@@ -41,7 +41,8 @@ const vx_enum vx_colormap_enum = { "colormap", colormap_names, "unknown",
 
 static const vx_enum_name illum_names[] = {
 	{ "local", VX_ILLUM_LOCAL }, { "irradiance", VX_ILLUM_IRRADIANCE },
-	{ "sh", VX_ILLUM_SH }, { NULL, VX_ILLUM_UNKNOWN }
+	{ "sh", VX_ILLUM_SH }, { "pathtrace", VX_ILLUM_PATHTRACE },
+	{ NULL, VX_ILLUM_UNKNOWN }
 };
 const vx_enum vx_illum_enum = { "illumination", illum_names, "unknown", 0 };
 
@@ -875,13 +876,16 @@ static int
 do_illumination(pctx *P)
 {
 	static const keydef defs[] = {
-		{ "order", K_INT }, { "interpolation", K_WORD }, { NULL, 0 }
+		{ "order", K_INT }, { "interpolation", K_WORD },
+		{ "samples", K_INT }, { NULL, 0 }
 	};
-	kval kv[2];
+	kval kv[3];
 	int rc, mode, in;
+	char list[256];
 
 	if (P->ntok < 2 || P->quoted[1])
-		return perr(P, "illumination: expected local, irradiance or sh");
+		return perr(P, "illumination: expected a mode (%s)",
+		    vx_enum_list(&vx_illum_enum, list, sizeof list));
 	if ((rc = need_word(P, "illumination", "mode", P->tok[1],
 	    &vx_illum_enum, &mode)) != 0)
 		return rc;
@@ -895,10 +899,19 @@ do_illumination(pctx *P)
 			    kv[0].i);
 		P->s->sh_order = (int)kv[0].i;
 	}
+	if (kv[2].seen) {
+		if (mode != VX_ILLUM_PATHTRACE)
+			return perr(P, "illumination: samples applies to "
+			    "pathtrace only");
+		if (kv[2].i < 1 || kv[2].i > 1000000)
+			return perr(P, "illumination: samples: %ld outside "
+			    "1..1000000", kv[2].i);
+		P->s->pt_samples = (int)kv[2].i;
+	}
 	if (kv[1].seen) {
-		if (mode == VX_ILLUM_LOCAL)
+		if (mode == VX_ILLUM_LOCAL || mode == VX_ILLUM_PATHTRACE)
 			return perr(P, "illumination: interpolation does not "
-			    "apply to local");
+			    "apply to %s", vx_enum_str(&vx_illum_enum, mode));
 		if ((rc = need_word(P, "illumination", "interpolation", kv[1].w,
 		    &vx_interp_enum, &in)) != 0)
 			return rc;

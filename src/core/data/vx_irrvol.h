@@ -99,7 +99,16 @@ typedef struct vx_irrvol {
 	 * key is the 16-hex-digit hash of every setting that determines a
 	 * sample's value: bakes merge only when their keys are equal */
 	char key[17];
-	char settings[1024];
+	char settings[2048];
+	/* the bake's knobs a lazy renderer needs to bake more texels alike
+	 * (header keys offset, seed, side, samples) */
+	double offset;
+	uint64_t seed;
+	int high;
+	uint32_t samples;              /* the samples the bake asked of each
+	                                  wanted texel (with a target: the
+	                                  most); a lazy renderer brings new
+	                                  texels to it */
 } vx_irrvol;
 
 void vx_irr_init(vx_irrvol *v);

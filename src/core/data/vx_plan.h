@@ -55,6 +55,9 @@ typedef struct vx_plan {
 	                       from the irradiance volume (IRRV): lights,
 	                       shadows, ambient and specular are baked in or
 	                       left out */
+	int pathtrace;      /* 1: each hit is shaded by albedo E / pi, E
+	                       estimated by path tracing (vx_gi.h) with
+	                       pt_samples paths: the reference */
 } vx_plan;
 
 /* vx_plan_init: an empty plan for the named renderer. */

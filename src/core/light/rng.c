@@ -70,25 +70,29 @@ vx_rng_owen32(uint32_t x, uint32_t key)
 	return reverse32(lowmix(reverse32(x), key));
 }
 
-/* sobol1: Sobol's second dimension of i: the xor of the direction numbers
- * v_k of i's set bits k, v_0 = 2^31 and v_k = v_{k-1} ^ (v_{k-1} >> 1)
- * (the polynomial x + 1, all initial m_k = 1: Pascal's triangle mod 2). */
+/* supersets: Sobol's second dimension of i with its bits reversed (bit j
+ * holds digit j + 1).  That dimension is the xor of the direction numbers
+ * v_k of i's set bits k, v_0 = 2^31, v_k = v_{k-1} ^ (v_{k-1} >> 1) (the
+ * polynomial x + 1, all initial m_k = 1).  Digit j + 1 of v_k is
+ * binomial(k, j) mod 2, which by Lucas's theorem is 1 exactly when the bits
+ * of j are among those of k: digit j + 1 of the result is the xor of i's
+ * bits k over the supersets k of j, a transform of five shifts (one per
+ * bit of j) instead of a loop over i's bits. */
 static uint32_t
-sobol1(uint32_t i)
+supersets(uint32_t i)
 {
-	uint32_t v = 0x80000000u, y = 0;
-
-	for (; i; i >>= 1, v ^= v >> 1)
-		if (i & 1)
-			y ^= v;
-	return y;
+	i ^= (i >> 1) & 0x55555555u;
+	i ^= (i >> 2) & 0x33333333u;
+	i ^= (i >> 4) & 0x0f0f0f0fu;
+	i ^= (i >> 8) & 0x00ff00ffu;
+	return i ^ ((i >> 16) & 0x0000ffffu);
 }
 
 void
 vx_rng_sobol2(uint32_t i, uint32_t x[2])
 {
 	x[0] = reverse32(i);
-	x[1] = sobol1(i);
+	x[1] = reverse32(supersets(i));
 }
 
 void
@@ -104,9 +108,10 @@ vx_rng_ld2(uint64_t seed, uint64_t stream, uint64_t index, uint32_t dim,
 	 * flipped by the bits above it, maps every aligned block of 2^k
 	 * indices onto another aligned block, which is a net again */
 	i = vx_rng_owen32((uint32_t)index, (uint32_t)k);
-	vx_rng_sobol2(i, x);
-	x[0] = vx_rng_owen32(x[0], (uint32_t)(k >> 32));
-	x[1] = vx_rng_owen32(x[1], (uint32_t)k2);
+	/* vx_rng_owen32 of vx_rng_sobol2(i), the reversals that meet
+	 * cancelled */
+	x[0] = reverse32(lowmix(i, (uint32_t)(k >> 32)));
+	x[1] = reverse32(lowmix(supersets(i), (uint32_t)k2));
 	/* 21 random digits below the 32 of the net in each coordinate */
 	tail = mix64((k2 >> 32 | k2 << 32) ^ (index * GAMMA));
 	u[0] = (double)(((uint64_t)x[0] << 21) | (tail & 0x1fffff)) * 0x1p-53;

@@ -151,12 +151,12 @@ first_fn(void *ctx, const vx_iso_hit *h)
  * o + t d, t in [0, tmax]; 1 when found */
 static int
 trace(const vx_gi *gi, const double o[3], const double d[3], double tmax,
-    double iso, first_ctx *x, vx_gi_stats *st)
+    double iso, int high, first_ctx *x, vx_gi_stats *st)
 {
 	float isof = (float)iso;
 
 	x->found = 0;
-	x->high = gi->high;
+	x->high = high;
 	vx_iso_trace(&gi->tr, o, d, 0, tmax, &isof, 1, first_fn, x,
 	    st ? &st->iso : NULL);
 	return x->found;
@@ -177,7 +177,7 @@ offset(const vx_gi *gi, const double pi[3], const double n[3], double eps,
 
 static int
 visible(const vx_gi *gi, const double pi[3], const double n[3],
-    const double w[3], double dist, double iso, vx_gi_stats *st)
+    const double w[3], double dist, double iso, int high, vx_gi_stats *st)
 {
 	double o[3], d[3];
 	first_ctx x;
@@ -186,12 +186,12 @@ visible(const vx_gi *gi, const double pi[3], const double n[3],
 	vx_world_to_index_dir(gi->g, w, d);
 	if (st)
 		st->shadow_rays++;
-	return !trace(gi, o, d, dist, iso, &x, st);
+	return !trace(gi, o, d, dist, iso, high, &x, st);
 }
 
 void
 vx_gi_direct(const vx_gi *gi, const double pw[3], const double pi[3],
-    const double n[3], double iso, double rgb[3], vx_gi_stats *st)
+    const double n[3], double iso, int high, double rgb[3], vx_gi_stats *st)
 {
 	rgb[0] = rgb[1] = rgb[2] = 0;
 	for (int k = 0; k < gi->nlight; k++) {
@@ -217,7 +217,7 @@ vx_gi_direct(const vx_gi *gi, const double pw[3], const double pi[3],
 		cs = vx_dot3(n, L);
 		if (!(cs > 0))
 			continue;
-		if (l->shadows && !visible(gi, pi, n, L, dist, iso, st))
+		if (l->shadows && !visible(gi, pi, n, L, dist, iso, high, st))
 			continue;
 		for (int a = 0; a < 3; a++)
 			rgb[a] += l->rgb[a] * sc * cs;
@@ -235,9 +235,9 @@ power(double a, double b)
 /* one vertex's estimate of E at (pw, pi, n), depth d */
 static void
 vertex(const vx_gi *gi, const double pw[3], const double pi[3],
-    const double n[3], double iso, const double *D, uint64_t stream,
-    uint64_t index, int depth, double albedo[3], double E[3],
-    vx_gi_stats *st)
+    const double n[3], double iso, int high, const double *D,
+    uint64_t stream, uint64_t index, int depth, double albedo[3],
+    double E[3], vx_gi_stats *st)
 {
 	double u[2], lw[3], w[3], t[3], b[3], cs, o[3], di[3];
 	first_ctx x;
@@ -245,7 +245,7 @@ vertex(const vx_gi *gi, const double pw[3], const double pi[3],
 	if (D != NULL)
 		memcpy(E, D, 3 * sizeof *E);
 	else
-		vx_gi_direct(gi, pw, pi, n, iso, E, st);
+		vx_gi_direct(gi, pw, pi, n, iso, high, E, st);
 	vx_onb(n, t, b);
 	/* the environment, importance-sampled, MIS against the cosine */
 	if (gi->has_env && gi->env_mis) {
@@ -255,7 +255,8 @@ vertex(const vx_gi *gi, const double pw[3], const double pi[3],
 		pdf = gi->env.sample(gi->env.ctx, u, w, rgb);
 		cs = vx_dot3(n, w);
 		if (pdf > 0 && cs > 0 && (rgb[0] > 0 || rgb[1] > 0 ||
-		    rgb[2] > 0) && visible(gi, pi, n, w, INFINITY, iso, st)) {
+		    rgb[2] > 0) && visible(gi, pi, n, w, INFINITY, iso, high,
+		    st)) {
 			double wt = power(pdf, cs / PI) * cs / pdf;
 
 			for (int a = 0; a < 3; a++)
@@ -273,7 +274,7 @@ vertex(const vx_gi *gi, const double pw[3], const double pi[3],
 	vx_world_to_index_dir(gi->g, w, di);
 	if (st)
 		st->rays++;
-	if (!trace(gi, o, di, INFINITY, iso, &x, st)) {
+	if (!trace(gi, o, di, INFINITY, iso, high, &x, st)) {
 		double rgb[3] = { 0, 0, 0 };
 
 		if (gi->has_env) {
@@ -300,7 +301,7 @@ vertex(const vx_gi *gi, const double pw[3], const double pi[3],
 
 		vx_iso_normal(gi->g, &x.hit, w, ny);
 		vx_index_to_world(gi->g, x.hit.p, yw);
-		vertex(gi, yw, x.hit.p, ny, iso, NULL, stream, index,
+		vertex(gi, yw, x.hit.p, ny, iso, high, NULL, stream, index,
 		    depth + 1, albedo, Ey, st);
 		for (int a = 0; a < 3; a++)
 			E[a] += albedo[a] * Ey[a];
@@ -309,14 +310,14 @@ vertex(const vx_gi *gi, const double pw[3], const double pi[3],
 
 void
 vx_gi_sample(const vx_gi *gi, const double pi[3], const double n[3],
-    double iso, const double D[3], uint64_t stream, uint64_t index,
-    double rgb[3], vx_gi_stats *st)
+    double iso, int high, const double D[3], uint64_t stream,
+    uint64_t index, double rgb[3], vx_gi_stats *st)
 {
 	double pw[3], albedo[3];
 
 	vx_index_to_world(gi->g, pi, pw);
 	vx_gi_albedo(gi, iso, albedo);
-	vertex(gi, pw, pi, n, iso, D, stream, index, 0, albedo, rgb, st);
+	vertex(gi, pw, pi, n, iso, high, D, stream, index, 0, albedo, rgb, st);
 	if (st)
 		st->samples++;
 }

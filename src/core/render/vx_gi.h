@@ -85,6 +85,8 @@ typedef struct vx_gi {
 	int has_env;
 	vx_gi_env env;
 	int env_mis;              /* 1: importance-sample the environment */
+	char env_id[96];          /* names the environment in a bake's
+	                             settings (its file's content hash) */
 	int bounces;              /* indirect bounces: 0 = direct light only */
 	int nalbedo;              /* albedo as a function of the value: */
 	double albedo_v[VX_GI_MAX_ALBEDO];     /* at these values (sorted), */
@@ -93,10 +95,11 @@ typedef struct vx_gi {
 	double eps;               /* bounce and shadow rays start this far off
 	                             the surface (index units) */
 	uint64_t seed;
-	int high;                 /* the lit side: 0 that of lower values
-	                             (density data: the outside of what the
-	                             isosurface bounds), 1 that of higher
-	                             values (distance-like fields) */
+	int high;                 /* the side bakes light: 0 that of lower
+	                             values (density data: the outside of
+	                             what the isosurface bounds), 1 that of
+	                             higher values (distance-like fields);
+	                             the calls take the side as an argument */
 	int skipped_headlights;   /* headlights in the scene (view-dependent:
 	                             not part of global illumination) */
 } vx_gi;
@@ -115,19 +118,21 @@ void vx_gi_set_env(vx_gi *gi, const vx_gi_env *env, int importance);
 void vx_gi_albedo(const vx_gi *gi, double v, double rgb[3]);
 
 /* vx_gi_direct: the delta lights' irradiance D at world point pw (index
- * point pi) with outward world normal n, iso the surface's value (shadow
- * rays trace it). */
+ * point pi) with world normal n toward the lit side (high: that of higher
+ * values), iso the surface's value (shadow rays trace it). */
 void vx_gi_direct(const vx_gi *gi, const double pw[3], const double pi[3],
-    const double n[3], double iso, double rgb[3], vx_gi_stats *st);
+    const double n[3], double iso, int high, double rgb[3],
+    vx_gi_stats *st);
 
 /* vx_gi_sample: sample `index` of the irradiance estimate at index-space
- * point pi with outward unit world normal n on the isosurface of value iso
- * (the ray starts at pi itself: offset it first).  D (may be NULL: then it
+ * point pi with unit world normal n toward the lit side (high: that of
+ * higher values) on the isosurface of value iso (the ray starts at pi
+ * itself: offset it first).  D (may be NULL: then it
  * is computed) is vx_gi_direct at the same point, which does not change
  * from sample to sample.  rgb gets the estimate. */
 void vx_gi_sample(const vx_gi *gi, const double pi[3], const double n[3],
-    double iso, const double D[3], uint64_t stream, uint64_t index,
-    double rgb[3], vx_gi_stats *st);
+    double iso, int high, const double D[3], uint64_t stream,
+    uint64_t index, double rgb[3], vx_gi_stats *st);
 
 void vx_gi_stats_add(vx_gi_stats *a, const vx_gi_stats *b);
 
