@@ -14,6 +14,7 @@
 #include "vx_enum.h"
 #include "vx_grid.h"
 #include "vx_import.h"
+#include "vx_irrvol.h"
 #include "vx_plan.h"
 #include "vx_scene.h"
 #include "vx_tonemap.h"
@@ -161,6 +162,8 @@ library_tables(void **state)
 		{ &vx_tonemap_op_enum, VX_TM_CLAMP, VX_TM_LAST },
 		{ &vx_diff_map_enum, VX_DIFF_ABS, VX_DIFF_LAST },
 		{ &vx_cell_solver_enum, VX_CELL_EXACT, VX_CELL_SOLVER_LAST },
+		{ &vx_irr_store_enum, VX_IRR_ACCUM, VX_IRR_STORE_LAST },
+		{ &vx_irr_interp_enum, VX_IRR_TRILINEAR, VX_IRR_INTERP_LAST },
 	};
 	size_t i;
 	int v;
