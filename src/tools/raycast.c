@@ -427,12 +427,6 @@ main(int argc, char **argv)
 			tool_fail(VX_EDATA, "mesh '%s' has no tets", mesh.name);
 	} else if (vx_grid_view_stream(&g, &st, want, &gi, &e) != 0)
 		tool_fail_err(&e);
-	for (int a = 0; a < 3 && !is_mesh; a++)
-		if (g.dims[a] < 2)
-			tool_fail(VX_EDATA, "volume '%s': dims %lld %lld %lld: "
-			    "needs at least 2 samples per axis", g.name,
-			    (long long)g.dims[0], (long long)g.dims[1],
-			    (long long)g.dims[2]);
 	vx_scene_plan_isosurface(&s, &plan);
 	nthr = tool_threads(o.threads);
 	if (o.explain) {
