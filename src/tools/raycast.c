@@ -190,12 +190,14 @@ print_stats(const vx_raycast_stats *st, const vx_macro *m, int w, int h,
 	else
 		fprintf(stderr, "raycast: cells visited %llu (%.1f per ray), "
 		    "roots solved %llu (%llu ruled out by the cubic's sign "
-		    "bound, %llu of them without the face values), hits %llu, "
-		    "shaded %llu, non-finite cells %llu\n",
+		    "bound, %llu of them without the face values), %llu signs "
+		    "decided exactly, hits %llu, shaded %llu, non-finite "
+		    "cells %llu\n",
 		    (unsigned long long)st->cells, (double)st->cells / rays,
 		    (unsigned long long)st->roots,
 		    (unsigned long long)st->bounded,
 		    (unsigned long long)st->certified,
+		    (unsigned long long)st->exact,
 		    (unsigned long long)st->hits, (unsigned long long)st->shaded,
 		    (unsigned long long)st->nonfinite);
 	if (st->paths > 0)

@@ -1290,6 +1290,7 @@ add_local(vx_raycast_stats *st, const rc_local *L, double *cyc)
 	st->roots += L->st.roots;
 	st->bounded += L->st.bounded;
 	st->certified += L->st.certified;
+	st->exact += L->st.exact;
 	st->hits += L->st.hits + L->tst.hits;
 	st->leaves += L->tst.leaves;
 	st->entries += L->tst.entries;
