@@ -12,6 +12,7 @@
 #include "tool.h"
 #include "vx_grid.h"
 #include "vx_macro.h"
+#include "vx_macroio.h"
 #include "vx_stream.h"
 #include "vx_tetimport.h"
 #include "vx_tetleaf.h"

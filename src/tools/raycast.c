@@ -12,6 +12,7 @@
 #include "vx_image.h"
 #include "vx_imageio.h"
 #include "vx_macro.h"
+#include "vx_macroio.h"
 #include "vx_plan.h"
 #include "vx_raycast.h"
 #include "vx_scene.h"

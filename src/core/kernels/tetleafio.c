@@ -2,6 +2,7 @@
  * (formats/tetmesh.md), the mesh CRC that ties it to its mesh, and finding
  * the one that belongs to a mesh. */
 #include "vx_tetleaf.h"
+#include "vx_macroio.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -12,6 +12,8 @@
 #include <time.h>
 
 #include "vx_camera.h"
+#include "vx_cellmask.h"
+#include "vx_macrobox.h"
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif

@@ -19,6 +19,7 @@
 #include "vx_grid.h"
 #include "vx_image.h"
 #include "vx_iso.h"
+#include "vx_cellmask.h"
 #include "vx_macro.h"
 #include "vx_plan.h"
 #include "vx_scene.h"

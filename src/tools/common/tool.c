@@ -15,6 +15,7 @@
 #include "vx_image.h"
 #include "vx_imageio.h"
 #include "vx_macro.h"
+#include "vx_macroio.h"
 #include "vx_scene.h"
 #include "vx_version.h"
 
