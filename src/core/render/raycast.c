@@ -14,6 +14,7 @@
 #include "vx_camera.h"
 #include "vx_cellmask.h"
 #include "vx_macrobox.h"
+#include "vx_par.h"
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -73,8 +74,8 @@ typedef struct rc_local {
 	_Alignas(64) vx_iso_stats st;
 	vx_tettrace_stats tst;
 	uint64_t primary, shadow, shaded, covered, binned;
+	uint64_t first_pass;          /* pixels drawn by the sparse pass */
 	uint64_t cyc_total, cyc_shade, cyc_shadow;
-	double busy;                  /* seconds in tiles */
 	/* the entry masks of the bins last walked (bin_em): em[s][p], bit
 	 * k: the bin's k-th entry holds pixel p; em_bin[s]: the bin, -1
 	 * none; em_ok[s]: 0 for a bin of more than 64 entries */
@@ -1228,9 +1229,20 @@ tile_row(const rc_shared *S, rc_local *L, int x0, int x1, int y, int skip,
 	}
 }
 
-static void
-add_local(vx_raycast_stats *st, const rc_local *L, double *cyc)
+/* rc_merge: what vx_par_each merges a thread's state into */
+typedef struct rc_merge {
+	vx_raycast_stats *st;
+	double cyc[3];
+} rc_merge;
+
+/* add_local: thread t's counters into the frame's (vx_par_each) */
+static int
+add_local(void *ctx, void *lp, int t)
 {
+	rc_merge *M = ctx;
+	vx_raycast_stats *st = M->st;
+	const rc_local *L = lp;
+	double *cyc = M->cyc;
 	int l;
 
 	st->primary += L->primary;
@@ -1249,10 +1261,88 @@ add_local(vx_raycast_stats *st, const rc_local *L, double *cyc)
 	for (l = 0; l <= VX_MACRO_MAXLEV; l++)
 		st->macro[l] += L->st.trav.macro[l] + L->tst.trav.macro[l];
 	st->culled += L->st.trav.culled;
-	st->thread_seconds += L->busy;
+	st->first_pass += L->first_pass;
 	cyc[0] += (double)L->cyc_total;
 	cyc[1] += (double)(L->st.cyc_isect + L->tst.cyc_isect);
 	cyc[2] += (double)(L->cyc_shade - L->cyc_shadow);
+	return 0;
+}
+
+/* local_init: a thread's state for a frame (vx_par_each) */
+static int
+local_init(void *ctx, void *lp, int t)
+{
+	const vx_raycast_opts *o = ctx;
+	rc_local *L = lp;
+
+	L->st.timing = o->timing;
+	L->tst.timing = o->timing;
+	em_forget(L);
+	return 0;
+}
+
+/* local_forget: no entry masks kept (the bins were made again) */
+static int
+local_forget(void *ctx, void *lp, int t)
+{
+	em_forget(lp);
+	return 0;
+}
+
+/* What the frame's loops read: the shared state, the images, and the
+ * passes' layout. */
+typedef struct rc_frame {
+	const rc_shared *S;
+	int aa;                       /* samples per pixel edge */
+	int sparse;                   /* 1: the bins' centres are drawn */
+	vx_image *color, *depth, *normal;
+} rc_frame;
+
+/* centre_pixel: the sparse pass, bin b's centre pixel (a block of the
+ * bins' grid) */
+static int
+centre_pixel(void *ctx, void *lp, const vx_par_block *b)
+{
+	const rc_frame *F = ctx;
+	const rc_shared *S = F->S;
+	const vx_camera *cam = &S->s->camera;
+	rc_local *L = lp;
+	int x = (int)b->lo[0] * BIN + BIN / 2;
+	int y = (int)b->lo[1] * BIN + BIN / 2;
+
+	if (x < cam->w && y < cam->h) {
+		image_pixel(S, L, x, y, F->aa, F->color, F->depth, F->normal);
+		L->first_pass++;
+	}
+	return 0;
+}
+
+/* tile_pixels: the main pass over one tile (the bins' centres left out
+ * after a sparse pass) */
+static int
+tile_pixels(void *ctx, void *lp, const vx_par_block *b)
+{
+	const rc_frame *F = ctx;
+	const rc_shared *S = F->S;
+	rc_local *L = lp;
+	int x0 = (int)b->lo[0], y0 = (int)b->lo[1];
+	int x1 = (int)b->hi[0], y1 = (int)b->hi[1];
+	uint64_t c0 = S->o->timing ? vx_cycles() : 0;
+
+	if (F->aa == 1 && S->binoff != NULL)
+		for (int y = y0; y < y1; y++)
+			tile_row(S, L, x0, x1, y, F->sparse, F->color,
+			    F->depth, F->normal);
+	else
+		for (int y = y0; y < y1; y++)
+			for (int x = x0; x < x1; x++)
+				if (!F->sparse || x % BIN != BIN / 2 ||
+				    y % BIN != BIN / 2)
+					image_pixel(S, L, x, y, F->aa, F->color,
+					    F->depth, F->normal);
+	if (S->o->timing)
+		L->cyc_total += vx_cycles() - c0;
+	return 0;
 }
 
 /* render: the picture of S's source (filled in by the caller: g and tr, or
@@ -1265,9 +1355,12 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	const vx_camera *cam = &s->camera;
 	rc_shared S = *S_;
 	vx_raycast_stats local_st;
-	double cyc[3] = { 0, 0, 0 };
-	struct timespec t0, t1;
-	int k, tile, ntx, nty, ntile, nthr, rc;
+	rc_merge M;
+	rc_frame F;
+	vx_par team;
+	vx_par_time tm;
+	double t0, tb0;
+	int k, tile, rc;
 	int aa = o->aa >= 1 ? o->aa : 1;
 
 	if (st == NULL)
@@ -1322,7 +1415,7 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	vx_cellmask own, *mask = o->mask_keep != NULL ? o->mask_keep : &own;
 	if (mask == &own)
 		vx_cellmask_init(&own);
-	clock_gettime(CLOCK_MONOTONIC, &t0);
+	t0 = vx_par_seconds();
 	if (S.mesh == NULL && !S.tr.flat && S.tr.m != NULL &&
 	    !o->no_cellmask) {
 		if (!vx_cellmask_matches(mask, S.tr.m, S.iso, S.niso)) {
@@ -1335,27 +1428,12 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 			S.tr.mask = mask;
 	}
 	tile = o->tile > 0 ? o->tile : 16;
-	ntx = (cam->w + tile - 1) / tile;
-	nty = (cam->h + tile - 1) / tile;
-	ntile = ntx * nty;
-#ifdef _OPENMP
-	nthr = o->nthreads > 0 ? o->nthreads : omp_get_num_procs();
-#else
-	nthr = 1;
-#endif
-	rc_local *loc = aligned_alloc(_Alignof(rc_local),
-	    (size_t)nthr * sizeof *loc);
-	if (loc == NULL) {
+	if ((rc = vx_par_init(&team, o->nthreads, sizeof(rc_local), e)) != 0) {
 		if (mask == &own)
 			vx_cellmask_free(&own);
-		return vx_err_set(e, VX_ENOMEM, "raycast: out of memory");
+		return vx_err_push(e, "raycast");
 	}
-	memset(loc, 0, (size_t)nthr * sizeof *loc);
-	for (k = 0; k < nthr; k++) {
-		loc[k].st.timing = o->timing;
-		loc[k].tst.timing = o->timing;
-		em_forget(&loc[k]);
-	}
+	vx_par_each(&team, local_init, (void *)o);
 	/* bins of the boxes that hold the bracketing cells (a volume walked
 	 * hierarchically).  Blocks of cells are binned only for macrocells
 	 * whose mask bits are built: when some bracketing ones are not, the
@@ -1370,53 +1448,36 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	 * move, a kept mask's newly seen macrocells are walked whole in the
 	 * frame whose rays build their bits; the pictures are the same
 	 * either way. */
-	struct timespec tb0, tb1;
 	int binning = S.mesh == NULL && !S.tr.flat && S.tr.m != NULL &&
-	    S.tr.m->nlev >= 1 && !o->no_binning, sparse = 0;
+	    S.tr.m->nlev >= 1 && !o->no_binning;
 	int unseen = S.tr.mask != NULL && vx_cellmask_built(mask) == 0;
 
-	clock_gettime(CLOCK_MONOTONIC, &tb0);
+	F.S = &S;
+	F.aa = aa;
+	F.sparse = 0;
+	F.color = color;
+	F.depth = depth;
+	F.normal = normal;
+	tb0 = vx_par_seconds();
 	if (binning && (rc = bins_build(&S, cam, S.tr.mask ? mask : NULL,
 	    e)) != 0)
 		goto fail;
-	clock_gettime(CLOCK_MONOTONIC, &tb1);
-	st->bin_seconds = (double)(tb1.tv_sec - tb0.tv_sec) +
-	    1e-9 * (double)(tb1.tv_nsec - tb0.tv_nsec);
+	st->bin_seconds = vx_par_seconds() - tb0;
 	if (binning && S.binoff != NULL && unseen && mask->nset > 0) {
-		uint64_t drawn = 0;
+		vx_par_loop centres = { { S.nbx, S.nby, 1 }, { 1, 1, 1 }, 16 };
 
-		sparse = 1;
-#ifdef _OPENMP
-#pragma omp parallel for num_threads(nthr) schedule(dynamic, 16) \
-    reduction(+:drawn)
-#endif
-		for (int64_t kb = 0; kb < (int64_t)S.nbx * S.nby; kb++) {
-#ifdef _OPENMP
-			rc_local *L = &loc[omp_get_thread_num()];
-#else
-			rc_local *L = &loc[0];
-#endif
-			int x = (int)(kb % S.nbx) * BIN + BIN / 2;
-			int y = (int)(kb / S.nbx) * BIN + BIN / 2;
-
-			if (x < cam->w && y < cam->h) {
-				image_pixel(&S, L, x, y, aa, color, depth, normal);
-				drawn++;
-			}
-		}
-		st->first_pass = drawn;
+		F.sparse = 1;
+		vx_par_run(&team, &centres, centre_pixel, &F, NULL);
 		/* (unseen: no bits were built before the pass) */
 		if (vx_cellmask_built(mask) > 0) {
 			/* the bins' time: the first pass's rays are not in it */
-			clock_gettime(CLOCK_MONOTONIC, &tb0);
+			tb0 = vx_par_seconds();
 			bins_drop(&S);
 			if ((rc = bins_build(&S, cam, mask, e)) != 0)
 				goto fail;
-			for (k = 0; k < nthr; k++)
-				em_forget(&loc[k]);   /* lists made again */
-			clock_gettime(CLOCK_MONOTONIC, &tb1);
-			st->bin_seconds += (double)(tb1.tv_sec - tb0.tv_sec) +
-			    1e-9 * (double)(tb1.tv_nsec - tb0.tv_nsec);
+			/* lists made again */
+			vx_par_each(&team, local_forget, NULL);
+			st->bin_seconds += vx_par_seconds() - tb0;
 		}
 	}
 	st->bins = S.binoff != NULL;
@@ -1426,61 +1487,29 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	st->mask_bytes = S.tr.mask ? vx_cellmask_bytes(mask) : 0;
 	st->mask_blocks = S.tr.mask ? (uint64_t)mask->nblock : 0;
 	st->mask_set = S.tr.mask ? (uint64_t)mask->nset : 0;
-	clock_gettime(CLOCK_MONOTONIC, &tb0);
-#ifdef _OPENMP
-#pragma omp parallel for num_threads(nthr) schedule(dynamic, 1)
-#endif
-	for (int ti = 0; ti < ntile; ti++) {
-#ifdef _OPENMP
-		rc_local *L = &loc[omp_get_thread_num()];
-#else
-		rc_local *L = &loc[0];
-#endif
-		int x0 = (ti % ntx) * tile, y0 = (ti / ntx) * tile;
-		int x1 = x0 + tile < cam->w ? x0 + tile : cam->w;
-		int y1 = y0 + tile < cam->h ? y0 + tile : cam->h;
-		uint64_t c0 = o->timing ? vx_cycles() : 0;
-		struct timespec w0, w1;
+	vx_par_loop tiles = VX_PAR_TILES(cam->w, cam->h, tile);
 
-		clock_gettime(CLOCK_MONOTONIC, &w0);
-		if (aa == 1 && S.binoff != NULL)
-			for (int y = y0; y < y1; y++)
-				tile_row(&S, L, x0, x1, y, sparse, color, depth,
-				    normal);
-		else
-			for (int y = y0; y < y1; y++)
-				for (int x = x0; x < x1; x++)
-					if (!sparse || x % BIN != BIN / 2 ||
-					    y % BIN != BIN / 2)
-						image_pixel(&S, L, x, y, aa, color,
-						    depth, normal);
-		if (o->timing)
-			L->cyc_total += vx_cycles() - c0;
-		clock_gettime(CLOCK_MONOTONIC, &w1);
-		L->busy += (double)(w1.tv_sec - w0.tv_sec) +
-		    1e-9 * (double)(w1.tv_nsec - w0.tv_nsec);
-	}
-	clock_gettime(CLOCK_MONOTONIC, &t1);
-	st->threads = nthr;
-	st->tile_seconds = (double)(t1.tv_sec - tb0.tv_sec) +
-	    1e-9 * (double)(t1.tv_nsec - tb0.tv_nsec);
-	for (k = 0; k < nthr; k++)
-		add_local(st, &loc[k], cyc);
-	free(loc);
+	vx_par_run(&team, &tiles, tile_pixels, &F, &tm);
+	st->seconds = vx_par_seconds() - t0;
+	st->threads = tm.threads;
+	st->tile_seconds = tm.seconds;
+	st->thread_seconds = tm.thread_seconds;
+	M.st = st;
+	M.cyc[0] = M.cyc[1] = M.cyc[2] = 0;
+	vx_par_each(&team, add_local, &M);
+	vx_par_free(&team);
 	st->mask_built = S.tr.mask ? (uint64_t)vx_cellmask_built(mask) : 0;
 	if (mask == &own)
 		vx_cellmask_free(&own);
 	bins_free(&S);
-	st->seconds = (double)(t1.tv_sec - t0.tv_sec) +
-	    1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
-	if (o->timing && cyc[0] > 0) {
-		st->share_isect = cyc[1] / cyc[0];
-		st->share_shade = cyc[2] / cyc[0];
+	if (o->timing && M.cyc[0] > 0) {
+		st->share_isect = M.cyc[1] / M.cyc[0];
+		st->share_shade = M.cyc[2] / M.cyc[0];
 		st->share_traverse = 1 - st->share_isect - st->share_shade;
 	}
 	return 0;
 fail:
-	free(loc);
+	vx_par_free(&team);
 	if (mask == &own)
 		vx_cellmask_free(&own);
 	bins_free(&S);
