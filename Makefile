@@ -85,7 +85,7 @@ $(BUILD)/%.o: %.c Makefile
 # the sanitizers.
 HOT_OBJ := $(addprefix $(BUILD)/src/core/,kernels/macro.o kernels/macrowalk.o \
 	kernels/macrobox.o kernels/cellmask.o kernels/iso.o kernels/cell.o \
-	render/raycast.o data/camera.o)
+	render/raycast.o render/bins.o render/surface.o data/camera.o)
 ifneq ($(SANITIZE),1)
 $(HOT_OBJ): override CFLAGS += -O3 -fno-math-errno -fno-trapping-math
 endif
