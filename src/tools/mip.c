@@ -247,10 +247,9 @@ main(int argc, char **argv)
 		vx_stream_free(&os);
 	} else {
 		vx_image disp;
-		tool_out out;
 		int nc = o.cmap == VX_COLORMAP_GRAY ? 1 : 3;
-		vx_text text[2] = { { "Software", "voxlux mip" },
-		    { "voxlux-history", tool_history_line() } };
+		size_t hl = 0;
+		const char *hist = vx_stream_history(&st, &hl);
 
 		wlo = o.has_window ? o.window[0] : g.vmin;
 		whi = o.has_window ? o.window[1] : g.vmax;
@@ -273,12 +272,8 @@ main(int argc, char **argv)
 						    (float)vx_srgb_oetf(rgb[k]);
 				}
 			}
-		tool_out_open(&out, o.out);
-		if (vx_image_png_write(&disp, out.f, o.bits, text, 2, &e) != 0) {
-			tool_out_abort(&out);
-			tool_fail_err(&e);
-		}
-		tool_out_close(&out);
+		/* display values as they are (no color-space chunk) */
+		tool_write_png(o.out, &disp, o.bits, -1, hist, hl, NULL, 0);
 		vx_image_free(&disp);
 	}
 	vx_image_free(&val);

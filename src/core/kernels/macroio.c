@@ -313,62 +313,83 @@ vx_macro_matches(const vx_macro *m, const vx_grid *g, const uint32_t *crc)
 }
 
 int
+vx_macro_find_owned(const vx_stream *s, const char *type, const char *name,
+    long *index, vx_err *e)
+{
+	const char *key = memcmp(type, VX_CHUNK_TETLEAF, 4) == 0 ? "mesh" :
+	    "volume";
+	long i = -1;
+
+	*index = -1;
+	while ((i = vx_stream_find(s, type, (size_t)(i + 1))) >= 0) {
+		const unsigned char *body;
+		const char *v, *lv;
+		size_t bodylen;
+		vx_hdr h;
+		int mine, rc;
+
+		vx_hdr_init(&h);
+		if ((rc = vx_payload_parse(&s->chunk[i], &h, &body, &bodylen,
+		    e)) != 0) {
+			vx_hdr_free(&h);
+			return vx_err_push(e, "chunk %.4s at %llu", type,
+			    (unsigned long long)s->chunk[i].offset);
+		}
+		v = vx_hdr_get(&h, key);
+		lv = vx_hdr_get(&h, "leaves");
+		mine = v != NULL && name != NULL && strcmp(v, name) == 0;
+		/* an MCEL over explicit leaves belongs to no volume; any
+		 * other chunk without its owner is one nobody can place */
+		if (v == NULL && (memcmp(type, VX_CHUNK_MACRO, 4) != 0 ||
+		    lv == NULL || strcmp(lv, "explicit") != 0)) {
+			vx_hdr_free(&h);
+			vx_err_set(e, VX_EDATA, "no '%s' key", key);
+			return vx_err_push(e, "chunk %.4s at %llu", type,
+			    (unsigned long long)s->chunk[i].offset);
+		}
+		vx_hdr_free(&h);
+		if (mine) {
+			*index = i;
+			return 0;
+		}
+	}
+	return 0;
+}
+
+int
 vx_macro_from_stream(vx_macro *m, const vx_stream *s, const vx_grid *g,
     long src, int *status, long *index, vx_err *e)
 {
-	long i = -1;
+	long i;
 	int rc;
 
 	vx_macro_init(m);
 	*status = VX_MACRO_ABSENT;
 	if (index != NULL)
 		*index = -1;
-	while ((i = vx_stream_find(s, VX_CHUNK_MACRO, (size_t)(i + 1))) >= 0) {
-		const unsigned char *body;
-		const char *v, *lv;
-		size_t bodylen;
-		vx_hdr h;
-		int mine;
-
-		vx_hdr_init(&h);
-		if ((rc = vx_payload_parse(&s->chunk[i], &h, &body, &bodylen,
-		    e)) != 0) {
-			vx_hdr_free(&h);
-			return vx_err_push(e, "macrocells");
-		}
-		v = vx_hdr_get(&h, "volume");
-		mine = v != NULL && strcmp(v, g->name) == 0;
-		lv = vx_hdr_get(&h, "leaves");
-		if (v == NULL && (lv == NULL || strcmp(lv, "explicit") != 0)) {
-			/* volume macrocells must name their volume */
-			vx_hdr_free(&h);
-			vx_err_set(e, VX_EDATA, "no 'volume' key");
-			return vx_err_push(e, "macrocells");
-		}
-		vx_hdr_free(&h);
-		if (!mine)
-			continue;
-		if (index != NULL)
-			*index = i;
-		if ((rc = vx_macro_from_chunk(m, &s->chunk[i], e)) != 0)
-			return rc;
-		/* the very bytes it was built from: their samples' CRC is the
-		 * one recorded (the other checks still run) */
-		if (src >= 0 && (size_t)src < s->n && m->has_vchunk_crc &&
-		    s->chunk[src].crc_known &&
-		    memcmp(s->chunk[src].type, VX_CHUNK_VOLUME, 4) == 0 &&
-		    s->chunk[src].crc == m->vchunk_crc) {
-			if (vx_macro_matches(m, g, &m->vcrc)) {
-				*status = VX_MACRO_LOADED;
-				return 0;
-			}
-		} else if (vx_macro_matches(m, g, NULL)) {
+	if (vx_macro_find_owned(s, VX_CHUNK_MACRO, g->name, &i, e) != 0)
+		return vx_err_push(e, "macrocells");
+	if (i < 0)
+		return 0;
+	if (index != NULL)
+		*index = i;
+	if ((rc = vx_macro_from_chunk(m, &s->chunk[i], e)) != 0)
+		return rc;
+	/* the very bytes it was built from: their samples' CRC is the one
+	 * recorded (the other checks still run) */
+	if (src >= 0 && (size_t)src < s->n && m->has_vchunk_crc &&
+	    s->chunk[src].crc_known &&
+	    memcmp(s->chunk[src].type, VX_CHUNK_VOLUME, 4) == 0 &&
+	    s->chunk[src].crc == m->vchunk_crc) {
+		if (vx_macro_matches(m, g, &m->vcrc)) {
 			*status = VX_MACRO_LOADED;
 			return 0;
 		}
-		vx_macro_free(m);
-		*status = VX_MACRO_STALE;
+	} else if (vx_macro_matches(m, g, NULL)) {
+		*status = VX_MACRO_LOADED;
 		return 0;
 	}
+	vx_macro_free(m);
+	*status = VX_MACRO_STALE;
 	return 0;
 }

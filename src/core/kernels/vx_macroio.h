@@ -33,6 +33,16 @@ int vx_macro_from_chunk(vx_macro *m, const vx_chunk *c, vx_err *e);
 int vx_macro_matches(const vx_macro *m, const vx_grid *g,
     const uint32_t *crc);
 
+/* vx_macro_find_owned: *index gets the index of the first chunk of type
+ * `type`, VX_CHUNK_MACRO or VX_CHUNK_TETLEAF, that belongs to the volume
+ * (MCEL: its "volume" key) or tet mesh (TLEF: "mesh") named `name`, or -1
+ * when none does.  The one lookup of a hierarchy's owner: an MCEL over
+ * explicit leaves belongs to no volume and is passed over; a chunk of the
+ * type whose payload does not parse, or that lacks its owner's key, is
+ * bad data nobody can place: VX_EDATA ("chunk TYPE at OFFSET: ..."). */
+int vx_macro_find_owned(const vx_stream *s, const char *type,
+    const char *name, long *index, vx_err *e);
+
 enum {
 	VX_MACRO_ABSENT = 0,     /* no MCEL chunk for this volume */
 	VX_MACRO_LOADED,         /* found, matches the volume, loaded */
