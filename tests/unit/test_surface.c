@@ -239,11 +239,12 @@ lights(void **state)
 		assert_true(L[a] == -s.camera.fwd[a]);
 }
 
-/* shade_irradiance: one unshadowed light, no highlight, an ambient term:
+/* shade_irradiance: one unshadowed light, no highlight, no ambient:
  * vx_surf_shade's color equals vx_surf_shade_irradiance's with E the
- * light's radiance times n.L (the same sum in another order: to 1e-12);
- * a light behind the surface adds nothing (ambient times albedo, exactly);
- * a texture-less surface's albedo is its color. */
+ * irradiance the light delivers, pi rad n.L (vx_gi.h's units; the same
+ * product in another order: to 1e-12); with an ambient term, a light
+ * behind the surface adds nothing (ambient times albedo, exactly); a
+ * texture-less surface's albedo is its color. */
 static void
 shade_irradiance(void **state)
 {
@@ -265,7 +266,7 @@ shade_irradiance(void **state)
 	s.surface[0].m.color[1] = 0.4;
 	s.surface[0].m.color[2] = 0.2;
 	s.surface[0].m.ks = 0;
-	s.ambient[0] = s.ambient[1] = s.ambient[2] = 0.1;
+	s.ambient[0] = s.ambient[1] = s.ambient[2] = 0;
 	s.ambient_intensity = 1;
 	s.effects = 0;                    /* no shadows, no highlights */
 	s.default_lights = 0;
@@ -292,15 +293,16 @@ shade_irradiance(void **state)
 	vx_surf_shade(&sf, &x.h[0], d, col, &st);
 	vx_surf_light(&s, 0, x.h[0].P, L, &dist, rad);
 	for (int a = 0; a < 3; a++)
-		E[a] = rad[a] * (x.h[0].n[0] * L[0] + x.h[0].n[1] * L[1] +
-		    x.h[0].n[2] * L[2]);
+		E[a] = 3.14159265358979323846 * rad[a] * (x.h[0].n[0] * L[0] +
+		    x.h[0].n[1] * L[1] + x.h[0].n[2] * L[2]);
 	assert_true(E[0] > 0);
 	vx_surf_shade_irradiance(&sf, &x.h[0], E, col2);
 	for (int a = 0; a < 3; a++)
 		assert_true(fabs(col[a] - col2[a]) < 1e-12);
-	assert_true(col[0] > 0.1 * 0.8 + 0.01);
+	assert_true(col[0] > 0.01);
 	/* the light turned round, behind the surface: ambient only */
 	s.light[0].direction[2] = -2;
+	s.ambient[0] = s.ambient[1] = s.ambient[2] = 0.1;
 	vx_surf_shade(&sf, &x.h[0], d, col, &st);
 	for (int a = 0; a < 3; a++)
 		assert_true(col[a] == 0.1 * alb[a]);

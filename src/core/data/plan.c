@@ -176,7 +176,12 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 		    sf->m.kd, sf->m.ks);
 	}
 	p->composite = ntransp > 0;
-	p->specular = (fx & VX_FX_SPECULAR) && nspec > 0;
+	p->irradiance = s->has_illumination &&
+	    s->illumination == VX_ILLUM_IRRADIANCE;
+	p->pathtrace = s->has_illumination &&
+	    s->illumination == VX_ILLUM_PATHTRACE;
+	p->specular = (fx & VX_FX_SPECULAR) && nspec > 0 && !p->irradiance &&
+	    !p->pathtrace;
 	/* Shaded hits per covered pixel: a closed transparent surface is met
 	 * twice, then the first opaque one ends the ray. */
 	layers = p->nsurface_on == 0 ? 0 :
@@ -195,6 +200,24 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 
 		snprintf(name, sizeof name, "light %d %s", k + 1,
 		    vx_light_type_name(l->type));
+		if (p->pathtrace) {
+			vx_plan_add(p, name, l->type == VX_LIGHT_HEADLIGHT ||
+			    l->type == VX_LIGHT_ENVIRONMENT ? VX_PLAN_OFF :
+			    VX_PLAN_ON, 0, "%s", l->type == VX_LIGHT_HEADLIGHT ?
+			    "illumination pathtrace: a headlight is not part of "
+			    "global illumination" : l->type == VX_LIGHT_ENVIRONMENT ?
+			    "illumination pathtrace: environment maps not yet" :
+			    "illumination pathtrace: sampled at every path vertex");
+			continue;
+		}
+		if (p->irradiance) {
+			vx_plan_add(p, name, VX_PLAN_OFF, 0, "%s",
+			    l->type == VX_LIGHT_HEADLIGHT ? "illumination "
+			    "irradiance: a headlight is not part of the baked "
+			    "light" : "illumination irradiance: baked into the "
+			    "irradiance volume");
+			continue;
+		}
 		if (l->type == VX_LIGHT_ENVIRONMENT || l->type == VX_LIGHT_SKY) {
 			vx_plan_add(p, name, VX_PLAN_UNSUPPORTED, 0, "%s light: "
 			    "not supported by raycast yet, skipped",
@@ -230,12 +253,20 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 			    "shadow rays (%.0f per covered pixel)", layers);
 		}
 	}
-	if (nl == 0)
+	if (nl == 0 && !p->irradiance && !p->pathtrace)
 		vx_plan_add(p, "lights", VX_PLAN_OFF, 0, "no lights: ambient "
 		    "term only");
 
 	/* Effects, on or off, with the reason. */
-	if (p->nshadow > 0)
+	if (p->irradiance)
+		vx_plan_add(p, "shadows", VX_PLAN_OFF, 0, "illumination "
+		    "irradiance: baked into the irradiance volume");
+	else if (p->pathtrace)
+		vx_plan_add(p, "shadows", (fx & VX_FX_SHADOWS) ? VX_PLAN_ON :
+		    VX_PLAN_OFF, 0, "illumination pathtrace: %s",
+		    (fx & VX_FX_SHADOWS) ? "shadow rays at every path vertex" :
+		    "not in effects");
+	else if (p->nshadow > 0)
 		vx_plan_add(p, "shadows", VX_PLAN_ON, 0, "shadow rays to %d "
 		    "light%s", p->nshadow, p->nshadow > 1 ? "s" : "");
 	else if (!(fx & VX_FX_SHADOWS))
@@ -256,7 +287,10 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 	else
 		vx_plan_add(p, "transparency", VX_PLAN_OFF, 0, "every drawn "
 		    "surface is opaque: first hit only, no compositing");
-	if (p->specular)
+	if (p->irradiance || p->pathtrace)
+		vx_plan_add(p, "specular", VX_PLAN_OFF, 0, "illumination %s: "
+		    "diffuse only", p->irradiance ? "irradiance" : "pathtrace");
+	else if (p->specular)
 		vx_plan_add(p, "specular", VX_PLAN_ON, 0, "Blinn-Phong on %d "
 		    "surface%s with ks > 0", nspec, nspec > 1 ? "s" : "");
 	else
@@ -282,7 +316,17 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 	}
 
 	/* Reserved: asked for, but not computed by this renderer yet. */
-	if (fx & VX_FX_INTERREFLECTION) {
+	if (p->irradiance && (fx & VX_FX_INTERREFLECTION)) {
+		vx_plan_add(p, "interreflection", VX_PLAN_OFF, 0, "illumination "
+		    "irradiance: baked into the irradiance volume");
+	} else if (p->pathtrace) {
+		int nb = (fx & VX_FX_INTERREFLECTION) && s->has_interreflection ?
+		    s->bounces : 0;
+
+		vx_plan_add(p, "interreflection", nb > 0 ? VX_PLAN_ON :
+		    VX_PLAN_OFF, 0, "illumination pathtrace: %d bounce%s", nb,
+		    nb == 1 ? "" : "s");
+	} else if (fx & VX_FX_INTERREFLECTION) {
 		if (s->has_interreflection && s->bounces > 0)
 			vx_plan_add(p, "interreflection", VX_PLAN_UNSUPPORTED, 0,
 			    "%d bounce%s, %d samples: not supported by raycast "
@@ -301,10 +345,16 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 	if (fx & VX_FX_SCATTERING)
 		vx_plan_add(p, "scattering", VX_PLAN_UNSUPPORTED, 0,
 		    "not supported by raycast yet");
-	if (s->has_illumination && s->illumination == VX_ILLUM_IRRADIANCE)
-		vx_plan_add(p, "illumination", VX_PLAN_UNSUPPORTED, 0,
-		    "irradiance lookup not supported by raycast yet: lights "
-		    "evaluated at each hit");
+	if (p->pathtrace)
+		vx_plan_add(p, "illumination", VX_PLAN_ON, 2.0 * s->pt_samples *
+		    layers, "pathtrace: albedo E / pi, E from %d paths per pixel "
+		    "sample (cosine-weighted, counter-based), the reference",
+		    s->pt_samples);
+	else if (p->irradiance)
+		vx_plan_add(p, "illumination", VX_PLAN_ON, 0, "irradiance: "
+		    "albedo E / pi, E interpolated (%s) from the irradiance "
+		    "volume; no rays beyond the primary ones",
+		    vx_interp_name(s->interp));
 	else if (s->has_illumination && s->illumination == VX_ILLUM_SH)
 		vx_plan_add(p, "illumination", VX_PLAN_UNSUPPORTED, 0,
 		    "SH lookup (order %d) not supported by raycast yet: lights "

@@ -50,6 +50,7 @@ vx_scene_init(vx_scene *s)
 	s->bounces = 1;
 	s->samples = 16;
 	s->illumination = VX_ILLUM_LOCAL;
+	s->pt_samples = 16;
 	s->sh_order = 3;
 	s->interp = VX_INTERP_TRILINEAR;
 	s->phase = VX_PHASE_ISOTROPIC;
@@ -353,7 +354,11 @@ vx_scene_equal(const vx_scene *a, const vx_scene *b)
 			return 0;
 		if (a->illumination == VX_ILLUM_SH && a->sh_order != b->sh_order)
 			return 0;
-		if (a->illumination != VX_ILLUM_LOCAL && a->interp != b->interp)
+		if (a->illumination == VX_ILLUM_PATHTRACE &&
+		    a->pt_samples != b->pt_samples)
+			return 0;
+		if (a->illumination != VX_ILLUM_LOCAL &&
+		    a->illumination != VX_ILLUM_PATHTRACE && a->interp != b->interp)
 			return 0;
 	}
 	for (i = 0; i < a->ntf_opacity && i < VX_SCENE_MAX_TF; i++)

@@ -289,7 +289,9 @@ vx_scene_format(const vx_scene *s, char **text, size_t *n, vx_err *e)
 		sb_put(&b, vx_illum_name(s->illumination));
 		if (s->illumination == VX_ILLUM_SH)
 			sb_int(&b, "order", s->sh_order);
-		if (s->illumination != VX_ILLUM_LOCAL) {
+		if (s->illumination == VX_ILLUM_PATHTRACE)
+			sb_int(&b, "samples", s->pt_samples);
+		else if (s->illumination != VX_ILLUM_LOCAL) {
 			sb_put(&b, " interpolation ");
 			sb_put(&b, vx_interp_name(s->interp));
 		}

@@ -26,7 +26,7 @@ static const char *const cmap_names[VX_COLORMAP_LAST] = {
 	NULL, "gray", "hot", "coolwarm", "viridis"
 };
 static const char *const illum_names[VX_ILLUM_LAST] = {
-	NULL, "local", "irradiance", "sh"
+	NULL, "local", "irradiance", "sh", "pathtrace"
 };
 static const char *const interp_names[VX_INTERP_LAST] = {
 	NULL, "nearest", "trilinear", "tricubic", "nearest-iso"
@@ -954,13 +954,15 @@ static int
 do_illumination(pctx *P)
 {
 	static const keydef defs[] = {
-		{ "order", K_INT }, { "interpolation", K_WORD }, { NULL, 0 }
+		{ "order", K_INT }, { "interpolation", K_WORD },
+		{ "samples", K_INT }, { NULL, 0 }
 	};
-	kval kv[2];
+	kval kv[3];
 	int rc, mode, in;
 
 	if (P->ntok < 2 || P->quoted[1])
-		return perr(P, "illumination: expected local, irradiance or sh");
+		return perr(P, "illumination: expected local, irradiance, sh or "
+		    "pathtrace");
 	if ((rc = need_word(P, "illumination", "mode", P->tok[1], illum_names,
 	    VX_ILLUM_LAST, &mode)) != 0)
 		return rc;
@@ -974,10 +976,19 @@ do_illumination(pctx *P)
 			    kv[0].i);
 		P->s->sh_order = (int)kv[0].i;
 	}
+	if (kv[2].seen) {
+		if (mode != VX_ILLUM_PATHTRACE)
+			return perr(P, "illumination: samples applies to "
+			    "pathtrace only");
+		if (kv[2].i < 1 || kv[2].i > 1000000)
+			return perr(P, "illumination: samples: %ld outside "
+			    "1..1000000", kv[2].i);
+		P->s->pt_samples = (int)kv[2].i;
+	}
 	if (kv[1].seen) {
-		if (mode == VX_ILLUM_LOCAL)
+		if (mode == VX_ILLUM_LOCAL || mode == VX_ILLUM_PATHTRACE)
 			return perr(P, "illumination: interpolation does not "
-			    "apply to local");
+			    "apply to %s", illum_names[mode]);
 		if ((rc = need_word(P, "illumination", "interpolation", kv[1].w,
 		    interp_names, VX_INTERP_LAST, &in)) != 0)
 			return rc;

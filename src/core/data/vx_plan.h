@@ -51,6 +51,13 @@ typedef struct vx_plan {
 	int specular;       /* 1: add the Blinn-Phong term */
 	int texture_on[VX_SCENE_MAX_SURFACES]; /* map surface k's texture */
 	double layers;      /* predicted surface hits shaded per covered pixel */
+	int irradiance;     /* 1: each hit is shaded by albedo E / pi, E read
+	                       from the irradiance volume (IRRV): lights,
+	                       shadows, ambient and specular are baked in or
+	                       left out */
+	int pathtrace;      /* 1: each hit is shaded by albedo E / pi, E
+	                       estimated by path tracing (vx_gi.h) with
+	                       pt_samples paths: the reference */
 } vx_plan;
 
 /* vx_plan_init: an empty plan for the named renderer. */

@@ -111,6 +111,7 @@ typedef enum vx_illum {
 	VX_ILLUM_LOCAL,           /* lights evaluated at the hit (the default) */
 	VX_ILLUM_IRRADIANCE,      /* irradiance volume (IRRV) */
 	VX_ILLUM_SH,              /* SH transfer volume (SHTV) and lighting */
+	VX_ILLUM_PATHTRACE,       /* per-pixel path tracing (the reference) */
 	VX_ILLUM_LAST
 } vx_illum;
 
@@ -151,6 +152,7 @@ typedef struct vx_scene {
 	int has_illumination;
 	vx_illum illumination;
 	int sh_order;             /* SH: order n >= 1 (n^2 coefficients) */
+	int pt_samples;           /* pathtrace: paths per pixel sample, >= 1 */
 	vx_interp interp;
 	int ntf_opacity;          /* DVR transfer function: value, opacity */
 	double tf_opacity[VX_SCENE_MAX_TF][2];

@@ -330,6 +330,9 @@ add_local(void *ctx, void *lp, int t)
 	st->entries += ts->entries;
 	st->nonfinite += is->nonfinite;
 	st->shaded += L->ss.shaded;
+	st->irr_missing += L->ss.irr_missing;
+	st->paths += L->ss.paths;
+	st->gi_rays += L->ss.gi_rays;
 	st->covered += L->covered;
 	st->binned += L->binned;
 	for (l = 0; l <= VX_MACRO_MAXLEV; l++)
@@ -450,6 +453,11 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	S.p = p;
 	S.o = o;
 	S.sf.timing = o->timing;
+	S.sf.irr = o->irr;
+	S.sf.irr_interp = o->irr_interp;
+	S.sf.irr_need = o->irr_need;
+	S.sf.irr_need_ctx = o->irr_need_ctx;
+	S.sf.gi = o->gi;
 	if ((rc = vx_surfaces_scene(&S.sf, s, p, tex, e)) != 0)
 		return vx_err_push(e, "raycast");
 	/* not cleared: the tiles write every pixel (empty runs and

@@ -374,6 +374,72 @@ vx_surf_albedo(const vx_surfaces *sf, const vx_hit *h, double alb[3])
 	albedo(sf, sf->surf[h->iso], h->P, alb);
 }
 
+/* lambert_irr: kd albedo E / pi, vx_surf_shade_irradiance's rule */
+static inline void
+lambert_irr(const vx_material *m, const double alb[3], const double E[3],
+    double col[3])
+{
+	for (int a = 0; a < 3; a++)
+		col[a] = m->kd * alb[a] * E[a] * (1 / 3.14159265358979323846);
+}
+
+/* path_traced: Lambert under the mean of pt_samples estimates of the
+ * irradiance at h (vx_gi), lit from the eye's side (out of line: the
+ * local lights' path stays as it is) */
+static __attribute__((noinline)) void
+path_traced(const vx_surfaces *S, const vx_hit *h, const vx_material *m,
+    const double alb[3], double col[3], vx_surf_stats *st)
+{
+	const vx_scene *s = S->s;
+	const vx_gi *gi = S->gi;
+	vx_gi_stats gs;
+	double E[3] = { 0, 0, 0 }, D[3], isov = S->iso[h->iso];
+	int high = !h->entering;     /* the eye's side is lit */
+	uint64_t stream = 0xcbf29ce484222325u, bits;
+	int a, l;
+
+	/* a stream per hit point: the same for any thread count */
+	for (a = 0; a < 3; a++) {
+		memcpy(&bits, &h->pi[a], sizeof bits);
+		stream = (stream ^ bits) * 0x100000001b3u;
+	}
+	memset(&gs, 0, sizeof gs);
+	vx_gi_direct(gi, h->P, h->pi, h->n, isov, high, D, &gs);
+	for (l = 0; l < s->pt_samples; l++) {
+		double r[3];
+
+		vx_gi_sample(gi, h->pi, h->n, isov, high, D, stream,
+		    (uint64_t)l, r, &gs);
+		for (a = 0; a < 3; a++)
+			E[a] += r[a];
+	}
+	for (a = 0; a < 3; a++)
+		col[a] = m->kd * alb[a] * E[a] / s->pt_samples *
+		    (1 / 3.14159265358979323846);
+	st->paths += gs.samples;
+	st->gi_rays += gs.rays + gs.shadow_rays;
+}
+
+/* baked: Lambert under the irradiance volume's value at h; with irr_need,
+ * the texels the lookup reads reported, and black */
+static __attribute__((noinline)) void
+baked(const vx_surfaces *S, const vx_hit *h, const vx_material *m,
+    const double alb[3], double col[3], vx_surf_stats *st)
+{
+	double E[3];
+
+	if (S->irr_need != NULL) {
+		vx_irr_reach(S->irr, h->pi, S->irr_interp, S->irr_need,
+		    S->irr_need_ctx);
+		col[0] = col[1] = col[2] = 0;
+		return;
+	}
+	if (!vx_irr_lookup(S->irr, h->pi, S->irr_interp, S->g,
+	    S->iso[h->iso], E))
+		st->irr_missing++;
+	lambert_irr(m, alb, E, col);
+}
+
 void
 vx_surf_shade(const vx_surfaces *S, const vx_hit *h, const double dw[3],
     double col[3], vx_surf_stats *st)
@@ -393,6 +459,14 @@ vx_surf_shade(const vx_surfaces *S, const vx_hit *h, const double dw[3],
 		normalize3(V);
 	}
 	albedo(S, k, P, alb);
+	if (p->pathtrace || p->irradiance) {
+		if (p->pathtrace)
+			path_traced(S, h, m, alb, col, st);
+		else
+			baked(S, h, m, alb, col, st);
+		st->shaded++;
+		return;
+	}
 	for (a = 0; a < 3; a++) {
 		amb[a] = s->ambient[a] * s->ambient_intensity;
 		col[a] = amb[a] * alb[a];
@@ -435,13 +509,10 @@ void
 vx_surf_shade_irradiance(const vx_surfaces *S, const vx_hit *h,
     const double E[3], double col[3])
 {
-	const vx_scene *s = S->s;
 	int k = S->surf[h->iso];
 	double alb[3];
 
 	albedo(S, k, h->P, alb);
-	for (int a = 0; a < 3; a++)
-		col[a] = alb[a] * (s->ambient[a] * s->ambient_intensity +
-		    s->surface[k].m.kd * E[a]);
+	lambert_irr(&S->s->surface[k].m, alb, E, col);
 }
 

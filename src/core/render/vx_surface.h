@@ -16,9 +16,10 @@
  *    a point.
  *  - Shading: the albedo (the material's color, or a texture volume through
  *    its colormap), ambient light, and per light Lambert and Blinn-Phong
- *    with its shadow (vx_surf_shade, what raycast draws); or, in place of
- *    the lights, an irradiance looked up elsewhere (a baked lattice:
- *    vx_surf_shade_irradiance).
+ *    with its shadow (vx_surf_shade, what raycast draws); or, as the plan
+ *    says, Lambert under an irradiance in place of the lights: baked in an
+ *    irradiance volume (vx_irrvol.h) or path-traced at the hit (vx_gi.h);
+ *    vx_surf_shade_irradiance for an irradiance from elsewhere.
  *
  * A baker or a path tracer makes its own vx_surfaces for the isovalues it
  * needs (vx_surfaces_add: any isovalue, not only the drawn ones), traces
@@ -33,6 +34,8 @@
 
 #include "vx_err.h"
 #include "vx_grid.h"
+#include "vx_gi.h"
+#include "vx_irrvol.h"
 #include "vx_iso.h"
 #include "vx_macro.h"
 #include "vx_plan.h"
@@ -65,6 +68,16 @@ typedef struct vx_surfaces {
 	const vx_grid *const *tex;
 	double tex_lo[VX_SCENE_MAX_SURFACES], tex_hi[VX_SCENE_MAX_SURFACES];
 	int timing;              /* 1: count the shadow rays' cycles */
+	/* illumination in place of the lights (volumes; the plan says
+	 * which): */
+	const vx_irrvol *irr;    /* irradiance: the baked volume, */
+	vx_irr_interp irr_interp;     /* read so; */
+	vx_irr_need_fn irr_need; /* non-NULL: a collecting pass (lazy
+	                            illumination): each shaded point reports
+	                            the texels its lookup reads (vx_irr_reach;
+	                            from every thread) and is drawn black */
+	void *irr_need_ctx;
+	const vx_gi *gi;         /* pathtrace: the estimator */
 } vx_surfaces;
 
 /* A surface point, whatever source found it. */
@@ -88,6 +101,10 @@ typedef struct vx_surf_stats {
 	uint64_t shadow;         /* visibility rays */
 	uint64_t shaded;         /* points shaded */
 	uint64_t cyc_shadow;     /* with timing: cycles in visibility rays */
+	uint64_t irr_missing;    /* irradiance lookups that found no usable
+	                            texel (drawn black) */
+	uint64_t paths, gi_rays; /* pathtrace: paths, and the rays they traced
+	                            (bounce and shadow) */
 } vx_surf_stats;
 
 /* vx_surfaces_init: no source, no isovalues, no scene. */
@@ -159,19 +176,23 @@ void vx_surf_light(const vx_scene *s, int k, const double P[3], double L[3],
  * the material's colormap where the plan has one, else its color. */
 void vx_surf_albedo(const vx_surfaces *sf, const vx_hit *h, double alb[3]);
 
-/* vx_surf_shade: outgoing radiance at h seen along world direction dw:
- * ambient times albedo, plus for each light the plan switches on that
- * faces the surface, its radiance times its visibility (where the plan
- * shadows it) times Lambert (kd albedo n.L) and Blinn-Phong (ks (n.H)^s,
- * where the plan has highlights). */
+/* vx_surf_shade: outgoing radiance at h seen along world direction dw.
+ * With the local lights: ambient times albedo, plus for each light the
+ * plan switches on that faces the surface, its radiance times its
+ * visibility (where the plan shadows it) times Lambert (kd albedo n.L) and
+ * Blinn-Phong (ks (n.H)^s, where the plan has highlights).  Where the plan
+ * has irradiance: Lambert under the irradiance volume's value at h
+ * (vx_surf_shade_irradiance; with irr_need, the texels reported and
+ * black); where it path-traces: Lambert under the mean of the scene's
+ * pt_samples estimates of vx_gi at h, lit from the eye's side, their
+ * random numbers a stream per hit point (the same at any thread count). */
 void vx_surf_shade(const vx_surfaces *sf, const vx_hit *h, const double dw[3],
     double col[3], vx_surf_stats *st);
 
-/* vx_surf_shade_irradiance: the diffuse radiance at h under irradiance E
- * in place of the lights, in the lights' units (the sum over the light
- * arriving of radiance times the cosine, shadows included): albedo times
- * (ambient + kd E).  For one shadowless light, E = rad n.L gives
- * vx_surf_shade's diffuse term. */
+/* vx_surf_shade_irradiance: the radiance a Lambertian surface reflects at
+ * h under irradiance E (vx_gi.h's units: the hemisphere's integral of
+ * radiance times cosine): kd albedo E / pi.  A light delivers E = pi rad
+ * n.L (vx_gi.h), and this gives vx_surf_shade's diffuse term for it. */
 void vx_surf_shade_irradiance(const vx_surfaces *sf, const vx_hit *h,
     const double E[3], double col[3]);
 

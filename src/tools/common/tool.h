@@ -131,6 +131,14 @@ void tool_write_png(const char *path, const struct vx_image *img, int bits,
 void tool_write_png_radiance(const char *path, const struct vx_image *color,
     double exposure, const double bg[3], int bits, const vx_stream *in);
 
+/* tool_gi_setup: the global-illumination estimator (vx_gi.h) for scene s
+ * over volume g and hierarchy m; exits 64 when the scene has no light a
+ * bake can use (headlights move with the camera). */
+struct vx_gi;
+struct vx_scene;
+void tool_gi_setup(struct vx_gi *gi, const struct vx_scene *s,
+    const struct vx_grid *g, const struct vx_macro *m);
+
 /* tool_threads: number of threads for -j N (0: all cores), made the
  * default of every parallel region of the run (tonemapping, sample CRCs):
  * -j N bounds the run's threads, not only the frame's. */
