@@ -101,7 +101,7 @@ int vx_mip_ray_exhaustive(const vx_grid *g, const double o[3],
 /* ---- the picture ---- */
 
 typedef struct vx_mip_opts {
-	int nthreads;            /* <= 0: one per processor */
+	int nthreads;            /* <= 0: OpenMP's default (vx_par_threads) */
 	int tile;                /* tile edge in pixels (default 16): the
 	                            last-t bound starts afresh in each tile,
 	                            whose rays go row by row */

@@ -27,7 +27,7 @@
 #include "vx_tetleaf.h"
 
 typedef struct vx_raycast_opts {
-	int nthreads;            /* <= 0: all cores */
+	int nthreads;            /* <= 0: OpenMP's default (vx_par_threads) */
 	int solver;              /* vx_cell_solver */
 	int flat;                /* 1: no hierarchy (benchmarks) */
 	int aa;                  /* samples per pixel edge (aa x aa grid), >= 1 */

@@ -26,7 +26,7 @@ int
 vx_par_threads(int nthreads)
 {
 #ifdef _OPENMP
-	return nthreads > 0 ? nthreads : omp_get_num_procs();
+	return nthreads > 0 ? nthreads : omp_get_max_threads();
 #else
 	(void)nthreads;
 	return 1;

@@ -91,8 +91,9 @@ typedef struct vx_par_time {
 	double thread_seconds;
 } vx_par_time;
 
-/* vx_par_threads: the thread count for nthreads (<= 0: one per processor;
- * 1 without OpenMP). */
+/* vx_par_threads: the thread count for nthreads (<= 0: OpenMP's default,
+ * one per processor unless OMP_NUM_THREADS or omp_set_num_threads, as
+ * the tools' -j does, says otherwise; 1 without OpenMP). */
 int vx_par_threads(int nthreads);
 
 /* vx_par_init: a team of vx_par_threads(nthreads) threads with zeroed
