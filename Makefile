@@ -2,7 +2,8 @@
 #
 #   make              build/libvoxlux.a and every program into bin/
 #   make test         unit tests (cmocka) and command-line tests
-#   make SANITIZE=1 test   the same under ASan+UBSan (separate build dir)
+#   make SANITIZE=1 test   the same under ASan+UBSan, float-cast-overflow
+#                          included (separate build dir)
 #   make deps         install the Debian packages the build and tests need
 #   make install PREFIX=/usr/local [DESTDIR=...]
 #   make fuzz         libFuzzer targets (clang) over the committed corpus
@@ -22,7 +23,8 @@ OPT ?= -O2
 ifeq ($(SANITIZE),1)
 BUILD := build/san
 BINDIR := build/san/bin
-SANFLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+SANFLAGS := -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer \
+	-fno-sanitize-recover=undefined,float-cast-overflow
 OPT := -O1 -g
 else
 BUILD := build
@@ -163,7 +165,8 @@ uninstall:
 # each tests/fuzz/fuzz_NAME.c links against it.  OpenMP as in the normal
 # build (clang needs libomp-dev); run.sh sets OMP_NUM_THREADS=1.  UBSan
 # findings abort, so libFuzzer keeps them as crashes.
-FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=undefined
+FUZZ_SAN := -fsanitize=address,undefined,float-cast-overflow \
+	-fno-sanitize-recover=undefined,float-cast-overflow
 FUZZ_CFLAGS := -g -O1 -fno-omit-frame-pointer $(FUZZ_SAN) $(OPENMP) $(CORE_INC) -D_GNU_SOURCE $(PNG_CFLAGS)
 FUZZ_OBJ := $(CORE_SRC:src/core/%.c=build/fuzz/obj/%.o)
 FUZZ_LIB := build/fuzz/libvoxlux-fuzz.a

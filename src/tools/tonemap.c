@@ -508,6 +508,7 @@ main(int argc, char **argv)
 
 	tool_init("tonemap", argc, argv);
 	parse(&o, argc, argv);
+	(void)tool_threads(0);   /* the parallel loops' threads, made safely */
 	load(&in, o.in, o.name, 0);
 	if (o.ref != NULL)
 		compare(&res, &o, &in);
