@@ -473,11 +473,14 @@ pixel_packet(const tracer *T, const surf *h, uint64_t pixel, double E[3],
 		for (int j = 0; j < 16; j++) {
 			double u[2];
 
+			/* an inactive lane holds a well-formed ray too (the
+			 * normal's): Debian's Embree asserts on the lanes */
 			valid[j] = j < n ? -1 : 0;
-			if (j >= n)
-				continue;
-			r2(r, i0 + j, u);
-			cosine_dir(h->n, u, w[j]);
+			if (j < n) {
+				r2(r, i0 + j, u);
+				cosine_dir(h->n, u, w[j]);
+			} else
+				memcpy(w[j], h->n, sizeof w[j]);
 			rh.ray.org_x[j] = (float)o[0];
 			rh.ray.org_y[j] = (float)o[1];
 			rh.ray.org_z[j] = (float)o[2];

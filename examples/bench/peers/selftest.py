@@ -17,8 +17,8 @@ usage: selftest.py --embree PATH/embree_render --work DIR [--probe PATH/camera_p
 4. With --embree-pt: the path tracer on the sphere's mesh.  Oracles: the white furnace
    (a sky of radiance 1, albedo a, no light: every covered pixel is a, at any bounce
    count, for a convex surface: every bounce ray escapes); a directional light alone
-   (bounces 0): a * I * max(0, n . l) with the exact sphere normal; -j 1 and -j 2 give
-   the same bytes.
+   (bounces 0): a * I * max(0, n . l) with the exact sphere normal; -j 1 and -j 2, and
+   --packets and single rays, give the same bytes.
 0. With --probe (camera_probe.c, linked with libvoxlux): voxlux's own vx_camera_ray
    against camera.py and this file's ray generator, for perspective and orthographic
    cameras, non-square images, a slanted up and an up parallel to the view.
@@ -184,6 +184,11 @@ def test_pathtracer(embree_pt, work):
                                 "--sun"] + ["%g" % x for x in ldir] + ["1.5", "1.5", "1.5"] +
                      ["--spp", "4"], j="2")
     check(np.array_equal(img1, img2), "embree_pt: -j 1 and -j 2 give the same picture")
+    flags = ["--sky", "0.3", "0.3", "0.3", "--albedo", "0.5", "0.5", "0.5", "--sun"] + \
+        ["%g" % x for x in ldir] + ["1.5", "1.5", "1.5"] + ["--spp", "20", "--bounces", "2"]
+    img1, _ = render("single", flags)
+    img2, _ = render("packets", flags + ["--packets"])
+    check(np.array_equal(img1, img2), "embree_pt: --packets (16 + 4 rays) gives the same picture")
 
 
 PROBE_CAMERAS = [
