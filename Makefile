@@ -144,7 +144,7 @@ print-core-inc:
 
 # ---- dependencies (Debian) ----
 DEB_BUILD := build-essential pkg-config libpng-dev zlib1g-dev libcmocka-dev libopenexr-dev
-DEB_TEST := mricron-data python3 strace
+DEB_TEST := mricron-data python3 strace blender-data
 DEB_FUZZ := clang libclang-rt-14-dev libomp-dev
 deps:
 	@missing=""; for p in $(DEB_BUILD) $(DEB_TEST) $(DEB_FUZZ) $(DEB_EXTRA); do \
@@ -198,7 +198,7 @@ $(FUZZ_LIB): $(FUZZ_OBJ)
 	rm -f $@
 	ar rcs $@ $^
 
-build/fuzz/%: tests/fuzz/%.c tests/fuzz/fuzz.h $(FUZZ_LIB)
+build/fuzz/%: tests/fuzz/%.c tests/fuzz/fuzz.h tests/fuzz/fuzz_env.h $(FUZZ_LIB)
 	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $< $(FUZZ_LIB) $(LDLIBS)
 
 fuzz-build: $(FUZZ)

@@ -195,10 +195,24 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 
 		snprintf(name, sizeof name, "light %d %s", k + 1,
 		    vx_light_type_name(l->type));
-		if (l->type == VX_LIGHT_ENVIRONMENT || l->type == VX_LIGHT_SKY) {
-			vx_plan_add(p, name, VX_PLAN_UNSUPPORTED, 0, "%s light: "
-			    "not supported by raycast yet, skipped",
-			    vx_light_type_name(l->type));
+		if (l->type == VX_LIGHT_ENVIRONMENT) {
+			char hash[24];
+
+			if (l->has_hash)
+				snprintf(hash, sizeof hash, "hash %016llx",
+				    (unsigned long long)l->hash);
+			else
+				snprintf(hash, sizeof hash, "no hash yet");
+			vx_plan_add(p, name, VX_PLAN_UNSUPPORTED, 0, "%.60s (%s, "
+			    "%s): not shaded by raycast yet, skipped", l->file,
+			    vx_env_layout_name(l->layout), hash);
+			continue;
+		}
+		if (l->type == VX_LIGHT_SKY) {
+			vx_plan_add(p, name, VX_PLAN_UNSUPPORTED, 0, "radiance %g "
+			    "%g %g: not shaded by raycast yet, skipped",
+			    l->color[0] * l->intensity, l->color[1] * l->intensity,
+			    l->color[2] * l->intensity);
 			continue;
 		}
 		if (light_black(l)) {
