@@ -11,6 +11,9 @@
 #include "vx_grid.h"
 #include "vx_image.h"
 #include "vx_imageio.h"
+#include "vx_bake.h"
+#include "vx_gi.h"
+#include "vx_irrvol.h"
 #include "vx_macro.h"
 #include "vx_plan.h"
 #include "vx_raycast.h"
@@ -27,12 +30,13 @@ static const char usage[] =
     "        [--no-cellmask] [--no-binning] [--bin-block N] [--aa N] [-j N]\n"
     "        [--stats] [--explain] [-n] [--hdr] [-z LEVEL] [--bits 8|16]\n"
     "        [--exposure STOPS] [--depth FILE.pfm] [--normals FILE.pfm]\n"
-    "        [-o OUT] [STREAM|-]";
+    "        [--lazy] [--lazy-save STREAM] [--spp N] [-o OUT] [STREAM|-]";
 
 typedef struct opts {
 	const char *in, *out, *scene, *name, *depth, *normals;
 	int hdr, zlevel, bits, stats, explain, dry, flat, aa, solver, nomask;
-	int nobin, binblock;
+	int nobin, binblock, lazy, spp;
+	const char *lazy_save;
 	long threads;
 	double exposure;
 	int ortho;
@@ -56,7 +60,7 @@ parse(opts *o, int argc, char **argv)
 	enum { O_SCENE = 256, O_ISO, O_SIZE, O_VIEW, O_ORTHO, O_FOV, O_LIGHT,
 	    O_LIGHTS, O_EFFECTS, O_BG, O_SET, O_NAME, O_SOLVER, O_FLAT, O_AA,
 	    O_STATS, O_EXPLAIN, O_HDR, O_BITS, O_EXPOSURE, O_DEPTH, O_NORMALS,
-	    O_NOMASK, O_NOBIN, O_BINBLOCK };
+	    O_NOMASK, O_NOBIN, O_BINBLOCK, O_LAZY, O_LAZYSAVE, O_SPP };
 	static const struct option lo[] = {
 		{ "scene", 1, 0, O_SCENE }, { "iso", 1, 0, O_ISO },
 		{ "size", 1, 0, O_SIZE }, { "view", 1, 0, O_VIEW },
@@ -68,6 +72,8 @@ parse(opts *o, int argc, char **argv)
 		{ "no-cellmask", 0, 0, O_NOMASK },
 		{ "no-binning", 0, 0, O_NOBIN },
 		{ "bin-block", 1, 0, O_BINBLOCK },
+		{ "lazy", 0, 0, O_LAZY }, { "lazy-save", 1, 0, O_LAZYSAVE },
+		{ "spp", 1, 0, O_SPP },
 		{ "aa", 1, 0, O_AA }, { "stats", 0, 0, O_STATS },
 		{ "explain", 0, 0, O_EXPLAIN }, { "dry-run", 0, 0, 'n' },
 		{ "hdr", 0, 0, O_HDR }, { "bits", 1, 0, O_BITS },
@@ -114,6 +120,11 @@ parse(opts *o, int argc, char **argv)
 		case O_FLAT: o->flat = 1; break;
 		case O_NOMASK: o->nomask = 1; break;
 		case O_NOBIN: o->nobin = 1; break;
+		case O_LAZY: o->lazy = 1; break;
+		case O_SPP:
+			o->spp = (int)tool_parse_long("--spp", optarg, 1, 1000000);
+			break;
+		case O_LAZYSAVE: o->lazy = 1; o->lazy_save = optarg; break;
 		case O_BINBLOCK:
 			o->binblock = (int)tool_parse_long("--bin-block", optarg, 1,
 			    VX_RAYCAST_BLOCK_MAX);
@@ -187,6 +198,17 @@ print_stats(const vx_raycast_stats *st, const vx_macro *m, int w, int h,
 		    (unsigned long long)st->certified,
 		    (unsigned long long)st->hits, (unsigned long long)st->shaded,
 		    (unsigned long long)st->nonfinite);
+	if (st->paths > 0)
+		fprintf(stderr, "raycast: pathtrace: %llu paths, %llu rays "
+		    "(bounce and shadow), %.0f paths/s\n",
+		    (unsigned long long)st->paths,
+		    (unsigned long long)st->gi_rays,
+		    (double)st->paths / (st->seconds > 0 ? st->seconds : 1e-9));
+	if (st->irr_missing > 0)
+		fprintf(stderr, "raycast: irradiance: %llu of %llu shaded points "
+		    "found no baked texel (drawn black: outside the bake's "
+		    "isovalue band)\n", (unsigned long long)st->irr_missing,
+		    (unsigned long long)st->shaded);
 	if (!st->mesh && st->mask_bytes > 0)
 		fprintf(stderr, "raycast: cell mask: %llu of %llu level-1 "
 		    "macrocells bracket, %llu of them masked (bits built); "
@@ -232,6 +254,129 @@ print_stats(const vx_raycast_stats *st, const vx_macro *m, int w, int h,
 	    st->tile_seconds));
 }
 
+/* ---- lazy illumination ---- */
+
+typedef struct lazy_map {
+	const vx_irrvol *v;
+	uint8_t *need;            /* a byte a texel, i + n0 (j + n1 k) */
+} lazy_map;
+
+static void
+lazy_mark(void *ctx, int64_t i, int64_t j, int64_t k)
+{
+	lazy_map *x = ctx;
+	size_t t = (size_t)i + (size_t)x->v->dims[0] * ((size_t)j +
+	    (size_t)x->v->dims[1] * (size_t)k);
+
+	/* several threads may store 1 to the same byte */
+	__atomic_store_n(&x->need[t], 1, __ATOMIC_RELAXED);
+}
+
+/* lazy_bake: make irr hold every texel that the lookups of this view
+ * read, baked exactly as bake-irr would (the stream's bake is extended
+ * when its settings are the scene's; else a new one at bake-irr's
+ * defaults): a collecting pass over the view, then the missing texels
+ * baked.  Prints what it spent with --stats. */
+static void
+lazy_bake(vx_irrvol *irr, int have, const vx_scene *s, const vx_grid *g,
+    const vx_macro *m, const vx_plan *plan, const vx_grid *const *tex,
+    vx_raycast_opts *ro, int nthr, int stats)
+{
+	vx_gi gi;
+	vx_bake_opts bo;
+	vx_bake_stats bs;
+	vx_raycast_stats rs;
+	vx_image c;
+	vx_err e = { 0, "" };
+	lazy_map x;
+	char settings[2048], key[17];
+	size_t nt;
+	uint64_t before = 0, after = 0;
+
+	tool_gi_setup(&gi, s, g, m);
+	vx_bake_opts_init(&bo);
+	if (have) {
+		gi.seed = irr->seed;
+		gi.high = irr->high;
+		bo.offset = irr->offset;
+		bo.scale = irr->scale;
+		bo.samples = irr->samples;
+	} else {
+		uint32_t crc = vx_macro_grid_crc(g);
+
+		gi.seed = 1;
+		bo.samples = s->has_interreflection ? (uint32_t)s->samples : 64;
+		if (vx_irr_setup(irr, g, crc, 1, VX_IRR_ACCUM, &e) != 0)
+			tool_fail_err(&e);
+		vx_bake_sign(irr, &gi, &bo);
+	}
+	if (irr->store != VX_IRR_ACCUM)
+		tool_fail(VX_EDATA, "--lazy: the stream's irradiance volume is "
+		    "final (%s): it cannot take more texels",
+		    vx_irr_store_name(irr->store));
+	vx_bake_settings(irr, &gi, &bo, settings, sizeof settings);
+	vx_bake_key(settings, key);
+	if (strcmp(key, irr->key) != 0)
+		tool_fail(VX_EDATA, "--lazy: the stream's irradiance volume was "
+		    "baked with other settings than this scene's (key %s, the "
+		    "scene gives %s): bake anew with bake-irr --fresh",
+		    irr->key, key);
+	if (bo.samples == 0)
+		bo.samples = 64;
+	nt = (size_t)irr->dims[0] * (size_t)irr->dims[1] *
+	    (size_t)irr->dims[2];
+	x.v = irr;
+	if ((x.need = calloc(nt, 1)) == NULL)
+		tool_fail(VX_ENOMEM, "--lazy: out of memory for %zu texels", nt);
+	/* the collecting pass: which texels this view reads */
+	ro->irr = irr;
+	ro->irr_need = lazy_mark;
+	ro->irr_need_ctx = &x;
+	vx_image_init(&c);
+	if (vx_raycast_render(s, plan, g, m, tex, ro, &c, NULL, NULL, &rs,
+	    &e) != 0)
+		tool_fail_err(&e);
+	vx_image_free(&c);
+	ro->irr_need = NULL;
+	ro->irr_need_ctx = NULL;
+	/* want them, then bake those without samples */
+	for (int64_t k = 0; k < irr->dims[2]; k++)
+		for (int64_t j = 0; j < irr->dims[1]; j++)
+			for (int64_t i = 0; i < irr->dims[0]; i++) {
+				size_t t = (size_t)i + (size_t)irr->dims[0] *
+				    ((size_t)j + (size_t)irr->dims[1] * (size_t)k);
+				int64_t q;
+
+				if (!x.need[t])
+					continue;
+				if (vx_irr_want_brick(irr, (size_t)(i / VX_IRR_BRICK +
+				    irr->bdims[0] * (j / VX_IRR_BRICK +
+				    irr->bdims[1] * (k / VX_IRR_BRICK))), &e) != 0)
+					tool_fail_err(&e);
+				q = vx_irr_texel(irr, i, j, k);
+				irr->flags[q] |= VX_TEXEL_WANTED;
+				if (irr->acc[q].count > 0 || (irr->acc[q].flags &
+				    (VX_TEXEL_FLAT | VX_TEXEL_NAN))) {
+					x.need[t] = 0;    /* baked already */
+					before++;
+				} else
+					after++;
+			}
+	memset(&bs, 0, sizeof bs);
+	bo.topup = 1;
+	bo.only = x.need;
+	bo.threads = nthr;
+	if (vx_bake_run(irr, &gi, g, &bo, &bs, &e) != 0)
+		tool_fail_err(&e);
+	free(x.need);
+	if (stats)
+		fprintf(stderr, "raycast: lazy: the view reads %llu texels: %llu "
+		    "baked now (%llu paths, %.3f s), %llu there already\n",
+		    (unsigned long long)(before + after),
+		    (unsigned long long)after, (unsigned long long)bs.samples,
+		    bs.bake_s, (unsigned long long)before);
+}
+
 int
 main(int argc, char **argv)
 {
@@ -243,6 +388,8 @@ main(int argc, char **argv)
 	vx_plan plan;
 	vx_raycast_opts ro;
 	vx_raycast_stats rs;
+	vx_irrvol irr;
+	vx_gi pgi;
 	vx_image color, depth, normal;
 	const vx_grid *tex[VX_SCENE_MAX_SURFACES];
 	vx_grid texg[VX_SCENE_MAX_SURFACES];
@@ -260,6 +407,8 @@ main(int argc, char **argv)
 	tool_read_stream(&st, o.in);
 	vx_scene_init(&s);
 	load_scene(&s, &o, &st);
+	if (o.spp > 0)
+		s.pt_samples = o.spp;
 	/* what to draw: the named (or first) volume or mesh */
 	want = o.name ? o.name : (s.volume[0] ? s.volume : NULL);
 	vx_grid_init(&g);
@@ -409,6 +558,59 @@ main(int argc, char **argv)
 	ro.no_cellmask = o.nomask;
 	ro.no_binning = o.nobin;
 	ro.bin_block = o.binblock;
+	vx_irr_init(&irr);
+	if (plan.irradiance) {
+		long ii;
+
+		if (is_mesh)
+			tool_fail(VX_EUSAGE, "illumination irradiance: "
+			    "irradiance volumes are baked for volumes, not "
+			    "meshes");
+		if (vx_irr_from_stream(&irr, &st, g.name, &ii, &e) != 0)
+			tool_fail_err(&e);
+		if (ii < 0 && !o.lazy)
+			tool_fail(VX_EDATA, "illumination irradiance: no "
+			    "irradiance volume of '%s' in the stream (bake one "
+			    "with bake-irr, or give --lazy)", g.name);
+		for (int a = 0; a < 3 && ii >= 0; a++)
+			if (irr.vdims[a] != g.dims[a])
+				tool_fail(VX_EDATA, "illumination irradiance: the "
+				    "irradiance volume was baked for dims %lld %lld "
+				    "%lld, not these", (long long)irr.vdims[0],
+				    (long long)irr.vdims[1],
+				    (long long)irr.vdims[2]);
+		ro.irr = &irr;
+		ro.irr_interp = s.interp == VX_INTERP_NEAREST ? VX_IRR_NEAREST :
+		    s.interp == VX_INTERP_NEAREST_ISO ? VX_IRR_NEAREST_ISO :
+		    s.interp == VX_INTERP_TRICUBIC ? VX_IRR_TRICUBIC :
+		    VX_IRR_TRILINEAR;
+		if (o.lazy) {
+			lazy_bake(&irr, ii >= 0, &s, &g, o.flat ? NULL : &m, &plan,
+			    tex, &ro, nthr, o.stats);
+			if (o.lazy_save != NULL) {
+				vx_chunk c;
+
+				memset(&c, 0, sizeof c);
+				if (vx_irr_to_chunk(&irr, 0, &c, &e) != 0)
+					tool_fail_err(&e);
+				if (ii >= 0)
+					vx_stream_replace(&st, (size_t)ii, &c);
+				else if (vx_stream_append(&st, &c, &e) != 0)
+					tool_fail_err(&e);
+				tool_write_stream(&st, o.lazy_save);
+			}
+		}
+	} else if (o.lazy) {
+		tool_fail(VX_EUSAGE, "--lazy: the scene's illumination is not "
+		    "irradiance (add --set \"illumination irradiance\")");
+	}
+	if (plan.pathtrace) {
+		if (is_mesh)
+			tool_fail(VX_EUSAGE, "illumination pathtrace: volumes "
+			    "only, not meshes");
+		tool_gi_setup(&pgi, &s, &g, o.flat ? NULL : &m);
+		ro.gi = &pgi;
+	}
 	vx_image_init(&color);
 	vx_image_init(&depth);
 	vx_image_init(&normal);
@@ -498,6 +700,7 @@ main(int argc, char **argv)
 	vx_image_free(&normal);
 	vx_tetleaf_free(&lg);
 	vx_tetmesh_free(&mesh);
+	vx_irr_free(&irr);
 	vx_macro_free(&m);
 	vx_grid_free(&g);
 	vx_stream_free(&st);

@@ -13,7 +13,7 @@ if ! command -v pkg-config >/dev/null 2>&1; then
 fi
 make -s install PREFIX="$T/inst" >"$T/inst.log" 2>&1
 check_eq "make install exits 0" "$?" 0
-for p in vread vinfo vwrite brick macrocell raycast mip tonemap; do
+for p in $(cd src/tools && ls *.c | sed "s/\.c$//"); do
 	check "installed bin/$p and its man page" test -x "$T/inst/bin/$p" -a -f "$T/inst/share/man/man1/$p.1"
 done
 check "man5 and man7 pages" test -f "$T/inst/share/man/man5/voxlux-stream.5" -a -f "$T/inst/share/man/man7/voxlux.7"

@@ -10,6 +10,10 @@ voxlux stream, written from formats/stream.md and the PFM definition only
                                      bytes (text chunks ignored)
     vximg.py covdiff A B             pixels where one depth PFM is finite
                                      (a hit) and the other is not
+    vximg.py relrmse A B             the RMSE of the colour channels of
+                                     image "color" of B against A over the
+                                     pixels both cover fully (alpha 1),
+                                     divided by A's mean there
 Prints the value with repr() precision ("inf", "nan" as Python prints).
 """
 import struct, sys, zlib
@@ -94,6 +98,25 @@ if a[0] == 'covdiff':
         return [math.isfinite(v) for v in struct.unpack(fmt, data[off:])]
     ca, cb = cov(a[1]), cov(a[2])
     print(sum(x != y for x, y in zip(ca, cb)) + abs(len(ca) - len(cb)))
+    raise SystemExit
+if a[0] == 'relrmse':
+    import math
+    def color(path):
+        for name, w, h, nc, body in images(path):
+            if name == 'color':
+                n = int(w) * int(h) * int(nc)
+                return int(nc), struct.unpack('<%df' % n, body[:4 * n])
+        raise SystemExit('no color image in %s' % path)
+    (na, pa), (nb, pb) = color(a[1]), color(a[2])
+    assert na == nb == 4 and len(pa) == len(pb)
+    se = sm = k = 0
+    for i in range(0, len(pa), 4):
+        if pa[i + 3] == 1 and pb[i + 3] == 1:
+            for c in range(3):
+                se += (pb[i + c] - pa[i + c]) ** 2
+                sm += pa[i + c]
+                k += 1
+    print(math.sqrt(se / k) / (sm / k) if k and sm else 'nan')
     raise SystemExit
 if a[0] == 'pfm':
     v = pfm(a[1], int(a[2]), int(a[3]), int(a[4]))

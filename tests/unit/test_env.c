@@ -16,6 +16,7 @@
 
 #include "vx_env.h"
 #include "vx_imageio.h"
+#include "vx_rng.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -23,29 +24,18 @@
 
 /* ---- helpers ---- */
 
-/* mix: splitmix64's finalizer; the tests' uniform numbers are pure
- * functions of (seed, index) through it. */
-static uint64_t
-mix(uint64_t x)
-{
-	x += 0x9e3779b97f4a7c15ULL;
-	x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-	x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-	return x ^ (x >> 31);
-}
-
+/* unif: the tests' uniform numbers, pure functions of (seed, index)
+ * (vx_rng.h); ld2: point k of a scrambled Sobol sequence. */
 static double
 unif(uint64_t seed, uint64_t i)
 {
-	return (double)(mix(seed * 0x100000001b3ULL ^ i) >> 11) * 0x1p-53;
+	return vx_rng_uniform(seed, 0, i, 0);
 }
 
-/* strat: sample k of an m x m jittered grid over [0,1)^2. */
 static void
-strat(int m, uint64_t k, uint64_t seed, double u[2])
+ld2(uint64_t k, uint64_t seed, double u[2])
 {
-	u[0] = ((double)(k / (uint64_t)m) + unif(seed, 2 * k)) / m;
-	u[1] = ((double)(k % (uint64_t)m) + unif(seed, 2 * k + 1)) / m;
+	vx_rng_ld2(seed, 0, k, 0, u);
 }
 
 static double
@@ -346,7 +336,7 @@ solid_angles(void **state)
 		sum += comp;
 		if (fabs(sum - 4 * M_PI) > 1e-12 || worst > 1e-14)
 			fail_msg("%s %d x %d: sum - 4 pi = %g, worst pixel %g",
-			    vx_env_layout_name(t[k].l), w, h, sum - 4 * M_PI,
+			    vx_enum_str(&vx_env_layout_enum, t[k].l), w, h, sum - 4 * M_PI,
 			    worst);
 		vx_env_free(&env);
 		vx_image_free(&img);
@@ -419,8 +409,9 @@ sampling_pdf_histogram(void **state)
 	/* pdf(sample(u)) equals the pdf sample returns (to 1e-12, but for
 	 * directions that round onto a neighbouring pixel: at most 1 in
 	 * 10^4); each pixel is chosen with probability luminance x solid
-	 * angle / sum, within 4 sigma + 1 of the binomial count */
-	const int m = 400;          /* 160000 samples */
+	 * angle / sum, within 4 sigma + 1 of the binomial count (scrambled
+	 * Sobol points are closer than that) */
+	const long N = 1L << 17;    /* scrambled Sobol points */
 
 	(void)state;
 	for (int l = VX_ENV_LATLONG; l <= VX_ENV_ANGULAR; l++) {
@@ -437,10 +428,10 @@ sampling_pdf_histogram(void **state)
 			prob[i] = lum(c) * om;
 			total += prob[i];
 		}
-		for (uint64_t k = 0; k < (uint64_t)m * m; k++) {
+		for (uint64_t k = 0; k < (uint64_t)N; k++) {
 			double u[2], d[3], c[3], pdf, q, x, y;
 
-			strat(m, k, 3, u);
+			ld2(k, 3, u);
 			pdf = vx_env_sample(&env, u, d, c);
 			if (pdf == 0) {
 				assert_int_equal(l, VX_ENV_ANGULAR);
@@ -454,20 +445,20 @@ sampling_pdf_histogram(void **state)
 			count[(size_t)fmin(floor(y), h - 1) * w +
 			    (size_t)fmin(floor(x), w - 1)]++;
 		}
-		assert_true(bad <= m * m / 10000);
+		assert_true(bad <= N / 10000);
 		for (size_t i = 0; i < vx_env_npixel(&env); i++) {
 			int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w);
 			double a = fmax(fabs(2.0 * x / w - 1), fabs(2.0 * (x + 1) / w -
 			    1));
 			double b = fmax(fabs(1 - 2.0 * y / h), fabs(1 - 2.0 *
 			    (y + 1) / h));
-			double ex = (double)m * m * prob[i] / total;
+			double ex = (double)N * prob[i] / total;
 
 			if (l == VX_ENV_ANGULAR && a * a + b * b > 1)
 				continue;   /* the rim: part of it gives no sample */
 			if (fabs(count[i] - ex) > 4 * sqrt(ex) + 1)
 				fail_msg("%s pixel (%d, %d): %ld samples, expected "
-				    "%.1f", vx_env_layout_name((vx_env_layout)l), x,
+				    "%.1f", vx_enum_str(&vx_env_layout_enum, (vx_env_layout)l), x,
 				    y, count[i], ex);
 		}
 		free(count);
@@ -519,7 +510,7 @@ ref_irradiance(const vx_env *env, const double n[3], int k, double E[3])
 static void
 irradiance_mc_vs_quadrature(void **state)
 {
-	/* The importance-sampled estimate (160000 stratified samples) of
+	/* The importance-sampled estimate (2^17 scrambled Sobol points) of
 	 * E(n) = integral of L max(0, n.w) agrees with the reference
 	 * (ref_irradiance, 16 x 16 parts a pixel) within 4 of its own
 	 * standard errors plus 2e-4 relative (the reference's own error);
@@ -529,8 +520,6 @@ irradiance_mc_vs_quadrature(void **state)
 		{ 0, 0, 1 }, { 0, 0, -1 }, { 1, 0, 0 }, { -0.6, 0.8, 0 },
 		{ 0.3, -0.4, 0.866025403784438 }, { 0.5, 0.5, -0.707106781186548 },
 	};
-	const int m = 400;
-
 	(void)state;
 	for (int l = VX_ENV_LATLONG; l <= VX_ENV_ANGULAR; l++) {
 		vx_env env;
@@ -540,13 +529,13 @@ irradiance_mc_vs_quadrature(void **state)
 		for (size_t k = 0; k < sizeof normals / sizeof normals[0]; k++) {
 			const double *n = normals[k];
 			double ref[3], mc[3] = { 0 }, mc2[3] = { 0 }, q[3] = { 0 };
-			long N = (long)m * m;
+			long N = 1L << 17;
 
 			ref_irradiance(&env, n, 16, ref);
 			for (long s = 0; s < N; s++) {
 				double u[2], d[3], c[3], pdf;
 
-				strat(m, (uint64_t)s, 17 + k, u);
+				ld2((uint64_t)s, 17 + k, u);
 				pdf = vx_env_sample(&env, u, d, c);
 				for (int ch = 0; ch < 3; ch++) {
 					double f = pdf > 0 ? c[ch] * fmax(0, dot(n, d)) /
@@ -571,7 +560,7 @@ irradiance_mc_vs_quadrature(void **state)
 				    fabs(q[ch] - ref[ch]) > 1e-2 * ref[ch])
 					fail_msg("%s n %zu ch %d: MC %.6g (se %.2g), "
 					    "quadrature %.6g, reference %.6g",
-					    vx_env_layout_name((vx_env_layout)l), k, ch,
+					    vx_enum_str(&vx_env_layout_enum, (vx_env_layout)l), k, ch,
 					    mean, se, q[ch], ref[ch]);
 			}
 		}
@@ -584,7 +573,7 @@ sky(void **state)
 {
 	/* a constant sky: every lookup is its radiance, its pdf 1 / (4 pi),
 	 * and its irradiance pi times its radiance in every direction: by
-	 * importance sampling (1e-3 relative) and by the quadrature of a
+	 * importance sampling (2^16 scrambled Sobol points, 1e-3 relative) and by the quadrature of a
 	 * 256 x 128 constant lat-long map (1e-4) */
 	static const double normals[][3] = {
 		{ 0, 0, 1 }, { 1, 0, 0 }, { 0.48, -0.6, 0.64 }, { 0, -1, 0 },
@@ -604,15 +593,15 @@ sky(void **state)
 	for (size_t k = 0; k < sizeof normals / sizeof normals[0]; k++) {
 		const double *n = normals[k];
 		double mc[3] = { 0 }, q[3] = { 0 }, rgb[3];
-		const int m = 300;
+		const long N = 1L << 16;
 
 		vx_env_lookup(&s, n, 1, rgb);
 		assert_true(near3(rgb, L, 0));
 		assert_true(fabs(vx_env_pdf(&s, n) * 4 * M_PI - 1) < 1e-15);
-		for (long t = 0; t < (long)m * m; t++) {
+		for (long t = 0; t < N; t++) {
 			double u[2], d[3], cc[3], pdf;
 
-			strat(m, (uint64_t)t, 40 + k, u);
+			ld2((uint64_t)t, 40 + k, u);
 			pdf = vx_env_sample(&s, u, d, cc);
 			for (int ch = 0; ch < 3; ch++)
 				mc[ch] += cc[ch] * fmax(0, dot(n, d)) / pdf;
@@ -627,10 +616,10 @@ sky(void **state)
 		for (int ch = 0; ch < 3; ch++) {
 			double want = M_PI * L[ch];
 
-			if (fabs(mc[ch] / ((double)m * m) - want) > 1e-3 * want ||
+			if (fabs(mc[ch] / N - want) > 1e-3 * want ||
 			    fabs(q[ch] - want) > 1e-4 * want)
 				fail_msg("normal %zu ch %d: MC %.8g, quadrature %.8g, "
-				    "pi L %.8g", k, ch, mc[ch] / ((double)m * m),
+				    "pi L %.8g", k, ch, mc[ch] / N,
 				    q[ch], want);
 		}
 	}

@@ -6,15 +6,11 @@
 #include <stdio.h>
 #include <string.h>
 
-static const char *const state_names[VX_PLAN_LAST] = {
-	"?", "on", "off", "unsupported"
+static const vx_enum_name state_names[] = {
+	{ "on", VX_PLAN_ON }, { "off", VX_PLAN_OFF },
+	{ "unsupported", VX_PLAN_UNSUPPORTED }, { NULL, VX_PLAN_UNKNOWN }
 };
-
-const char *
-vx_plan_state_name(vx_plan_state st)
-{
-	return st > 0 && st < VX_PLAN_LAST ? state_names[st] : "?";
-}
+const vx_enum vx_plan_state_enum = { "plan state", state_names, "?", 0 };
 
 void
 vx_plan_init(vx_plan *p, const char *renderer)
@@ -80,7 +76,8 @@ vx_plan_format(const vx_plan *p, char *buf, size_t n)
 		if (it->rays > 0)
 			snprintf(rays, sizeof rays, "%.2f", it->rays);
 		out(buf, n, &k, "  %-11s %-24s %6s  %s\n",
-		    vx_plan_state_name(it->state), it->name, rays, it->reason);
+		    vx_enum_str(&vx_plan_state_enum, it->state), it->name,
+		    rays, it->reason);
 	}
 	if (p->dropped > 0)
 		out(buf, n, &k, "  (%d more items not listed)\n", p->dropped);
@@ -113,7 +110,7 @@ camera_text(const vx_camera *c, char *b, size_t n)
 		    c->w, c->h);
 	else if (c->is_auto)
 		snprintf(b, n, "auto, %s view, %s, %dx%d, framed at render time",
-		    vx_view_name(c->view), proj, c->w, c->h);
+		    vx_enum_str(&vx_view_enum, c->view), proj, c->w, c->h);
 	else
 		snprintf(b, n, "eye %g %g %g, look %g %g %g, %s, %dx%d",
 		    c->eye[0], c->eye[1], c->eye[2], c->look[0], c->look[1],
@@ -176,7 +173,12 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 		    sf->m.kd, sf->m.ks);
 	}
 	p->composite = ntransp > 0;
-	p->specular = (fx & VX_FX_SPECULAR) && nspec > 0;
+	p->irradiance = s->has_illumination &&
+	    s->illumination == VX_ILLUM_IRRADIANCE;
+	p->pathtrace = s->has_illumination &&
+	    s->illumination == VX_ILLUM_PATHTRACE;
+	p->specular = (fx & VX_FX_SPECULAR) && nspec > 0 && !p->irradiance &&
+	    !p->pathtrace;
 	/* Shaded hits per covered pixel: a closed transparent surface is met
 	 * twice, then the first opaque one ends the ray. */
 	layers = p->nsurface_on == 0 ? 0 :
@@ -194,7 +196,25 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 		const vx_light *l = &s->light[k];
 
 		snprintf(name, sizeof name, "light %d %s", k + 1,
-		    vx_light_type_name(l->type));
+		    vx_enum_str(&vx_light_type_enum, l->type));
+		if (p->pathtrace) {
+			vx_plan_add(p, name, l->type == VX_LIGHT_HEADLIGHT ||
+			    l->type == VX_LIGHT_ENVIRONMENT ? VX_PLAN_OFF :
+			    VX_PLAN_ON, 0, "%s", l->type == VX_LIGHT_HEADLIGHT ?
+			    "illumination pathtrace: a headlight is not part of "
+			    "global illumination" : l->type == VX_LIGHT_ENVIRONMENT ?
+			    "illumination pathtrace: environment maps not yet" :
+			    "illumination pathtrace: sampled at every path vertex");
+			continue;
+		}
+		if (p->irradiance) {
+			vx_plan_add(p, name, VX_PLAN_OFF, 0, "%s",
+			    l->type == VX_LIGHT_HEADLIGHT ? "illumination "
+			    "irradiance: a headlight is not part of the baked "
+			    "light" : "illumination irradiance: baked into the "
+			    "irradiance volume");
+			continue;
+		}
 		if (l->type == VX_LIGHT_ENVIRONMENT) {
 			char hash[24];
 
@@ -205,12 +225,13 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 				snprintf(hash, sizeof hash, "no hash yet");
 			vx_plan_add(p, name, VX_PLAN_UNSUPPORTED, 0, "%.60s (%s, "
 			    "%s): not shaded by raycast yet, skipped", l->file,
-			    vx_env_layout_name(l->layout), hash);
+			    vx_enum_str(&vx_env_layout_enum, l->layout), hash);
 			continue;
 		}
 		if (l->type == VX_LIGHT_SKY) {
 			vx_plan_add(p, name, VX_PLAN_UNSUPPORTED, 0, "radiance %g "
-			    "%g %g: not shaded by raycast yet, skipped",
+			    "%g %g: not in local shading (illumination "
+			    "irradiance or pathtrace use it), skipped",
 			    l->color[0] * l->intensity, l->color[1] * l->intensity,
 			    l->color[2] * l->intensity);
 			continue;
@@ -244,12 +265,20 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 			    "shadow rays (%.0f per covered pixel)", layers);
 		}
 	}
-	if (nl == 0)
+	if (nl == 0 && !p->irradiance && !p->pathtrace)
 		vx_plan_add(p, "lights", VX_PLAN_OFF, 0, "no lights: ambient "
 		    "term only");
 
 	/* Effects, on or off, with the reason. */
-	if (p->nshadow > 0)
+	if (p->irradiance)
+		vx_plan_add(p, "shadows", VX_PLAN_OFF, 0, "illumination "
+		    "irradiance: baked into the irradiance volume");
+	else if (p->pathtrace)
+		vx_plan_add(p, "shadows", (fx & VX_FX_SHADOWS) ? VX_PLAN_ON :
+		    VX_PLAN_OFF, 0, "illumination pathtrace: %s",
+		    (fx & VX_FX_SHADOWS) ? "shadow rays at every path vertex" :
+		    "not in effects");
+	else if (p->nshadow > 0)
 		vx_plan_add(p, "shadows", VX_PLAN_ON, 0, "shadow rays to %d "
 		    "light%s", p->nshadow, p->nshadow > 1 ? "s" : "");
 	else if (!(fx & VX_FX_SHADOWS))
@@ -270,7 +299,10 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 	else
 		vx_plan_add(p, "transparency", VX_PLAN_OFF, 0, "every drawn "
 		    "surface is opaque: first hit only, no compositing");
-	if (p->specular)
+	if (p->irradiance || p->pathtrace)
+		vx_plan_add(p, "specular", VX_PLAN_OFF, 0, "illumination %s: "
+		    "diffuse only", p->irradiance ? "irradiance" : "pathtrace");
+	else if (p->specular)
 		vx_plan_add(p, "specular", VX_PLAN_ON, 0, "Blinn-Phong on %d "
 		    "surface%s with ks > 0", nspec, nspec > 1 ? "s" : "");
 	else
@@ -284,7 +316,8 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 				    s->surface[k].iso);
 				vx_plan_add(p, name, VX_PLAN_ON, 0, "volume '%s' "
 				    "through %s", s->surface[k].m.texture,
-				    vx_colormap_name(s->surface[k].m.colormap));
+				    vx_enum_str(&vx_colormap_enum,
+				    s->surface[k].m.colormap));
 			}
 	} else {
 		int asked = 0;
@@ -296,7 +329,17 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 	}
 
 	/* Reserved: asked for, but not computed by this renderer yet. */
-	if (fx & VX_FX_INTERREFLECTION) {
+	if (p->irradiance && (fx & VX_FX_INTERREFLECTION)) {
+		vx_plan_add(p, "interreflection", VX_PLAN_OFF, 0, "illumination "
+		    "irradiance: baked into the irradiance volume");
+	} else if (p->pathtrace) {
+		int nb = (fx & VX_FX_INTERREFLECTION) && s->has_interreflection ?
+		    s->bounces : 0;
+
+		vx_plan_add(p, "interreflection", nb > 0 ? VX_PLAN_ON :
+		    VX_PLAN_OFF, 0, "illumination pathtrace: %d bounce%s", nb,
+		    nb == 1 ? "" : "s");
+	} else if (fx & VX_FX_INTERREFLECTION) {
 		if (s->has_interreflection && s->bounces > 0)
 			vx_plan_add(p, "interreflection", VX_PLAN_UNSUPPORTED, 0,
 			    "%d bounce%s, %d samples: not supported by raycast "
@@ -315,10 +358,16 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 	if (fx & VX_FX_SCATTERING)
 		vx_plan_add(p, "scattering", VX_PLAN_UNSUPPORTED, 0,
 		    "not supported by raycast yet");
-	if (s->has_illumination && s->illumination == VX_ILLUM_IRRADIANCE)
-		vx_plan_add(p, "illumination", VX_PLAN_UNSUPPORTED, 0,
-		    "irradiance lookup not supported by raycast yet: lights "
-		    "evaluated at each hit");
+	if (p->pathtrace)
+		vx_plan_add(p, "illumination", VX_PLAN_ON, 2.0 * s->pt_samples *
+		    layers, "pathtrace: albedo E / pi, E from %d paths per pixel "
+		    "sample (cosine-weighted, counter-based), the reference",
+		    s->pt_samples);
+	else if (p->irradiance)
+		vx_plan_add(p, "illumination", VX_PLAN_ON, 0, "irradiance: "
+		    "albedo E / pi, E interpolated (%s) from the irradiance "
+		    "volume; no rays beyond the primary ones",
+		    vx_enum_str(&vx_interp_enum, s->interp));
 	else if (s->has_illumination && s->illumination == VX_ILLUM_SH)
 		vx_plan_add(p, "illumination", VX_PLAN_UNSUPPORTED, 0,
 		    "SH lookup (order %d) not supported by raycast yet: lights "

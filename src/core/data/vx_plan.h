@@ -51,6 +51,13 @@ typedef struct vx_plan {
 	int specular;       /* 1: add the Blinn-Phong term */
 	int texture_on[VX_SCENE_MAX_SURFACES]; /* map surface k's texture */
 	double layers;      /* predicted surface hits shaded per covered pixel */
+	int irradiance;     /* 1: each hit is shaded by albedo E / pi, E read
+	                       from the irradiance volume (IRRV): lights,
+	                       shadows, ambient and specular are baked in or
+	                       left out */
+	int pathtrace;      /* 1: each hit is shaded by albedo E / pi, E
+	                       estimated by path tracing (vx_gi.h) with
+	                       pt_samples paths: the reference */
 } vx_plan;
 
 /* vx_plan_init: an empty plan for the named renderer. */
@@ -68,8 +75,9 @@ void vx_plan_add(vx_plan *p, const char *name, vx_plan_state state,
  * length the whole text needs (as snprintf), so a caller can size buf. */
 size_t vx_plan_format(const vx_plan *p, char *buf, size_t n);
 
-/* vx_plan_state_name: "on", "off", "unsupported". */
-const char *vx_plan_state_name(vx_plan_state st);
+/* The states' names (vx_enum.h): "on", "off", "unsupported"; "?" for
+ * another value. */
+extern const vx_enum vx_plan_state_enum;
 
 /* vx_scene_plan_isosurface: the plan of the ray-cast isosurface renderer
  * for s.  The rules (formats/scene.md, "Effects and plans"):

@@ -4,6 +4,7 @@
  * The format is Greg Ward's (Radiance's "Real Pixels", Graphics Gems II);
  * vx_imageio.h states what this reader makes of it. */
 #include "vx_imageio.h"
+#include "vx_scan.h"
 
 #include <errno.h>
 #include <math.h>
@@ -14,7 +15,6 @@
 #define RLE_MIN  8           /* new run-length scanlines: 8 .. 0x7fff wide */
 #define RLE_MAX  0x7fff
 #define MINRUN   4           /* the writer's shortest run */
-#define VALUE_MAX 64         /* bytes of a number in the header */
 
 /* The geometry the resolution line gives. */
 typedef struct geom {
@@ -35,42 +35,30 @@ line_is(const unsigned char *s, size_t len, const char *key)
 	return len >= k && memcmp(s, key, k) == 0;
 }
 
-/* numbers: up to want positive finite numbers from the value [s, s + len)
- * (blanks between and around them); returns how many were read, or -1 for
- * a word that is not a plain decimal number. */
+/* numbers: the positive numbers (vx_scan.h's grammar) of the value
+ * [s, s + len), blank-separated; returns how many, or -1 for a word that is
+ * not one or for more than want of them. */
 static int
 numbers(const unsigned char *s, size_t len, double *out, int want)
 {
 	size_t i = 0;
 	int got = 0;
 
-	while (got < want) {
-		char tok[VALUE_MAX], *end;
-		size_t k = 0;
+	for (;;) {
+		size_t b;
 
 		while (i < len && (s[i] == ' ' || s[i] == '\t'))
 			i++;
 		if (i == len)
-			break;
-		while (i < len && s[i] != ' ' && s[i] != '\t') {
-			unsigned char c = s[i++];
-
-			if (k + 1 >= sizeof tok || !((c >= '0' && c <= '9') ||
-			    c == '.' || c == '+' || c == '-' || c == 'e' ||
-			    c == 'E'))
-				return -1;
-			tok[k++] = (char)c;
-		}
-		tok[k] = '\0';
-		out[got] = vx_strtod(tok, &end);
-		if (*end != '\0' || errno == ERANGE || !isfinite(out[got]) ||
-		    !(out[got] > 0))
+			return got;
+		b = i;
+		while (i < len && s[i] != ' ' && s[i] != '\t')
+			i++;
+		if (got == want || vx_num_f64((const char *)s + b, i - b, 0,
+		    &out[got]) != 0 || !(out[got] > 0))
 			return -1;
 		got++;
 	}
-	while (i < len && (s[i] == ' ' || s[i] == '\t'))
-		i++;
-	return i == len ? got : -1;
 }
 
 /* header: the lines from "#?" up to the empty line; *pos gets the offset of
@@ -167,24 +155,24 @@ res_axis(const unsigned char *p, size_t n, size_t *i, int *sign, int *axis)
 	return 0;
 }
 
-/* res_count: blanks, then a decimal count of at most 9 digits. */
+/* res_count: blanks, then a decimal count (vx_scan.h's integers). */
 static int
 res_count(const unsigned char *p, size_t n, size_t *i, long *out)
 {
-	long v = 0;
-	int k = 0;
+	size_t b;
+	int64_t v;
 
 	if (*i >= n || (p[*i] != ' ' && p[*i] != '\t'))
 		return -1;
 	while (*i < n && (p[*i] == ' ' || p[*i] == '\t'))
 		(*i)++;
-	while (*i < n && p[*i] >= '0' && p[*i] <= '9' && k < 10) {
-		v = v * 10 + (p[(*i)++] - '0');
-		k++;
-	}
-	if (k == 0 || k > 9)
+	b = *i;
+	while (*i < n && p[*i] != ' ' && p[*i] != '\t' && p[*i] != '\r' &&
+	    p[*i] != '\n')
+		(*i)++;
+	if (vx_num_i64((const char *)p + b, *i - b, 0, INT32_MAX, &v) != 0)
 		return -1;
-	*out = v;
+	*out = (long)v;
 	return 0;
 }
 

@@ -463,7 +463,7 @@ vx_env_load_light(vx_env *env, const vx_light *l, vx_err *e)
 		return vx_env_sky(env, rgb, e);
 	if (l->type != VX_LIGHT_ENVIRONMENT)
 		return vx_err_set(e, VX_EUSAGE, "a %s light is no environment",
-		    vx_light_type_name(l->type));
+		    vx_enum_str(&vx_light_type_enum, l->type));
 	if ((rc = vx_image_read_linear_file(&img, l->file, NULL, e)) != 0)
 		return rc;
 	rc = vx_env_init(env, &img, l->layout, rgb, l->rotation, e);

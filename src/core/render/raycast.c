@@ -4,6 +4,7 @@
  * space); each turns its hits into an rc_surf and traces its own shadow
  * rays. */
 #include "vx_raycast.h"
+#include "vx_gi.h"
 
 #include <math.h>
 #include <stdatomic.h>
@@ -70,7 +71,8 @@ typedef struct rc_shared {
 typedef struct rc_local {
 	_Alignas(64) vx_iso_stats st;
 	vx_tettrace_stats tst;
-	uint64_t primary, shadow, shaded, covered, binned;
+	uint64_t primary, shadow, shaded, covered, binned, irr_missing;
+	uint64_t paths, gi_rays;
 	uint64_t cyc_total, cyc_shade, cyc_shadow;
 	double busy;                  /* seconds in tiles */
 	/* the entry masks of the bins last walked (bin_em): em[s][p], bit
@@ -870,6 +872,55 @@ shade(const rc_shared *S, rc_local *L, const rc_surf *h,
 		vx_colormap_eval(m->colormap, t, alb);
 	} else
 		memcpy(alb, m->color, sizeof alb);
+	if (p->pathtrace) {
+		const vx_gi *gi = S->o->gi;
+		vx_gi_stats gs;
+		double E[3] = { 0, 0, 0 }, D[3], isov = S->iso[h->iso];
+		int high = !h->entering;     /* the eye's side is lit */
+		uint64_t stream = 0xcbf29ce484222325u, bits;
+
+		/* a stream per hit point: the same for any thread count */
+		for (a = 0; a < 3; a++) {
+			memcpy(&bits, &h->pi[a], sizeof bits);
+			stream = (stream ^ bits) * 0x100000001b3u;
+		}
+		memset(&gs, 0, sizeof gs);
+		vx_gi_direct(gi, P, h->pi, n, isov, high, D, &gs);
+		for (l = 0; l < s->pt_samples; l++) {
+			double r[3];
+
+			vx_gi_sample(gi, h->pi, n, isov, high, D, stream,
+			    (uint64_t)l, r, &gs);
+			for (a = 0; a < 3; a++)
+				E[a] += r[a];
+		}
+		for (a = 0; a < 3; a++)
+			col[a] = m->kd * alb[a] * E[a] / s->pt_samples *
+			    (1 / 3.14159265358979323846);
+		L->paths += gs.samples;
+		L->gi_rays += gs.rays + gs.shadow_rays;
+		L->shaded++;
+		return;
+	}
+	if (p->irradiance) {
+		double E[3];
+
+		/* Lambertian under the baked irradiance: a kd E / pi */
+		if (S->o->irr_need != NULL) {
+			vx_irr_reach(S->o->irr, h->pi, S->o->irr_interp,
+			    S->o->irr_need, S->o->irr_need_ctx);
+			col[0] = col[1] = col[2] = 0;
+			L->shaded++;
+			return;
+		}
+		if (!vx_irr_lookup(S->o->irr, h->pi, S->o->irr_interp, S->g,
+		    S->iso[h->iso], E))
+			L->irr_missing++;
+		for (a = 0; a < 3; a++)
+			col[a] = m->kd * alb[a] * E[a] * (1 / 3.14159265358979323846);
+		L->shaded++;
+		return;
+	}
 	for (a = 0; a < 3; a++) {
 		amb[a] = s->ambient[a] * s->ambient_intensity;
 		col[a] = amb[a] * alb[a];
@@ -1242,6 +1293,9 @@ add_local(vx_raycast_stats *st, const rc_local *L, double *cyc)
 	st->entries += L->tst.entries;
 	st->nonfinite += L->st.nonfinite;
 	st->shaded += L->shaded;
+	st->irr_missing += L->irr_missing;
+	st->paths += L->paths;
+	st->gi_rays += L->gi_rays;
 	st->covered += L->covered;
 	st->binned += L->binned;
 	for (l = 0; l <= VX_MACRO_MAXLEV; l++)

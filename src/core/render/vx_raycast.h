@@ -18,6 +18,7 @@
 
 #include "vx_grid.h"
 #include "vx_image.h"
+#include "vx_irrvol.h"
 #include "vx_iso.h"
 #include "vx_macro.h"
 #include "vx_plan.h"
@@ -61,6 +62,17 @@ typedef struct vx_raycast_opts {
 	                            (first_pass 0): a camera that turns to new
 	                            macrocells walks them whole in that frame,
 	                            building their bits (the same picture) */
+	const vx_irrvol *irr;    /* the plan's irradiance volume (volumes
+	                            only; required when plan.irradiance) */
+	vx_irr_interp irr_interp;   /* how it is read */
+	vx_irr_need_fn irr_need; /* non-NULL: a collecting pass for lazy
+	                            illumination: instead of reading irr,
+	                            each shaded point reports the texels its
+	                            lookup will read (vx_irr_reach; called
+	                            from every thread: it must be safe so)
+	                            and is drawn black */
+	void *irr_need_ctx;
+	const struct vx_gi *gi;  /* the plan's path tracer (pathtrace) */
 } vx_raycast_opts;
 
 /* Primary rays are binned with the boxes of the bracketing leaves of each
@@ -88,6 +100,11 @@ typedef struct vx_raycast_stats {
 	                                    without a visit (not bracketing) */
 	uint64_t nonfinite;              /* cells skipped for NaN/Inf corners */
 	uint64_t shaded;                 /* surface points shaded */
+	uint64_t paths, gi_rays;         /* pathtrace: paths, and rays they
+	                                    traced (bounce and shadow) */
+	uint64_t irr_missing;            /* of them, irradiance lookups that
+	                                    found no usable texel (drawn
+	                                    black) */
 	uint64_t covered;                /* pixels with a hit */
 	double seconds;                  /* wall time of the render (the
 	                                    cell mask's build included) */

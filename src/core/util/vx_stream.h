@@ -27,7 +27,7 @@
 #define VX_CHUNK_MACRO    "MCEL" /* multilevel min/max macrocells */
 #define VX_CHUNK_TETMESH  "TETM" /* tetrahedral mesh */
 #define VX_CHUNK_TETLEAF  "TLEF" /* a tet mesh's leaf grid and levels */
-#define VX_CHUNK_IRRAD    "IRRV" /* irradiance volume (reserved) */
+#define VX_CHUNK_IRRAD    "IRRV" /* irradiance volume (irradiance.md) */
 #define VX_CHUNK_SHXFER   "SHTV" /* SH transfer volume (reserved) */
 #define VX_CHUNK_SHLIGHT  "SHLC" /* SH lighting coefficients (reserved) */
 #define VX_CHUNK_END      "VEND" /* end of stream, empty */

@@ -8,6 +8,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "vx_enum.h"
 #include "vx_err.h"
 #include "vx_stream.h"
 
@@ -32,6 +33,9 @@ double tool_parse_double(const char *opt, const char *s, double lo, double hi);
 long tool_parse_long(const char *opt, const char *s, long lo, long hi);
 /* tool_parse_doubles: exactly n comma- or space-separated numbers. */
 void tool_parse_doubles(const char *opt, const char *s, double *out, int n);
+/* tool_parse_enum: the value s names in en; else exits 64 with "name: opt:
+ * unknown WHAT 'S' (one of: ...)". */
+int tool_parse_enum(const char *opt, const vx_enum *en, const char *s);
 
 /* tool_read_stream: read a whole stream from path ("-" is stdin); exits on
  * error.  Refuses a terminal on stdin with a usage hint. */
@@ -93,6 +97,14 @@ struct vx_grid;
 struct vx_macro;
 void tool_macro_load(struct vx_macro *m, const vx_stream *st,
     const struct vx_grid *g, long src, int nthr, int quiet);
+
+/* tool_gi_setup: the global-illumination estimator (vx_gi.h) for scene s
+ * over volume g and hierarchy m; exits 64 when the scene has no light a
+ * bake can use (headlights move with the camera). */
+struct vx_gi;
+struct vx_scene;
+void tool_gi_setup(struct vx_gi *gi, const struct vx_scene *s,
+    const struct vx_grid *g, const struct vx_macro *m);
 
 /* tool_threads: number of threads for -j N (0: all cores), made the
  * default of every parallel region of the run (tonemapping, sample CRCs):

@@ -1,0 +1,428 @@
+/* bake.c: irradiance volumes by path tracing at every wanted texel
+ * (vx_bake.h). */
+#include "vx_bake.h"
+#include "vx_smooth.h"
+#include "vx_vec.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+void
+vx_bake_opts_init(vx_bake_opts *o)
+{
+	memset(o, 0, sizeof *o);
+	o->scale = 1;
+	o->offset = 0.5;
+	o->samples = 64;
+	o->round = 16;
+	o->min_samples = 16;
+	o->all = 1;
+}
+
+void
+vx_bake_key(const char *settings, char key[17])
+{
+	uint64_t h = 0xcbf29ce484222325u;
+
+	for (const unsigned char *p = (const unsigned char *)settings; *p; p++) {
+		h ^= *p;
+		h *= 0x100000001b3u;
+	}
+	for (int k = 15; k >= 0; k--) {
+		key[k] = "0123456789abcdef"[h & 15];
+		h >>= 4;
+	}
+	key[16] = 0;
+}
+
+void
+vx_bake_settings(const vx_irrvol *v, const vx_gi *gi, const vx_bake_opts *o,
+    char *buf, size_t n)
+{
+	size_t k = 0;
+
+#define PUT(...) do { int w_ = snprintf(buf + k, n - k, __VA_ARGS__); \
+	if (w_ > 0) k += (size_t)w_ < n - k ? (size_t)w_ : n - k - 1; } while (0)
+	buf[0] = 0;
+	PUT("scale %.17g offset %.17g seed %llu bounces %d eps %.17g "
+	    "solver exact fixed %d side %s", v->scale, o->offset,
+	    (unsigned long long)gi->seed, gi->bounces, gi->eps, v->fixed,
+	    gi->high ? "high" : "low");
+	for (int i = 0; i < gi->nlight; i++) {
+		const vx_gi_light *l = &gi->light[i];
+
+		if (l->point)
+			PUT("; point %.17g %.17g %.17g", l->pos[0], l->pos[1],
+			    l->pos[2]);
+		else
+			PUT("; directional %.17g %.17g %.17g", l->dir[0],
+			    l->dir[1], l->dir[2]);
+		PUT(" rgb %.17g %.17g %.17g%s%s", l->rgb[0], l->rgb[1],
+		    l->rgb[2], l->inverse_square ? " inverse-square" : "",
+		    l->shadows ? " shadows" : "");
+	}
+	if (gi->has_sky)
+		PUT("; sky %.17g %.17g %.17g", gi->sky[0], gi->sky[1],
+		    gi->sky[2]);
+	if (gi->has_env)
+		PUT("; environment %s%s", gi->env_id, gi->env_mis ? " mis" : "");
+	PUT("; albedo");
+	for (int i = 0; i < gi->nalbedo; i++)
+		PUT(" %.17g:%.17g,%.17g,%.17g", gi->albedo_v[i],
+		    gi->albedo_c[i][0], gi->albedo_c[i][1], gi->albedo_c[i][2]);
+#undef PUT
+}
+
+void
+vx_bake_sign(vx_irrvol *v, const vx_gi *gi, const vx_bake_opts *o)
+{
+	vx_bake_settings(v, gi, o, v->settings, sizeof v->settings);
+	vx_bake_key(v->settings, v->key);
+	v->offset = o->offset;
+	v->seed = gi->seed;
+	v->high = gi->high;
+}
+
+static double
+wall(void)
+{
+#ifdef _OPENMP
+	return omp_get_wtime();
+#else
+	return 0;
+#endif
+}
+
+/* the volume samples' range over the index box [lo, hi] (inclusive,
+ * clamped); NaN samples ignored */
+static void
+box_range(const vx_grid *g, const int64_t lo[3], const int64_t hi[3],
+    double *mn, double *mx)
+{
+	*mn = INFINITY;
+	*mx = -INFINITY;
+	for (int64_t z = lo[2]; z <= hi[2]; z++)
+		for (int64_t y = lo[1]; y <= hi[1]; y++)
+			for (int64_t x = lo[0]; x <= hi[0]; x++) {
+				double f = vx_grid_get(g, x, y, z);
+
+				if (f < *mn)
+					*mn = f;
+				if (f > *mx)
+					*mx = f;
+			}
+}
+
+static int
+meets(const vx_bake_opts *o, double mn, double mx)
+{
+	for (int b = 0; b < o->nband; b++)
+		if (mn <= o->band[b][1] && mx >= o->band[b][0])
+			return 1;
+	return 0;
+}
+
+static void
+want(vx_irrvol *v, int64_t i, int64_t j, int64_t k)
+{
+	int64_t s = vx_irr_texel(v, i, j, k);
+
+	if (s >= 0)
+		v->flags[s] |= VX_TEXEL_WANTED;
+}
+
+static size_t
+brick_of(const vx_irrvol *v, int64_t i, int64_t j, int64_t k)
+{
+	return (size_t)(i / VX_IRR_BRICK + v->bdims[0] * (j / VX_IRR_BRICK +
+	    v->bdims[1] * (k / VX_IRR_BRICK)));
+}
+
+int
+vx_bake_plan(vx_irrvol *v, const vx_grid *g, const vx_bake_opts *o,
+    vx_bake_stats *st, vx_err *e)
+{
+	double t0 = wall();
+	int64_t cd[3];
+	uint8_t *cellw = NULL;
+	size_t ncell;
+	int rc;
+
+	st->lattice = (uint64_t)v->dims[0] * (uint64_t)v->dims[1] *
+	    (uint64_t)v->dims[2];
+	if (o->all) {
+		size_t nb = (size_t)v->bdims[0] * (size_t)v->bdims[1] *
+		    (size_t)v->bdims[2];
+
+		if ((rc = vx_irr_reserve(v, nb, e)) != 0)
+			return rc;
+		for (size_t b = 0; b < nb; b++)
+			if ((rc = vx_irr_want_brick(v, b, e)) != 0)
+				return rc;
+		for (int64_t k = 0; k < v->dims[2]; k++)
+			for (int64_t j = 0; j < v->dims[1]; j++)
+				for (int64_t i = 0; i < v->dims[0]; i++)
+					want(v, i, j, k);
+		st->wanted = st->lattice;
+		st->bricks = v->nslot;
+		st->plan_s += wall() - t0;
+		return 0;
+	}
+	/* lattice cells (an axis of one texel has one "cell", its texel) */
+	for (int a = 0; a < 3; a++)
+		cd[a] = v->dims[a] > 1 ? v->dims[a] - 1 : 1;
+	ncell = (size_t)cd[0] * (size_t)cd[1] * (size_t)cd[2];
+	if ((cellw = vx_calloc(ncell, 1, e)) == NULL)
+		return VX_ENOMEM;
+	/* which lattice cells meet a band: the range of the samples their
+	 * box covers */
+#pragma omp parallel for schedule(dynamic, 1)
+	for (int64_t k = 0; k < cd[2]; k++)
+		for (int64_t j = 0; j < cd[1]; j++)
+			for (int64_t i = 0; i < cd[0]; i++) {
+				int64_t lo[3], hi[3], c[3] = { i, j, k };
+				double mn, mx;
+
+				for (int a = 0; a < 3; a++) {
+					double p0 = (double)c[a] * v->step[a];
+					double p1 = v->dims[a] > 1 ?
+					    (double)(c[a] + 1) * v->step[a] : p0;
+
+					lo[a] = (int64_t)floor(p0);
+					hi[a] = (int64_t)ceil(p1);
+					if (hi[a] > g->dims[a] - 1)
+						hi[a] = g->dims[a] - 1;
+					if (lo[a] > hi[a])
+						lo[a] = hi[a];
+				}
+				box_range(g, lo, hi, &mn, &mx);
+				if (meets(o, mn, mx))
+					cellw[(size_t)i + (size_t)cd[0] *
+					    ((size_t)j + (size_t)cd[1] *
+					    (size_t)k)] = 1;
+			}
+	/* bricks first (serially, in brick order), then the texels */
+	for (int64_t k = 0; k < cd[2]; k++)
+		for (int64_t j = 0; j < cd[1]; j++)
+			for (int64_t i = 0; i < cd[0]; i++) {
+				if (!cellw[(size_t)i + (size_t)cd[0] * ((size_t)j +
+				    (size_t)cd[1] * (size_t)k)])
+					continue;
+				for (int q = 0; q < 8; q++) {
+					int64_t x = i + (q & 1), y = j + ((q >> 1) & 1),
+					    z = k + ((q >> 2) & 1);
+
+					if (x >= v->dims[0] || y >= v->dims[1] ||
+					    z >= v->dims[2])
+						continue;
+					if ((rc = vx_irr_want_brick(v,
+					    brick_of(v, x, y, z), e)) != 0) {
+						free(cellw);
+						return rc;
+					}
+					want(v, x, y, z);
+				}
+			}
+	free(cellw);
+	st->wanted = 0;
+	for (size_t s = 0; s < v->nslot * VX_IRR_BRICK3; s++)
+		st->wanted += (v->flags[s] & VX_TEXEL_WANTED) != 0;
+	st->bricks = v->nslot;
+	st->plan_s += wall() - t0;
+	return 0;
+}
+
+uint32_t
+vx_bake_texel_setup(const vx_irrvol *v, const vx_grid *g, double offset,
+    int high, int64_t i, int64_t j, int64_t k, double *rho, double start[3],
+    double n[3])
+{
+	double p[3], grad[3], gw[3], ni[3], len, scale;
+	uint32_t fl = 0;
+	int sf;
+
+	vx_irr_texel_point(v, i, j, k, p);
+	*rho = vx_grid_trilinear(g, p);
+	sf = vx_bspline_gradient(g, p, grad);
+	if (sf & VX_SMOOTH_BORDER)
+		fl |= VX_TEXEL_BORDER;
+	if (!isfinite(*rho) || (sf & VX_SMOOTH_NAN))
+		return fl | VX_TEXEL_NAN;
+	scale = g->has_range ? fmax(fabs(g->vmax - g->vmin), 0) : 0;
+	len = sqrt(vx_dot3(grad, grad));
+	if (!(len > ldexp(scale, -30)) || !isfinite(len))
+		return fl | VX_TEXEL_FLAT;
+	/* toward the lit side, in world space */
+	for (int a = 0; a < 3; a++)
+		gw[a] = (high ? grad[a] : -grad[a]) / g->spacing[a];
+	vx_unit3(gw);
+	memcpy(n, gw, sizeof gw);
+	/* the start point: offset voxels along the normal's index-space
+	 * direction */
+	vx_world_to_index_dir(g, n, ni);
+	vx_unit3(ni);
+	for (int a = 0; a < 3; a++)
+		start[a] = p[a] + offset * ni[a];
+	return fl;
+}
+
+static uint64_t
+texel_id(const vx_irrvol *v, int64_t i, int64_t j, int64_t k)
+{
+	return (uint64_t)i + (uint64_t)v->dims[0] * ((uint64_t)j +
+	    (uint64_t)v->dims[1] * (uint64_t)k);
+}
+
+void
+vx_bake_texel(const vx_irrvol *v, const vx_gi *gi, const vx_grid *g,
+    const vx_bake_opts *o, int64_t i, int64_t j, int64_t k, vx_irr_acc *a,
+    vx_gi_stats *st)
+{
+	double rho, start[3], n[3], D[3], sw[3];
+	uint64_t id = texel_id(v, i, j, k);
+	uint32_t fl, goal;
+
+	fl = vx_bake_texel_setup(v, g, o->offset, gi->high, i, j, k, &rho,
+	    start, n);
+	a->flags |= fl;
+	if (fl & (VX_TEXEL_NAN | VX_TEXEL_FLAT))
+		return;
+	vx_index_to_world(g, start, sw);
+	vx_gi_direct(gi, sw, start, n, rho, gi->high, D, st);
+	if (o->target > 0) {
+		uint32_t cap = o->samples, r = o->round ? o->round : 16;
+
+		while (a->count < cap) {
+			if (a->count >= o->min_samples &&
+			    vx_irr_acc_relerr(a, v->fixed) <= o->target)
+				break;
+			goal = a->count + (cap - a->count < r ? cap - a->count : r);
+			while (a->count < goal) {
+				double rgb[3];
+
+				vx_gi_sample(gi, start, n, rho, gi->high, D, id,
+				    (uint64_t)v->first + a->count, rgb, st);
+				vx_irr_acc_add(a, rgb, v->fixed);
+			}
+		}
+		return;
+	}
+	goal = o->topup ? o->samples : a->count + o->samples;
+	if (!o->topup && goal < a->count)
+		goal = UINT32_MAX;
+	while (a->count < goal) {
+		double rgb[3];
+
+		vx_gi_sample(gi, start, n, rho, gi->high, D, id,
+		    (uint64_t)v->first + a->count, rgb, st);
+		vx_irr_acc_add(a, rgb, v->fixed);
+	}
+}
+
+int
+vx_bake_run(vx_irrvol *v, const vx_gi *gi, const vx_grid *g,
+    const vx_bake_opts *o, vx_bake_stats *st, vx_err *e)
+{
+	size_t nb = (size_t)v->bdims[0] * (size_t)v->bdims[1] *
+	    (size_t)v->bdims[2], nt = 0, n = 0;
+	uint64_t *todo, done = 0, sampled = 0, baked = 0, flat = 0, nan = 0,
+	    border = 0;
+	double t0 = wall();
+	vx_gi_stats gs;
+
+	if (v->store != VX_IRR_ACCUM)
+		return vx_err_set(e, VX_EUSAGE, "a final (%s) bake cannot take "
+		    "more samples", vx_irr_store_name(v->store));
+	/* the wanted texels, in brick order then texel order */
+	for (size_t s = 0; s < v->nslot * VX_IRR_BRICK3; s++)
+		nt += (v->flags[s] & VX_TEXEL_WANTED) != 0;
+	if ((todo = vx_calloc(nt ? nt : 1, sizeof *todo, e)) == NULL)
+		return VX_ENOMEM;
+	for (size_t b = 0; b < nb; b++) {
+		int64_t bx, by, bz;
+
+		if (v->slot[b] == 0)
+			continue;
+		bx = (int64_t)(b % (size_t)v->bdims[0]);
+		by = (int64_t)(b / (size_t)v->bdims[0] % (size_t)v->bdims[1]);
+		bz = (int64_t)(b / ((size_t)v->bdims[0] * (size_t)v->bdims[1]));
+		for (int t = 0; t < VX_IRR_BRICK3; t++) {
+			int64_t i = bx * VX_IRR_BRICK + t % VX_IRR_BRICK;
+			int64_t j = by * VX_IRR_BRICK + t / VX_IRR_BRICK %
+			    VX_IRR_BRICK;
+			int64_t k = bz * VX_IRR_BRICK + t / (VX_IRR_BRICK *
+			    VX_IRR_BRICK);
+			size_t s = (size_t)(v->slot[b] - 1) * VX_IRR_BRICK3 +
+			    (size_t)t;
+
+			if (i >= v->dims[0] || j >= v->dims[1] ||
+			    k >= v->dims[2] || !(v->flags[s] & VX_TEXEL_WANTED))
+				continue;
+			if (o->only != NULL && !o->only[texel_id(v, i, j, k)])
+				continue;
+			todo[n++] = (uint64_t)i | (uint64_t)j << 21 |
+			    (uint64_t)k << 42;
+		}
+	}
+	memset(&gs, 0, sizeof gs);
+#pragma omp parallel num_threads(o->threads > 0 ? o->threads : \
+    omp_get_max_threads())
+	{
+		vx_gi_stats ls;
+		double last = wall();
+
+		memset(&ls, 0, sizeof ls);
+#pragma omp for schedule(dynamic, 16) reduction(+ : sampled, baked, flat, \
+    nan, border)
+		for (size_t q = 0; q < n; q++) {
+			int64_t i = (int64_t)(todo[q] & 0x1fffff);
+			int64_t j = (int64_t)(todo[q] >> 21 & 0x1fffff);
+			int64_t k = (int64_t)(todo[q] >> 42);
+			int64_t s = vx_irr_texel(v, i, j, k);
+			vx_irr_acc *a = &v->acc[s];
+			uint32_t before = a->count;
+
+			vx_bake_texel(v, gi, g, o, i, j, k, a, &ls);
+			/* the wanted bit lives in the accumulators' flags too,
+			 * so a stored bake keeps its plan */
+			a->flags |= VX_TEXEL_WANTED;
+			sampled += a->count - before;
+			baked += a->count > before;
+			flat += (a->flags & VX_TEXEL_FLAT) != 0;
+			nan += (a->flags & VX_TEXEL_NAN) != 0;
+			border += (a->flags & VX_TEXEL_BORDER) != 0;
+			if (o->progress != NULL) {
+				uint64_t d;
+
+#pragma omp atomic capture
+				d = ++done;
+#ifdef _OPENMP
+				if (omp_get_thread_num() == 0 &&
+				    wall() - last > 0.25) {
+					last = wall();
+					o->progress(o->progress_ctx, d, n);
+				}
+#endif
+			}
+		}
+#pragma omp critical
+		vx_gi_stats_add(&gs, &ls);
+	}
+	free(todo);
+	if (o->progress != NULL)
+		o->progress(o->progress_ctx, n, n);
+	vx_irr_finish(v);
+	st->samples += sampled;
+	st->baked += baked;
+	st->flat += flat;
+	st->nan += nan;
+	st->border += border;
+	st->bricks = v->nslot;
+	vx_gi_stats_add(&st->gi, &gs);
+	st->bake_s += wall() - t0;
+	return 0;
+}

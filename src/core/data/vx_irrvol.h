@@ -1,0 +1,249 @@
+/* vx_irrvol.h: the irradiance volume of Wyman et al. 2006: RGB irradiance
+ * on a lattice of texels laid over a volume's index space, for the
+ * isosurface through each texel, and its stream chunk IRRV
+ * (formats/irradiance.md is the spec).
+ *
+ * Lattice.  Texel (i,j,k) sits at index-space point (i*step[0], j*step[1],
+ * k*step[2]) of the volume it belongs to; step[a] = (vdims[a]-1) /
+ * (dims[a]-1) so the first and last texels sit on the volume's first and
+ * last samples (an axis of one texel, or a volume axis of one sample, has
+ * step 1 and its texel at 0).  vx_irr_lattice() gives the dims for a scale
+ * S: dims = round((vdims-1) * S) + 1 per axis, at least 2 where vdims > 1.
+ * At S = 1 the texels are the samples.
+ *
+ * Storage.  Texels are grouped in bricks of VX_IRR_BRICK^3; only bricks
+ * holding a texel that was asked for are stored (a band of isovalues needs
+ * few).  Each stored texel keeps exact accumulators: the sample count, the
+ * sum of the per-sample RGB estimates and the sum of the squares of their
+ * luminance, in fixed point (integers: 2^-fixed units), so adding samples
+ * in any grouping (threads, resumed bakes, merged bakes) gives the same
+ * bits.  A final bake may drop them and keep only the mean irradiance as
+ * binary32 or binary16 (VX_IRR_F32, VX_IRR_F16); such a bake can be drawn
+ * but not resumed or merged.
+ *
+ * Rendering reads the mean E (W/m^2-like linear units: the integral of
+ * incident radiance times cosine) of every usable texel: baked (count > 0,
+ * or final), and not flagged FLAT or NAN.  Interpolation ignores unusable
+ * and absent texels and renormalizes the weights of the others. */
+#ifndef VX_IRRVOL_H
+#define VX_IRRVOL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "vx_enum.h"
+#include "vx_err.h"
+#include "vx_grid.h"
+#include "vx_stream.h"
+
+#define VX_IRR_BRICK       8                 /* texels per brick edge */
+#define VX_IRR_BRICK3      (VX_IRR_BRICK * VX_IRR_BRICK * VX_IRR_BRICK)
+#define VX_IRR_MAX_TEXELS  ((uint64_t)1 << 34)
+#define VX_IRR_FIXED       24                /* default fraction bits */
+#define VX_IRR_NAME        64
+
+/* per-texel flags */
+enum {
+	VX_TEXEL_FLAT     = 1u << 0,   /* the smoothed gradient vanishes: no
+	                                  surface direction; not baked */
+	VX_TEXEL_NAN      = 1u << 1,   /* a non-finite sample in its support;
+	                                  not baked */
+	VX_TEXEL_BORDER   = 1u << 2,   /* its support reached past the
+	                                  volume's edge (samples clamped) */
+	VX_TEXEL_OVERFLOW = 1u << 3,   /* an accumulator saturated: the mean is
+	                                  a lower bound (use fewer samples or
+	                                  fewer fixed-point bits) */
+	VX_TEXEL_WANTED   = 1u << 4    /* asked for by the bake's band */
+};
+
+typedef enum vx_irr_store {
+	VX_IRR_ACCUM = 0,              /* exact accumulators (resumable) */
+	VX_IRR_F32,                    /* final: mean RGB as binary32 */
+	VX_IRR_F16,                    /* final: mean RGB as binary16 */
+	VX_IRR_STORE_LAST
+} vx_irr_store;
+
+/* One texel's accumulators: 48 bytes. */
+typedef struct vx_irr_acc {
+	uint32_t count;                /* samples taken */
+	uint32_t flags;                /* VX_TEXEL_* */
+	int64_t sum[3];                /* sum of RGB estimates, 2^-fixed units */
+	uint64_t sq[2];                /* sum of squared luminance estimates,
+	                                  2^-2fixed units, 128 bits (lo, hi) */
+} vx_irr_acc;
+
+typedef struct vx_irrvol {
+	/* the volume it belongs to */
+	char volume[VX_IRR_NAME];
+	int64_t vdims[3];
+	uint32_t vcrc;                 /* vx_macro_grid_crc of its samples */
+	/* the lattice */
+	int64_t dims[3];               /* texels per axis */
+	double step[3];                /* index-space distance between texels */
+	double scale;                  /* the scale the dims came from */
+	int64_t bdims[3];              /* bricks per axis */
+	uint32_t *slot;                /* per brick: 0 absent, else 1 + index of
+	                                  its storage */
+	size_t nslot;                  /* bricks stored */
+	size_t cap;                    /* bricks the storage has room for */
+	vx_irr_store store;
+	int fixed;                     /* fraction bits of the accumulators */
+	uint32_t first;                /* the first sample index of this bake's
+	                                  range (each texel: [first, first+count)) */
+	/* storage, nslot * VX_IRR_BRICK3 texels, brick by brick, x fastest
+	 * inside a brick: acc for VX_IRR_ACCUM; mean (3 floats a texel) and
+	 * flags for every store (mean derived from acc by vx_irr_finish) */
+	vx_irr_acc *acc;
+	float *mean;
+	uint32_t *flags;
+	/* how it was baked: text kept verbatim (formats/irradiance.md);
+	 * key is the 16-hex-digit hash of every setting that determines a
+	 * sample's value: bakes merge only when their keys are equal */
+	char key[17];
+	char settings[2048];
+	/* the bake's knobs a lazy renderer needs to bake more texels alike
+	 * (header keys offset, seed, side, samples) */
+	double offset;
+	uint64_t seed;
+	int high;
+	uint32_t samples;              /* the samples the bake asked of each
+	                                  wanted texel (with a target: the
+	                                  most); a lazy renderer brings new
+	                                  texels to it */
+} vx_irrvol;
+
+void vx_irr_init(vx_irrvol *v);
+void vx_irr_free(vx_irrvol *v);
+
+/* vx_irr_lattice: texel dims for volume dims vdims at scale s (> 0). */
+int vx_irr_lattice(const int64_t vdims[3], double s, int64_t dims[3],
+    vx_err *e);
+
+/* vx_irr_setup: set v's lattice for volume g (its name, dims; crc given)
+ * at scale s with no brick stored yet. */
+int vx_irr_setup(vx_irrvol *v, const vx_grid *g, uint32_t vcrc, double s,
+    vx_irr_store store, vx_err *e);
+
+/* vx_irr_want_brick: make brick b (index into bdims) stored, texels zeroed
+ * (count 0, flags 0).  Idempotent.  Not thread-safe: allocate every brick
+ * before a parallel bake. */
+int vx_irr_want_brick(vx_irrvol *v, size_t b, vx_err *e);
+/* vx_irr_reserve: grow the storage for at least n bricks at once (saves
+ * reallocations); optional. */
+int vx_irr_reserve(vx_irrvol *v, size_t n, vx_err *e);
+
+/* vx_irr_texel: storage index of texel (i,j,k) or -1 when its brick is
+ * absent or (i,j,k) outside the lattice. */
+static inline int64_t
+vx_irr_texel(const vx_irrvol *v, int64_t i, int64_t j, int64_t k)
+{
+	int64_t b;
+	uint32_t s;
+
+	if (i < 0 || j < 0 || k < 0 || i >= v->dims[0] || j >= v->dims[1] ||
+	    k >= v->dims[2])
+		return -1;
+	b = i / VX_IRR_BRICK + v->bdims[0] * (j / VX_IRR_BRICK + v->bdims[1] *
+	    (k / VX_IRR_BRICK));
+	if ((s = v->slot[b]) == 0)
+		return -1;
+	return (int64_t)(s - 1) * VX_IRR_BRICK3 + i % VX_IRR_BRICK +
+	    VX_IRR_BRICK * (j % VX_IRR_BRICK + VX_IRR_BRICK * (k % VX_IRR_BRICK));
+}
+
+/* vx_irr_texel_point: the texel's index-space point. */
+void vx_irr_texel_point(const vx_irrvol *v, int64_t i, int64_t j, int64_t k,
+    double p[3]);
+
+/* ---- accumulating ---- */
+
+/* vx_irr_acc_add: add one sample's RGB estimate (finite, >= 0; others are
+ * taken as 0) to a, in v's fixed point, saturating (and flagging) on
+ * overflow. */
+void vx_irr_acc_add(vx_irr_acc *a, const double rgb[3], int fixed);
+/* vx_irr_acc_merge: a += b (counts, sums, squares; flags ORed). */
+void vx_irr_acc_merge(vx_irr_acc *a, const vx_irr_acc *b);
+/* vx_irr_acc_mean / vx_irr_acc_stderr: mean RGB; the standard error of the
+ * mean luminance divided by the mean luminance (0 for fewer than 2 samples
+ * or a zero mean: callers check count). */
+void vx_irr_acc_mean(const vx_irr_acc *a, int fixed, double rgb[3]);
+double vx_irr_acc_relerr(const vx_irr_acc *a, int fixed);
+
+/* vx_irr_finish: derive mean[] and flags[] from the accumulators (ACCUM
+ * store); a no-op for final stores. */
+void vx_irr_finish(vx_irrvol *v);
+
+/* vx_irr_usable: 1 if storage index s holds an irradiance to draw. */
+static inline int
+vx_irr_usable(const vx_irrvol *v, int64_t s)
+{
+	uint32_t f = v->flags[s];
+
+	if (f & (VX_TEXEL_FLAT | VX_TEXEL_NAN))
+		return 0;
+	return v->store != VX_IRR_ACCUM || v->acc[s].count > 0;
+}
+
+/* ---- lookup ---- */
+
+typedef enum vx_irr_interp {
+	VX_IRR_TRILINEAR = 0,
+	VX_IRR_NEAREST,
+	VX_IRR_NEAREST_ISO,            /* of the 8 around, the texel whose own
+	                                  isovalue is closest to the hit's */
+	VX_IRR_TRICUBIC,               /* cubic B-spline over 4x4x4 texels */
+	VX_IRR_INTERP_LAST
+} vx_irr_interp;
+
+/* vx_irr_lookup: irradiance at index-space point p (of the volume) by
+ * interpolation mode m; for NEAREST_ISO, g is the volume (its trilinear
+ * value at each texel is the texel's isovalue) and iso the hit's isovalue.
+ * Returns 1 with rgb set, or 0 when no usable texel is in reach (rgb 0). */
+int vx_irr_lookup(const vx_irrvol *v, const double p[3], vx_irr_interp m,
+    const vx_grid *g, double iso, double rgb[3]);
+/* vx_irr_reach: call fn for every texel the lookup at p by mode m reads
+ * (inside the lattice; present or not): what lazy illumination must have
+ * baked before the lookup. */
+typedef void (*vx_irr_need_fn)(void *ctx, int64_t i, int64_t j, int64_t k);
+void vx_irr_reach(const vx_irrvol *v, const double p[3], vx_irr_interp m,
+    vx_irr_need_fn fn, void *ctx);
+
+/* vx_grid_trilinear: the volume's trilinear value at index-space point p
+ * (clamped into the volume; NaN where a corner is not finite). */
+double vx_grid_trilinear(const vx_grid *g, const double p[3]);
+
+/* ---- merging ---- */
+
+/* vx_irr_merge: add b's samples into a: the same volume, lattice, key and
+ * store VX_IRR_ACCUM; for every texel that both hold samples for, b's
+ * range must start where a's ends (a.first + a.count == b.first), unless
+ * both hold the very same samples (bakes of overlapping texel ranges: kept
+ * once); a texel only b holds is taken as it is.  Bricks of b absent from a are
+ * added.  Errors name the first mismatch (VX_EDATA). */
+int vx_irr_merge(vx_irrvol *a, const vx_irrvol *b, vx_err *e);
+
+/* vx_irr_finalize: convert to a final store (F32 or F16): means kept,
+ * accumulators dropped. */
+int vx_irr_finalize(vx_irrvol *v, vx_irr_store store, vx_err *e);
+
+/* ---- the IRRV chunk ---- */
+int vx_irr_to_chunk(const vx_irrvol *v, int zlevel, vx_chunk *c, vx_err *e);
+int vx_irr_from_chunk(vx_irrvol *v, const vx_chunk *c, vx_err *e);
+/* vx_irr_from_stream: the IRRV chunk for volume `volume` (NULL: the first);
+ * *index gets its position or -1 when there is none (then 0 is returned
+ * and v stays empty). */
+int vx_irr_from_stream(vx_irrvol *v, const vx_stream *s, const char *volume,
+    long *index, vx_err *e);
+
+/* sizes: bytes per stored texel for a store, and the whole volume's */
+size_t vx_irr_texel_bytes(vx_irr_store s);
+size_t vx_irr_bytes(const vx_irrvol *v);
+
+/* The names (vx_enum.h): stores "accum", "f32", "f16"; interpolations
+ * "trilinear", "nearest", "nearest-iso", "tricubic"; -1 and "?" for the
+ * others.  vx_irr_store_name: shorthand for vx_enum_str on
+ * vx_irr_store_enum. */
+extern const vx_enum vx_irr_store_enum, vx_irr_interp_enum;
+const char *vx_irr_store_name(vx_irr_store s);
+
+#endif

@@ -1,0 +1,69 @@
+/* smooth.c: the B-spline-smoothed gradient (vx_smooth.h). */
+#include "vx_smooth.h"
+
+#include <math.h>
+
+void
+vx_bspline_weights(double t, double w[4], double dw[4])
+{
+	double s = 1 - t, t2 = t * t;
+
+	w[0] = s * s * s / 6;
+	w[1] = (3 * t2 * t - 6 * t2 + 4) / 6;
+	w[2] = (-3 * t2 * t + 3 * t2 + 3 * t + 1) / 6;
+	w[3] = t2 * t / 6;
+	dw[0] = -s * s / 2;
+	dw[1] = 1.5 * t2 - 2 * t;
+	dw[2] = -1.5 * t2 + t + 0.5;
+	dw[3] = t2 / 2;
+}
+
+int
+vx_bspline_gradient(const vx_grid *g, const double p[3], double grad[3])
+{
+	double w[3][4], dw[3][4];
+	int64_t idx[3][4];
+	int flags = 0;
+
+	for (int a = 0; a < 3; a++) {
+		double u = p[a], fl;
+
+		if (!(u > 0))
+			u = 0;
+		if (u > (double)(g->dims[a] - 1))
+			u = (double)(g->dims[a] - 1);
+		fl = floor(u);
+		vx_bspline_weights(u - fl, w[a], dw[a]);
+		for (int k = 0; k < 4; k++) {
+			int64_t i = (int64_t)fl - 1 + k;
+
+			if (i < 0 || i > g->dims[a] - 1) {
+				flags |= VX_SMOOTH_BORDER;
+				i = i < 0 ? 0 : g->dims[a] - 1;
+			}
+			idx[a][k] = i;
+		}
+	}
+	grad[0] = grad[1] = grad[2] = 0;
+	for (int z = 0; z < 4; z++)
+		for (int y = 0; y < 4; y++) {
+			double gx = 0, gy = 0, gz = 0;
+
+			for (int x = 0; x < 4; x++) {
+				double f = vx_grid_get(g, idx[0][x], idx[1][y],
+				    idx[2][z]);
+
+				if (!isfinite(f)) {
+					grad[0] = grad[1] = grad[2] = 0;
+					return flags | VX_SMOOTH_NAN;
+				}
+				gx += dw[0][x] * f;
+				gy += w[0][x] * f;
+			}
+			gz = gy;
+			grad[0] += gx * w[1][y] * w[2][z];
+			grad[1] += gy * dw[1][y] * w[2][z];
+			grad[2] += gz * w[1][y] * dw[2][z];
+		}
+	return flags;
+}
