@@ -26,7 +26,7 @@
  * closed form of the row's theta band; angular pixels the integral of the
  * map's Jacobian pi sin(pi r) / r over the pixel's part of the disc, as a
  * boundary integral (8-point Gauss-Legendre on straight edges, closed form on
- * the disc's rim): 0 outside the disc.
+ * the disc's rim; to rounding, about 1e-14 absolute): 0 outside the disc.
  *
  * Importance sampling is piecewise constant over the pixels: a pixel with
  * probability proportional to its luminance (Rec. 709, of the scaled
