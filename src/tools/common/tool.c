@@ -568,6 +568,31 @@ tool_threads(long j)
 #endif
 }
 
+/* scene_paths: a relative file name in a scene file names a file beside
+ * the scene: prefix the scene's directory (formats/scene.md). */
+static void
+scene_paths(vx_scene *s, const char *file)
+{
+	const char *slash = strrchr(file, '/');
+	size_t dl = slash != NULL ? (size_t)(slash - file) + 1 : 0;
+
+	if (dl == 0)
+		return;
+	for (int k = 0; k < s->nlight; k++) {
+		vx_light *l = &s->light[k];
+		size_t fl = strlen(l->file);
+
+		if (l->type != VX_LIGHT_ENVIRONMENT || l->file[0] == '/')
+			continue;
+		if (dl + fl >= sizeof l->file)
+			tool_fail(VX_EDATA, "%s: light %d: file name longer than "
+			    "%zu bytes with the scene's directory", file, k + 1,
+			    sizeof l->file - 1);
+		memmove(l->file + dl, l->file, fl + 1);
+		memcpy(l->file, file, dl);
+	}
+}
+
 void
 tool_scene_load(vx_scene *s, const char *file, const vx_stream *st, int n,
     const char *const *names, const char *const *vals)
@@ -587,6 +612,7 @@ tool_scene_load(vx_scene *s, const char *file, const vx_stream *st, int n,
 			tool_fail_err(&e);
 		}
 		fclose(f);
+		scene_paths(s, file);
 	} else if (vx_scene_from_stream(s, st, NULL, &e) != 0)
 		tool_fail_err(&e);
 	for (i = 0; i < n; i++)
