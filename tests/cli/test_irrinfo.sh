@@ -1,9 +1,11 @@
 #!/bin/sh
-# test_irrinfo.sh: vinfo's description of an irradiance volume (IRRV) against
-# oracles computed here: the white furnace's E = pi, the wanted texels and
-# stored bricks recounted from the volume's samples (formats/irradiance.md:
-# the corners of every lattice cell whose [min, max] meets the band), the
-# lattice's world spacing from the lattice rule, the stores' record sizes.
+# test_irrinfo.sh: vinfo's description of an irradiance volume (IRRV) and
+# vwrite's NRRD export of it, against oracles computed here: the white
+# furnace's E = pi, the wanted texels and stored bricks recounted from the
+# volume's samples (formats/irradiance.md: the corners of every lattice cell
+# whose [min, max] meets the band), the lattice's world spacing from the
+# lattice rule, the stores' record sizes; the NRRD read back by a reader
+# written here from the NRRD format alone (and by vread for the flags).
 . "$(dirname "$0")/lib.sh"
 PY=python3; [ -x /usr/bin/python3 ] && PY=/usr/bin/python3
 MK="$PY tests/cli/mkstream.py"
@@ -94,4 +96,85 @@ vinfo "$T/b.vx" > "$T/b.txt"
 check "text: texel counts" grep -q "texels: $(echo $want | cut -d' ' -f1) wanted, $(echo $want | cut -d' ' -f1) baked" "$T/b.txt"
 check "text: samples range" grep -q "samples per baked texel: 4 to 4" "$T/b.txt"
 check "text: mean E" grep -q "R: min 3.1415926[0-9] max 3.1415926[0-9] mean 3.1415926[0-9]" "$T/b.txt"
+
+# ---- vwrite --chunk IRRV ----
+# nrrd.py FILE EXPR: read an attached-header NRRD (raw or gzip, little
+# endian) and print EXPR over h (the header fields), kv (key:=value pairs)
+# and v (the body as numbers, x fastest, the first axis fastest of all)
+cat > "$T/nrrd.py" <<'PY'
+import gzip, struct, sys
+data = open(sys.argv[1], 'rb').read()
+head, body = data.split(b'\n\n', 1)
+lines = head.decode().split('\n')
+assert lines[0] == 'NRRD0004'
+h, kv = {}, {}
+for l in lines[1:]:
+    if l.startswith('#'):
+        continue
+    if ':=' in l:
+        k, x = l.split(':=', 1); kv[k] = x
+    else:
+        k, x = l.split(': ', 1); h[k] = x
+if h['encoding'] == 'gzip':
+    body = gzip.decompress(body)
+f = {'float': 'f', 'uint8': 'B', 'uint32': 'I'}[h['type']]
+n = 1
+for d in h['sizes'].split():
+    n *= int(d)
+assert len(body) == n * struct.calcsize(f), 'body size'
+v = struct.unpack('<%d%s' % (n, f), body)
+r = eval(sys.argv[2])
+print(' '.join(map(str, r)) if isinstance(r, tuple) else r)
+PY
+N() { $PY "$T/nrrd.py" "$@"; }
+vwrite --chunk IRRV --flags "$T/f.nrrd" -o "$T/e.nrrd" "$T/b.vx"
+check_eq "NRRD: 4-D float, RGB first, the lattice's dims" \
+    "$(N "$T/e.nrrd" '[h[k] for k in ("type", "dimension", "sizes", "kinds", "centerings")]')" \
+    "['float', '4', '3 32 32 32', 'RGB-color domain domain domain', '??? node node node']"
+check_eq "NRRD: world spacing and origin (the volume's frame)" \
+    "$(N "$T/e.nrrd" 'h["space directions"] + " | " + h["space origin"]')" \
+    "none (0.064516129032258063,0,0) (0,0.064516129032258063,0) (0,0,0.064516129032258063) | (-1,-1,-1)"
+check_eq "NRRD: the bake's key and samples as key:=value" \
+    "$(N "$T/e.nrrd" 'kv["key"] == "'"$(jget "$T/b.json" "$J[\"key\"]")"'", kv["samples"]')" "True 4"
+# every usable texel E = pi in R, G and B; every other texel 0; as many
+# usable texels as vinfo counts
+w=$(jget "$T/b.json" "$J[\"usable\"]")
+check_eq "NRRD: $w texels of pi, the rest 0" \
+    "$(N "$T/e.nrrd" 'sum(1 for i in range(0, len(v), 3) if all(abs(x - 3.14159265) < 1e-6 for x in v[i:i+3])), sum(1 for i in range(0, len(v), 3) if v[i:i+3] == (0.0, 0.0, 0.0)), len(v) // 3')" \
+    "$w $((32768 - w)) 32768"
+# the flags: u8, read back by vread (a scalar NRRD): 16 (wanted) on every
+# wanted texel, 0 elsewhere, so the mean is 16 wanted / 32768
+vread "$T/f.nrrd" | vinfo --json > "$T/f.json"
+V='[c for c in d["chunks"] if c["type"] == "VOLM"][0]["volume"]'
+check_eq "flags: vread reads them back, range [0, 16], mean 16 x wanted / texels" \
+    "$(jget "$T/f.json" "$V[\"type\"], $V[\"range\"], $V[\"mean\"] * 32768 == 16 * $w, $V[\"spacing\"][1]")" \
+    "u8 [0, 16] True 0.06451612903225806"
+vwrite --chunk IRRV --flags "$T/f32.nrrd" --flags-type u32 --gzip -o "$T/eg.nrrd" "$T/b.vx"
+check_eq "flags as u32 (gzip): the same values" \
+    "$(N "$T/f32.nrrd" 'h["type"], sum(v)')" "uint32 $((16 * w))"
+check_eq "gzip: the same texels" "$(N "$T/eg.nrrd" 'hash(v)')" "$(N "$T/e.nrrd" 'hash(v)')"
+# scale 0.5, f16: 17^3 texels 0.125 apart, binary16's pi
+vwrite --chunk IRRV -o "$T/h.nrrd" "$T/h.vx"
+check_eq "scale 0.5: 17^3, spacing 0.125, E = 3.140625" \
+    "$(N "$T/h.nrrd" 'h["sizes"], h["space directions"], max(v)')" \
+    "3 17 17 17 none (0.125,0,0) (0,0.125,0) (0,0,0.125) 3.140625"
+# a NaN sample: the texels whose support holds it are flagged nan (bit 1)
+# and written 0; the others of a distance field are baked
+$MK volume "$T/nan.vx" --dims 12 12 12 --type f32 \
+    --formula "float('nan') if (x, y, z) == (5, 5, 5) else ((x-5.5)**2 + (y-5.5)**2 + (z-5.5)**2) ** 0.5"
+bake-irr --light sky --all --side high --samples 1 "$T/nan.vx" 2>/dev/null | \
+    vwrite --chunk IRRV --flags "$T/nf.nrrd" -o "$T/ne.nrrd"
+# texel (5,5,5) is the NaN sample itself; (9,9,9) is 4 samples away
+check_eq "NaN texel: flag nan, E 0; a texel away from it: E > 0, no nan flag" \
+    "$(N "$T/nf.nrrd" 'v[5 + 12 * (5 + 12 * 5)] & 2, v[9 + 12 * (9 + 12 * 9)] & 2'),$(N "$T/ne.nrrd" 'v[3 * (5 + 12 * (5 + 12 * 5))], v[3 * (9 + 12 * (9 + 12 * 9))] > 0')" \
+    "2 0,0.0 True"
+expect_fail "--flags without --chunk IRRV" 64 "only with --chunk IRRV" \
+    vwrite --flags "$T/x.nrrd" -o "$T/x.nrrd2" "$T/b.vx"
+expect_fail "no irradiance volume" 65 "no irradiance volume" \
+    vwrite --chunk IRRV -o "$T/x.nrrd" "$T/s.vx"
+expect_fail "the volume left out: no world frame" 65 "its world frame" \
+    vwrite --chunk IRRV -o "$T/x.nrrd" "$T/novol.vx"
+expect_fail "--chunk of another kind" 64 "only VOLM and IRRV" \
+    vwrite --chunk TETM -o "$T/x.nrrd" "$T/b.vx"
+check "a failed run leaves no file" test ! -e "$T/x.nrrd"
 done_testing
