@@ -124,7 +124,7 @@ print-core-inc:
 
 # ---- dependencies (Debian) ----
 DEB_BUILD := build-essential pkg-config libpng-dev zlib1g-dev libcmocka-dev
-DEB_TEST := mricron-data python3 strace
+DEB_TEST := mricron-data python3 strace gnuplot-nox
 DEB_FUZZ := clang libclang-rt-14-dev libomp-dev
 deps:
 	@missing=""; for p in $(DEB_BUILD) $(DEB_TEST) $(DEB_FUZZ) $(DEB_EXTRA); do \

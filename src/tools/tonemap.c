@@ -94,9 +94,8 @@ parse(opts *o, int argc, char **argv)
 			    -100, 100);
 			break;
 		case O_OP:
-			if ((o->tm.op = vx_tonemap_op_parse(optarg)) == VX_TM_UNKNOWN)
-				tool_fail(VX_EUSAGE, "--op: '%s': expected clamp, "
-				    "reinhard or aces", optarg);
+			o->tm.op = tool_parse_enum("--op", &vx_tonemap_op_enum,
+			    optarg);
 			o->png_only = 1;
 			break;
 		case O_WHITE:
@@ -126,13 +125,8 @@ parse(opts *o, int argc, char **argv)
 		case O_CMP: o->ref = optarg; break;
 		case O_DIFF: o->diff = optarg; break;
 		case O_DMAP:
-			if (strcmp(optarg, "abs") == 0)
-				o->diff_map = VX_DIFF_ABS;
-			else if (strcmp(optarg, "signed") == 0)
-				o->diff_map = VX_DIFF_SIGNED;
-			else
-				tool_fail(VX_EUSAGE, "--diff-map: '%s': expected "
-				    "abs or signed", optarg);
+			o->diff_map = tool_parse_enum("--diff-map", &vx_diff_map_enum,
+			    optarg);
 			break;
 		case O_DSCALE:
 			o->diff_scale = tool_parse_double("--diff-scale", optarg,

@@ -28,18 +28,16 @@ main(int argc, char **argv)
 		{ "print", 0, 0, O_PRINT }, { "remove", 0, 0, O_REMOVE },
 		{ "output", 1, 0, 'o' }, { "help", 0, 0, 'h' }, { 0, 0, 0, 0 }
 	};
-	static const char *names[] = { NULL, "set", "iso", "size", "view",
-	    "light", "lights", "effects", "background", "fov" };
 	const char *in = "-", *out = "-", *file = NULL;
 	const char *set_name[64], *set_val[64];
-	int nset = 0, print = 0, remove = 0, c;
+	int nset = 0, print = 0, remove = 0, c, li;
 	vx_stream st;
 	vx_scene s;
 	vx_err e = { 0, "" };
 	long idx;
 
 	tool_init("vscene", argc, argv);
-	while ((c = getopt_long(argc, argv, "o:h", lo, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "o:h", lo, &li)) != -1) {
 		switch (c) {
 		case 'o': out = optarg; break;
 		case 'h':
@@ -52,7 +50,7 @@ main(int argc, char **argv)
 		case O_LIGHTS: case O_EFFECTS: case O_BG: case O_FOV:
 			if (nset == 64)
 				tool_usage_fail(usage, "too many scene options");
-			set_name[nset] = names[c - O_SCENE];
+			set_name[nset] = lo[li].name;   /* the scene option's */
 			set_val[nset++] = optarg;
 			break;
 		default:

@@ -18,27 +18,22 @@ vx_type_size(vx_type t)
 	}
 }
 
+static const vx_enum_name type_names[] = {
+	{ "u8", VX_U8 }, { "u16", VX_U16 }, { "i16", VX_I16 },
+	{ "f32", VX_F32 }, { NULL, VX_TYPE_UNKNOWN }
+};
+const vx_enum vx_type_enum = { "type", type_names, "unknown", 0 };
+
 const char *
 vx_type_name(vx_type t)
 {
-	switch (t) {
-	case VX_U8: return "u8";
-	case VX_U16: return "u16";
-	case VX_I16: return "i16";
-	case VX_F32: return "f32";
-	default: return "unknown";
-	}
+	return vx_enum_str(&vx_type_enum, t);
 }
 
 vx_type
 vx_type_parse(const char *s)
 {
-	int t;
-
-	for (t = VX_TYPE_UNKNOWN + 1; t < VX_TYPE_LAST; t++)
-		if (strcmp(s, vx_type_name((vx_type)t)) == 0)
-			return (vx_type)t;
-	return VX_TYPE_UNKNOWN;
+	return (vx_type)vx_enum_val(&vx_type_enum, s);
 }
 
 /* ---- layouts ---- */

@@ -14,6 +14,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "vx_enum.h"
 #include "vx_err.h"
 #include "vx_stream.h"
 
@@ -27,8 +28,12 @@ typedef enum vx_type {
 } vx_type;
 
 size_t vx_type_size(vx_type t);
-const char *vx_type_name(vx_type t);   /* "u8", "u16", "i16", "f32" */
-vx_type vx_type_parse(const char *s);  /* VX_TYPE_UNKNOWN if unknown */
+/* The names (vx_enum.h): "u8", "u16", "i16", "f32"; VX_TYPE_UNKNOWN and
+ * "unknown" for the others.  vx_type_name, vx_type_parse: shorthands for
+ * vx_enum_str and vx_enum_val on vx_type_enum. */
+extern const vx_enum vx_type_enum;
+const char *vx_type_name(vx_type t);
+vx_type vx_type_parse(const char *s);
 
 /* Largest volume a grid may hold, in samples (padded).  Protects against
  * header words that claim absurd sizes before anything is allocated. */

@@ -17,6 +17,7 @@
 #include <stdio.h>
 
 #include "vx_camera.h"
+#include "vx_enum.h"
 #include "vx_err.h"
 #include "vx_stream.h"
 
@@ -246,16 +247,15 @@ int vx_scene_from_stream(vx_scene *s, const vx_stream *st, long *index,
 /* vx_scene_to_stream: replace st's first SCNE chunk by s, or append one. */
 int vx_scene_to_stream(const vx_scene *s, vx_stream *st, vx_err *e);
 
-/* ---- names and helpers ---- */
-const char *vx_light_type_name(vx_light_type t);   /* "point", ... */
-const char *vx_falloff_name(vx_falloff f);         /* "inverse-square" */
-const char *vx_illum_name(vx_illum m);             /* "irradiance" */
-const char *vx_interp_name(vx_interp m);           /* "nearest-iso" */
-const char *vx_phase_name(vx_phase p);             /* "isotropic" */
-const char *vx_colormap_name(vx_colormap m);       /* "gray", ... */
+/* ---- names and helpers ----
+ * The words of the format (vx_enum.h): light types, falloffs,
+ * illumination modes, interpolations, phases, colormaps (an unknown name
+ * has the UNKNOWN value, an unknown value the name "unknown"); effects,
+ * named by their VX_FX_ bit (an unknown bit has no name, NULL). */
+extern const vx_enum vx_light_type_enum, vx_falloff_enum, vx_illum_enum,
+    vx_interp_enum, vx_phase_enum, vx_colormap_enum, vx_effect_enum;
+/* vx_colormap_parse: shorthand for vx_enum_val(&vx_colormap_enum, s). */
 vx_colormap vx_colormap_parse(const char *s);
-/* vx_effect_name: the name of one VX_FX_ bit ("shadows"), or NULL. */
-const char *vx_effect_name(unsigned bit);
 /* vx_colormap_eval: color for t (clamped to [0,1]) under map m; unknown
  * maps give gray.  The maps are piecewise linear (formats/scene.md). */
 void vx_colormap_eval(vx_colormap m, double t, double rgb[3]);

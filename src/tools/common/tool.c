@@ -148,6 +148,17 @@ tool_parse_doubles(const char *opt, const char *s, double *out, int n)
 		tool_fail(VX_EUSAGE, "%s: '%s': expected %d numbers", opt, s, n);
 }
 
+int
+tool_parse_enum(const char *opt, const vx_enum *en, const char *s)
+{
+	vx_err e;
+	int v;
+
+	if (vx_enum_parse(en, s, &v, VX_EUSAGE, &e) != 0)
+		tool_fail(e.code, "%s: %s", opt, e.msg);
+	return v;
+}
+
 /* pipe_widen: a pipe's buffer as large as an unprivileged process may make
  * it (1 MiB by default, /proc/sys/fs/pipe-max-size): a 126 MB stream then
  * crosses in 1 MiB turns instead of 64 KiB ones.  Not a pipe, or not

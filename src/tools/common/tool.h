@@ -8,6 +8,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "vx_enum.h"
 #include "vx_err.h"
 #include "vx_stream.h"
 
@@ -32,6 +33,9 @@ double tool_parse_double(const char *opt, const char *s, double lo, double hi);
 long tool_parse_long(const char *opt, const char *s, long lo, long hi);
 /* tool_parse_doubles: exactly n comma- or space-separated numbers. */
 void tool_parse_doubles(const char *opt, const char *s, double *out, int n);
+/* tool_parse_enum: the value s names in en; else exits 64 with "name: opt:
+ * unknown WHAT 'S' (one of: ...)". */
+int tool_parse_enum(const char *opt, const vx_enum *en, const char *s);
 
 /* tool_read_stream: read a whole stream from path ("-" is stdin); exits on
  * error.  Refuses a terminal on stdin with a usage hint. */
