@@ -290,6 +290,15 @@ history_text(const input *in)
 
 /* ---- outputs ---- */
 
+/* refuse_tty: a picture is not written to a terminal. */
+static void
+refuse_tty(const char *path)
+{
+	if (strcmp(path, "-") == 0 && isatty(STDOUT_FILENO))
+		tool_fail(VX_EUSAGE, "standard output is a terminal: give -o "
+		    "FILE or redirect");
+}
+
 static void
 write_png(const char *path, const vx_image *img, int bits, double gamma,
     const vx_text *text, size_t ntext)
@@ -297,30 +306,10 @@ write_png(const char *path, const vx_image *img, int bits, double gamma,
 	vx_err e = { 0, "" };
 	tool_out o;
 
-	if (strcmp(path, "-") == 0 && isatty(STDOUT_FILENO))
-		tool_fail(VX_EUSAGE, "standard output is a terminal: give -o "
-		    "FILE or redirect");
+	refuse_tty(path);
 	tool_out_open(&o, path);
 	if (vx_image_png_write_gamma(img, o.f, bits, gamma, text, ntext,
 	    &e) != 0) {
-		tool_out_abort(&o);
-		vx_err_push(&e, "%s", o.path);
-		tool_fail_err(&e);
-	}
-	tool_out_close(&o);
-}
-
-static void
-write_pfm(const char *path, const vx_image *img)
-{
-	vx_err e = { 0, "" };
-	tool_out o;
-
-	if (strcmp(path, "-") == 0 && isatty(STDOUT_FILENO))
-		tool_fail(VX_EUSAGE, "standard output is a terminal: give -o "
-		    "FILE or redirect");
-	tool_out_open(&o, path);
-	if (vx_pfm_write(img, o.f, &e) != 0) {
 		tool_out_abort(&o);
 		vx_err_push(&e, "%s", o.path);
 		tool_fail_err(&e);
@@ -549,7 +538,8 @@ main(int argc, char **argv)
 
 		if (o.pfm) {
 			scene(&out, &in.img, &o);
-			write_pfm(path, &out);
+			refuse_tty(path);
+			tool_write_pfm(path, &out);
 		} else {
 			display(&out, &in.img, &o, o.tm.flatten, &st);
 			write_png(path, &out, o.bits, png_gamma(&o.tm), text, 2);
