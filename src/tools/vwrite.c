@@ -56,8 +56,7 @@ parse_args(opts *o, int argc, char **argv)
 		}
 	}
 	o->in = tool_opt_input(argc, argv, usage);
-	/* Which chunk kinds can be exported.  The irradiance and SH volumes
-	 * will be added here as their modules land. */
+	/* the chunk kinds that can be exported: volumes */
 	if (strlen(o->chunk) != 4 || !vx_chunk_type_valid(o->chunk))
 		tool_usage_fail(usage, "--chunk %s: not a chunk type", o->chunk);
 	if (strcmp(o->chunk, VX_CHUNK_VOLUME) != 0)
