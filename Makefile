@@ -76,14 +76,16 @@ $(BUILD)/%.o: %.c Makefile
 	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<
 
-# The isosurface kernels (traversal, cells, the render loop, the camera's
-# rays) at -O3 -fno-math-errno -fno-trapping-math, after any CFLAGS: the same
-# bits as at -O2 (no fast-math, -std=c11 keeps -ffp-contract=off, and these
-# files read neither errno nor the FP flags and enable no traps), with no
-# errno path for sqrt and floating-point selects without branches (README,
-# "Rules").  Not under the sanitizers.
-HOT_OBJ := $(addprefix $(BUILD)/src/core/,kernels/macro.o kernels/iso.o kernels/cell.o \
-	render/raycast.o data/camera.o)
+# The isosurface kernels (the hierarchy, its walks and cell masks, cells,
+# the render loop, the camera's rays) at -O3 -fno-math-errno
+# -fno-trapping-math, after any CFLAGS: the same bits as at -O2 (no
+# fast-math, -std=c11 keeps -ffp-contract=off, and these files read neither
+# errno nor the FP flags and enable no traps), with no errno path for sqrt
+# and floating-point selects without branches (README, "Rules").  Not under
+# the sanitizers.
+HOT_OBJ := $(addprefix $(BUILD)/src/core/,kernels/macro.o kernels/macrowalk.o \
+	kernels/macrobox.o kernels/cellmask.o kernels/iso.o kernels/cell.o \
+	render/raycast.o render/bins.o render/surface.o data/camera.o)
 ifneq ($(SANITIZE),1)
 $(HOT_OBJ): override CFLAGS += -O3 -fno-math-errno -fno-trapping-math
 endif

@@ -10,7 +10,7 @@
 #include "tool.h"
 #include "vx_grid.h"
 #include "vx_image.h"
-#include "vx_macro.h"
+#include "vx_macroio.h"
 #include "vx_stats.h"
 #include "vx_stream.h"
 #include "vx_tetimport.h"

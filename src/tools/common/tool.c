@@ -15,7 +15,10 @@
 #include "vx_image.h"
 #include "vx_imageio.h"
 #include "vx_macro.h"
+#include "vx_macroio.h"
 #include "vx_scene.h"
+#include "vx_tetleaf.h"
+#include "vx_tonemap.h"
 #include "vx_version.h"
 
 #ifdef _OPENMP
@@ -429,6 +432,15 @@ tool_stream_keep(vx_stream *out, vx_stream *in, const char *const *drop)
 	}
 }
 
+/* build_note: the note that a hierarchy (what, of `name`) is built now */
+static void
+build_note(int status, const char *what, const char *name, const char *them)
+{
+	fprintf(stderr, "%s: note: %s %s '%s'; building %s (run macrocell(1) "
+	    "in the pipeline to keep %s)\n", tool_name, status ==
+	    VX_MACRO_STALE ? "stale" : "no", what, name, them, them);
+}
+
 void
 tool_macro_load(vx_macro *m, const vx_stream *st, const vx_grid *g,
     long src, int nthr, int quiet)
@@ -443,10 +455,88 @@ tool_macro_load(vx_macro *m, const vx_stream *st, const vx_grid *g,
 		return;
 	nlev = vx_macro_default_sizes(g->type, VX_MACRO_DEFAULT_LEVELS, sizes);
 	if (!quiet)
-		fprintf(stderr, "%s: note: %s macrocells for '%s'; building them "
-		    "(run macrocell(1) in the pipeline to keep them)\n",
-		    tool_name, status == VX_MACRO_STALE ? "stale" : "no",
-		    g->name);
+		build_note(status, "macrocells for", g->name, "them");
 	if (vx_macro_build(m, g, nlev, (const int (*)[3])sizes, nthr, &e) != 0)
 		tool_fail_err(&e);
+}
+
+void
+tool_tetleaf_load(vx_tetleaf *lg, const vx_stream *st, const vx_tetmesh *mesh,
+    int nlev, int nthr, int quiet, int dry)
+{
+	int sizes[VX_MACRO_MAXLEV][3], status = VX_MACRO_ABSENT;
+	vx_err e = { 0, "" };
+
+	vx_tetleaf_init(lg);
+	if (nlev > 0 && vx_tetleaf_from_stream(lg, st, mesh, &status, NULL,
+	    &e) != 0)
+		tool_fail_err(&e);
+	if (status == VX_MACRO_LOADED)
+		return;
+	if (nlev > 0)
+		vx_macro_default_sizes(VX_F32, nlev, sizes);
+	if (!quiet && nlev > 0)
+		build_note(status, "leaf grid for mesh", mesh->name, "it");
+	if (!dry && vx_tetleaf_build_levels(lg, mesh, 1, 0, nlev,
+	    (const int (*)[3])sizes, nthr, &e) != 0)
+		tool_fail_err(&e);
+}
+
+void
+tool_write_png(const char *path, const vx_image *img, int bits, double gamma,
+    const char *hist, size_t hlen, const vx_text *extra, size_t nextra)
+{
+	vx_text text[8];
+	vx_err e = { 0, "" };
+	size_t n = 0, line = strlen(history);
+	char *all;
+	tool_out o;
+
+	if (nextra > sizeof text / sizeof text[0] - 2)
+		tool_fail(VX_EINTERNAL, "too many PNG text chunks");
+	if (strcmp(path, "-") == 0 && isatty(STDOUT_FILENO))
+		tool_fail(VX_EUSAGE, "standard output is a terminal: give -o "
+		    "FILE or redirect");
+	if (hist == NULL)
+		hlen = 0;
+	if ((all = malloc(hlen + line + 1)) == NULL)
+		tool_fail(VX_ENOMEM, "out of memory");
+	memcpy(all, hist != NULL ? hist : "", hlen);
+	memcpy(all + hlen, history, line + 1);
+	text[n].key = "Software";
+	text[n++].value = "voxlux " VX_VERSION;
+	text[n].key = "voxlux-history";
+	text[n++].value = all;
+	for (size_t k = 0; k < nextra; k++)
+		text[n++] = extra[k];
+	tool_out_open(&o, path);
+	if (vx_image_png_write_gamma(img, o.f, bits, gamma, text, n, &e) != 0) {
+		tool_out_abort(&o);
+		free(all);
+		vx_err_push(&e, "%s", o.path);
+		tool_fail_err(&e);
+	}
+	tool_out_close(&o);
+	free(all);
+}
+
+void
+tool_write_png_radiance(const char *path, const vx_image *color,
+    double exposure, const double bg[3], int bits, const vx_stream *in)
+{
+	vx_tonemap_opts tm;
+	vx_image disp;
+	vx_err e = { 0, "" };
+	const char *h;
+	size_t hl = 0;
+
+	vx_tonemap_defaults(&tm);
+	tm.exposure = exposure;
+	tm.flatten = 1;
+	memcpy(tm.background, bg, sizeof tm.background);
+	if (vx_tonemap_image(&disp, color, &tm, NULL, &e) != 0)
+		tool_fail_err(&e);
+	h = in != NULL ? vx_stream_history(in, &hl) : NULL;
+	tool_write_png(path, &disp, bits, 0, h, hl, NULL, 0);
+	vx_image_free(&disp);
 }

@@ -5,6 +5,7 @@
 #ifndef VX_TOOL_H
 #define VX_TOOL_H
 
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 
@@ -107,6 +108,42 @@ struct vx_grid;
 struct vx_macro;
 void tool_macro_load(struct vx_macro *m, const vx_stream *st,
     const struct vx_grid *g, long src, int nthr, int quiet);
+
+/* tool_tetleaf_load: the leaf grid of tet mesh `mesh` into lg
+ * (initialized here): the stream's TLEF chunk when it was built over this
+ * mesh, else built now with macrocell(1)'s defaults (nlev levels above the
+ * leaves: VX_MACRO_DEFAULT_LEVELS, or 0 for the leaves alone) and nthr
+ * threads, with a note on standard error unless quiet (as
+ * tool_macro_load).  With nlev 0 the stream's chunk is not looked at.
+ * Nothing is built when dry.  Exits on error. */
+struct vx_tetleaf;
+struct vx_tetmesh;
+void tool_tetleaf_load(struct vx_tetleaf *lg, const vx_stream *st,
+    const struct vx_tetmesh *mesh, int nlev, int nthr, int quiet, int dry);
+
+/* tool_write_png: img (display values in [0,1], encoded as gamma says,
+ * vx_image_png_write_gamma: 0 sRGB, G > 0 gamma, -1 no color-space chunk)
+ * as a PNG of bits 8 or 16 at path ("-": standard output, refused when it
+ * is a terminal; else atomically), with the tEXt chunks Software ("voxlux
+ * VERSION") and voxlux-history, the whole history: the input stream's
+ * lines (hist, hlen bytes as vx_stream_history gives them; NULL: none)
+ * followed by this run's; then the nextra chunks of extra.  Exits on
+ * error. */
+struct vx_text;
+void tool_write_png(const char *path, const struct vx_image *img, int bits,
+    double gamma, const char *hist, size_t hlen,
+    const struct vx_text *extra, size_t nextra);
+
+/* tool_write_png_radiance: the PNG of `color`, linear radiance (RGBA
+ * premultiplied by coverage, or RGB, gray, gray+alpha), exactly as
+ * tonemap(1) makes it with its defaults and --exposure `exposure`
+ * --background bg: the one compositing rule of the renderers' pictures
+ * (vx_tonemap.h: exposure on the color, clamp, then composited over the
+ * background in display values, which exposure does not touch; sRGB).
+ * History from the input stream `in` as tool_write_png.  Exits on
+ * error. */
+void tool_write_png_radiance(const char *path, const struct vx_image *color,
+    double exposure, const double bg[3], int bits, const vx_stream *in);
 
 /* tool_gi_setup: the global-illumination estimator (vx_gi.h) for scene s
  * over volume g and hierarchy m; exits 64 when the scene has no light a
