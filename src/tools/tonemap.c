@@ -74,12 +74,10 @@ parse(opts *o, int argc, char **argv)
 	size_t len;
 
 	memset(o, 0, sizeof *o);
-	o->in = "-";
 	o->bits = 8;
 	o->peak = 1;
 	o->diff_map = VX_DIFF_ABS;
 	vx_tonemap_defaults(&o->tm);
-	opterr = 0;
 	while ((c = getopt_long(argc, argv, ":o:h", lo, NULL)) != -1) {
 		switch (c) {
 		case 'o': o->out = optarg; break;
@@ -137,20 +135,13 @@ parse(opts *o, int argc, char **argv)
 			o->peak = tool_parse_double("--peak", optarg, 1e-30, 1e30);
 			break;
 		case O_JSON: o->json = 1; break;
-		case 'h': case O_HELP:
-			printf("usage: %s\n", usage);
-			exit(tool_finish());
-		case ':':
-			tool_usage_fail(usage, "%s needs a value", argv[optind - 1]);
+		case O_HELP:
+			tool_opt_other('h', usage, argv);
 		default:
-			tool_usage_fail(usage, "unknown option '%s'",
-			    argv[optind - 1]);
+			tool_opt_other(c, usage, argv);
 		}
 	}
-	if (optind < argc)
-		o->in = argv[optind++];
-	if (optind < argc)
-		tool_usage_fail(usage, "one input at most ('%s')", argv[optind]);
+	o->in = tool_opt_input(argc, argv, usage);
 	if (ntf > 1)
 		tool_fail(VX_EUSAGE, "--srgb, --gamma and --linear exclude "
 		    "each other");
@@ -289,22 +280,13 @@ load(input *in, const char *path, const char *name, int allow_png)
 
 /* ---- outputs ---- */
 
+/* refuse_tty: a picture is not written to a terminal. */
 static void
-write_pfm(const char *path, const vx_image *img)
+refuse_tty(const char *path)
 {
-	vx_err e = { 0, "" };
-	tool_out o;
-
 	if (strcmp(path, "-") == 0 && isatty(STDOUT_FILENO))
 		tool_fail(VX_EUSAGE, "standard output is a terminal: give -o "
 		    "FILE or redirect");
-	tool_out_open(&o, path);
-	if (vx_pfm_write(img, o.f, &e) != 0) {
-		tool_out_abort(&o);
-		vx_err_push(&e, "%s", o.path);
-		tool_fail_err(&e);
-	}
-	tool_out_close(&o);
 }
 
 static double
@@ -522,7 +504,8 @@ main(int argc, char **argv)
 
 		if (o.pfm) {
 			scene(&out, &in.img, &o);
-			write_pfm(path, &out);
+			refuse_tty(path);
+			tool_write_pfm(path, &out);
 		} else {
 			display(&out, &in.img, &o, o.tm.flatten, &st);
 			tool_write_png(path, &out, o.bits, png_gamma(&o.tm),

@@ -76,8 +76,7 @@ parse_args(opts *o, int argc, char **argv)
 
 	memset(o, 0, sizeof *o);
 	o->bins = 16;
-	o->in = "-";
-	while ((ch = getopt_long(argc, argv, "", lo, NULL)) != -1) {
+	while ((ch = getopt_long(argc, argv, ":", lo, NULL)) != -1) {
 		switch (ch) {
 		case 'j':
 			o->json = 1;
@@ -89,18 +88,11 @@ parse_args(opts *o, int argc, char **argv)
 		case 'c':
 			o->chunks_only = 1;
 			break;
-		case 'h':
-			printf("usage: %s\n", usage);
-			exit(tool_finish());
 		default:
-			tool_usage_fail(usage, "option '%s' is unknown or lacks its value",
-			    argv[optind - 1]);
+			tool_opt_other(ch, usage, argv);
 		}
 	}
-	if (argc - optind > 1)
-		tool_usage_fail(usage, "at most one input");
-	if (argc - optind == 1)
-		o->in = argv[optind];
+	o->in = tool_opt_input(argc, argv, usage);
 }
 
 /* ---- text output helpers ---- */
@@ -367,23 +359,45 @@ decode_mcel(const vx_stream *s, const vx_chunk *c, mcel_info *mi, vx_err *e)
 	return 0;
 }
 
+/* text_levels, json_levels: a hierarchy's levels above its leaves and its
+ * root range (macrocells and leaf grids alike). */
 static void
-text_mcel(const mcel_info *mi)
+text_levels(const vx_macro *mc)
 {
 	int l;
 
+	for (l = 1; l <= mc->nlev; l++)
+		printf("    level %d: %dx%dx%d of level %d, %lld x %lld x %lld "
+		    "cells\n", l, mc->size[l][0], mc->size[l][1],
+		    mc->size[l][2], l - 1, (long long)mc->dims[l][0],
+		    (long long)mc->dims[l][1], (long long)mc->dims[l][2]);
+	printf("    root range: %.9g %.9g\n", (double)mc->root[0],
+	    (double)mc->root[1]);
+}
+
+static void
+json_levels(const vx_macro *mc)
+{
+	double r[2] = { mc->root[0], mc->root[1] };
+	int l;
+
+	printf("\"sizes\":[");
+	for (l = 1; l <= mc->nlev; l++)
+		printf("%s[%d,%d,%d]", l > 1 ? "," : "", mc->size[l][0],
+		    mc->size[l][1], mc->size[l][2]);
+	printf("],\"root\":");
+	json_nums(r, 2);
+}
+
+static void
+text_mcel(const mcel_info *mi)
+{
 	printf("  macrocells: %d level%s over %lld x %lld x %lld %s leaves\n",
 	    mi->m.nlev, mi->m.nlev == 1 ? "" : "s",
 	    (long long)mi->m.dims[0][0], (long long)mi->m.dims[0][1],
 	    (long long)mi->m.dims[0][2],
 	    mi->m.explicit_leaves ? "explicit" : "cell");
-	for (l = 1; l <= mi->m.nlev; l++)
-		printf("    level %d: %dx%dx%d of level %d, %lld x %lld x %lld "
-		    "cells\n", l, mi->m.size[l][0], mi->m.size[l][1],
-		    mi->m.size[l][2], l - 1, (long long)mi->m.dims[l][0],
-		    (long long)mi->m.dims[l][1], (long long)mi->m.dims[l][2]);
-	printf("    root range: %.9g %.9g\n", (double)mi->m.root[0],
-	    (double)mi->m.root[1]);
+	text_levels(&mi->m);
 	if (!mi->m.explicit_leaves) {
 		printf("    volume: ");
 		put_str(mi->m.name);
@@ -394,19 +408,12 @@ text_mcel(const mcel_info *mi)
 static void
 json_mcel(const mcel_info *mi)
 {
-	double r[2] = { mi->m.root[0], mi->m.root[1] };
-	int l;
-
 	printf(",\"macrocells\":{\"levels\":%d,\"leaf_dims\":[%lld,%lld,%lld],"
-	    "\"explicit\":%s,\"sizes\":[", mi->m.nlev,
+	    "\"explicit\":%s,", mi->m.nlev,
 	    (long long)mi->m.dims[0][0], (long long)mi->m.dims[0][1],
 	    (long long)mi->m.dims[0][2],
 	    mi->m.explicit_leaves ? "true" : "false");
-	for (l = 1; l <= mi->m.nlev; l++)
-		printf("%s[%d,%d,%d]", l > 1 ? "," : "", mi->m.size[l][0],
-		    mi->m.size[l][1], mi->m.size[l][2]);
-	printf("],\"root\":");
-	json_nums(r, 2);
+	json_levels(&mi->m);
 	if (!mi->m.explicit_leaves) {
 		printf(",\"volume\":");
 		json_str(mi->m.name);
@@ -492,7 +499,6 @@ text_tlef(const tlef_info *ti)
 {
 	const vx_macro *mc = &ti->lg.mc;
 	double nt = ti->id.ntet ? (double)ti->id.ntet : 1;
-	int l;
 
 	printf("  leaf grid: %lld x %lld x %lld leaves, %lu list entries "
 	    "(%.2f per tet), %d level%s\n", (long long)ti->lg.dims[0],
@@ -500,13 +506,7 @@ text_tlef(const tlef_info *ti)
 	    (unsigned long)ti->lg.off[ti->lg.nleaf],
 	    (double)ti->lg.off[ti->lg.nleaf] / nt, mc->nlev,
 	    mc->nlev == 1 ? "" : "s");
-	for (l = 1; l <= mc->nlev; l++)
-		printf("    level %d: %dx%dx%d of level %d, %lld x %lld x %lld "
-		    "cells\n", l, mc->size[l][0], mc->size[l][1],
-		    mc->size[l][2], l - 1, (long long)mc->dims[l][0],
-		    (long long)mc->dims[l][1], (long long)mc->dims[l][2]);
-	printf("    root range: %.9g %.9g\n", (double)mc->root[0],
-	    (double)mc->root[1]);
+	text_levels(mc);
 	printf("    memory: %zu bytes (%.1f per tet)\n",
 	    vx_tetleaf_bytes(&ti->lg), (double)vx_tetleaf_bytes(&ti->lg) / nt);
 	printf("    mesh: ");
@@ -518,18 +518,12 @@ static void
 json_tlef(const tlef_info *ti)
 {
 	const vx_macro *mc = &ti->lg.mc;
-	double r[2] = { mc->root[0], mc->root[1] };
-	int l;
 
 	printf(",\"leaf_grid\":{\"leaf_dims\":[%lld,%lld,%lld],\"entries\":%lu,"
-	    "\"levels\":%d,\"sizes\":[", (long long)ti->lg.dims[0],
+	    "\"levels\":%d,", (long long)ti->lg.dims[0],
 	    (long long)ti->lg.dims[1], (long long)ti->lg.dims[2],
 	    (unsigned long)ti->lg.off[ti->lg.nleaf], mc->nlev);
-	for (l = 1; l <= mc->nlev; l++)
-		printf("%s[%d,%d,%d]", l > 1 ? "," : "", mc->size[l][0],
-		    mc->size[l][1], mc->size[l][2]);
-	printf("],\"root\":");
-	json_nums(r, 2);
+	json_levels(mc);
 	printf(",\"bytes\":%zu,\"mesh\":", vx_tetleaf_bytes(&ti->lg));
 	json_str(ti->id.mesh);
 	printf(",\"status\":");

@@ -29,7 +29,7 @@ main(int argc, char **argv)
 		{ "print", 0, 0, O_PRINT }, { "remove", 0, 0, O_REMOVE },
 		{ "output", 1, 0, 'o' }, { "help", 0, 0, 'h' }, { 0, 0, 0, 0 }
 	};
-	const char *in = "-", *out = "-", *file = NULL;
+	const char *in, *out = "-", *file = NULL;
 	const char *set_name[64], *set_val[64];
 	int nset = 0, print = 0, remove = 0, c, li;
 	vx_stream st;
@@ -38,12 +38,9 @@ main(int argc, char **argv)
 	long idx;
 
 	tool_init("vscene", argc, argv);
-	while ((c = getopt_long(argc, argv, "o:h", lo, &li)) != -1) {
+	while ((c = getopt_long(argc, argv, ":o:h", lo, &li)) != -1) {
 		switch (c) {
 		case 'o': out = optarg; break;
-		case 'h':
-			printf("usage: %s\n", usage);
-			return 0;
 		case O_SCENE: file = optarg; break;
 		case O_PRINT: print = 1; break;
 		case O_REMOVE: remove = 1; break;
@@ -55,14 +52,10 @@ main(int argc, char **argv)
 			set_val[nset++] = optarg;
 			break;
 		default:
-			tool_usage_fail(usage, "option '%s' is unknown or lacks its value",
-			    argv[optind - 1]);
+			tool_opt_other(c, usage, argv);
 		}
 	}
-	if (optind < argc)
-		in = argv[optind++];
-	if (optind < argc)
-		tool_usage_fail(usage, "too many arguments");
+	in = tool_opt_input(argc, argv, usage);
 	if (remove && (file != NULL || nset > 0))
 		tool_usage_fail(usage, "--remove takes no scene options");
 	vx_stream_init(&st);

@@ -47,6 +47,16 @@ void tool_parse_doubles(const char *opt, const char *s, double *out, int n);
  * unknown WHAT 'S' (one of: ...)". */
 int tool_parse_enum(const char *opt, const vx_enum *en, const char *s);
 
+/* tool_opt_other: the getopt_long results a program leaves to every
+ * program's rule: 'h' prints the usage and exits 0; ':' (a value missing,
+ * with an option string that starts with ':') and any other exit 64
+ * naming the option ("--size needs a value", "unknown option '-x'"). */
+_Noreturn void tool_opt_other(int ch, const char *usage, char **argv);
+
+/* tool_opt_input: the input operand after the options, "-" (standard
+ * input) when there is none; a second one exits 64. */
+const char *tool_opt_input(int argc, char **argv, const char *usage);
+
 /* tool_read_stream: read a whole stream from path ("-" is stdin); exits on
  * error.  Refuses a terminal on stdin with a usage hint. */
 void tool_read_stream(vx_stream *s, const char *path);
