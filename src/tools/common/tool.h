@@ -160,11 +160,13 @@ void tool_write_png_radiance(const char *path, const struct vx_image *color,
     double exposure, const double bg[3], int bits, const vx_stream *in);
 
 /* tool_gi_setup: the global-illumination estimator (vx_gi.h) for scene s
- * over volume g and hierarchy m; exits 64 when the scene has no light a
- * bake can use (headlights move with the camera). */
+ * over volume g and hierarchy m, with the scene's environment map (at most
+ * one; read now, its content hash checked or recorded in s); exits 64
+ * when the scene has no light global illumination can use (headlights
+ * move with the camera), 65 or 66 for a map that cannot be read. */
 struct vx_gi;
 struct vx_scene;
-void tool_gi_setup(struct vx_gi *gi, const struct vx_scene *s,
+void tool_gi_setup(struct vx_gi *gi, struct vx_scene *s,
     const struct vx_grid *g, const struct vx_macro *m);
 
 /* tool_threads: number of threads for -j N (0: all cores), made the
