@@ -6,7 +6,9 @@
 #     private header, beside the file);
 #  4. every global symbol that LIB defines starts with vx_ (but for the
 #     weak symbols a C++ compiler emits for what the OpenEXR headers
-#     define inline: mangled _Z names and DW.ref.* of exception tables).
+#     define inline: mangled _Z names and DW.ref.* of exception tables;
+#     and for AddressSanitizer's __odr_asan.vx_* indicators of exported
+#     variables in the SANITIZE=1 build).
 # Prints one line per broken rule and exits 1 if any; silent otherwise.
 set -u
 lib=$1; shift
@@ -51,7 +53,7 @@ if [ -n "$lib" ]; then
 	if ! command -v nm >/dev/null 2>&1; then
 		echo "check-layers: no nm: exported names not checked" >&2
 	else
-		nm -g --defined-only "$lib" | awk 'NF == 3 && $3 !~ /^vx_/ && !($2 ~ /^[WVu]$/ && $3 ~ /^(_Z|DW\.ref\.)/) { print $3 }' \
+		nm -g --defined-only "$lib" | awk 'NF == 3 && $3 !~ /^(__odr_asan\.)?vx_/ && !($2 ~ /^[WVu]$/ && $3 ~ /^(_Z|DW\.ref\.)/) { print $3 }' \
 		    | sort -u > "${TMPDIR:-/tmp}/check-layers.$$"
 		if [ -s "${TMPDIR:-/tmp}/check-layers.$$" ]; then
 			say "$lib exports names without the vx_ prefix: $(tr '\n' ' ' < "${TMPDIR:-/tmp}/check-layers.$$")"
