@@ -10,16 +10,13 @@
 #include <string.h>
 #include <unistd.h>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include "tool.h"
 #include "vx_bake.h"
 #include "vx_gi.h"
 #include "vx_grid.h"
 #include "vx_irrvol.h"
 #include "vx_macro.h"
+#include "vx_par.h"
 #include "vx_scene.h"
 
 static const char usage[] =
@@ -208,7 +205,7 @@ typedef struct progress {
 static double
 now(void)
 {
-	return omp_get_wtime();
+	return vx_par_seconds();
 }
 
 static void

@@ -287,42 +287,7 @@ load(input *in, const char *path, const char *name, int allow_png)
 	}
 }
 
-/* history_text: the stream's history plus this run's line. */
-static char *
-history_text(const input *in)
-{
-	const char *line = tool_history_line();
-	size_t hl = in->history ? strlen(in->history) : 0;
-	char *t = malloc(hl + strlen(line) + 1);
-
-	if (t == NULL)
-		tool_fail(VX_ENOMEM, "out of memory");
-	memcpy(t, in->history ? in->history : "", hl);
-	strcpy(t + hl, line);
-	return t;
-}
-
 /* ---- outputs ---- */
-
-static void
-write_png(const char *path, const vx_image *img, int bits, double gamma,
-    const vx_text *text, size_t ntext)
-{
-	vx_err e = { 0, "" };
-	tool_out o;
-
-	if (strcmp(path, "-") == 0 && isatty(STDOUT_FILENO))
-		tool_fail(VX_EUSAGE, "standard output is a terminal: give -o "
-		    "FILE or redirect");
-	tool_out_open(&o, path);
-	if (vx_image_png_write_gamma(img, o.f, bits, gamma, text, ntext,
-	    &e) != 0) {
-		tool_out_abort(&o);
-		vx_err_push(&e, "%s", o.path);
-		tool_fail_err(&e);
-	}
-	tool_out_close(&o);
-}
 
 static void
 write_pfm(const char *path, const vx_image *img)
@@ -427,7 +392,7 @@ typedef struct result {
 /* compare: load REF, put the image in its form, compute the metrics and
  * write the difference picture; exits on error. */
 static void
-compare(result *res, const opts *o, const input *in, const char *hist)
+compare(result *res, const opts *o, const input *in)
 {
 	input ref;
 	vx_image a, b;
@@ -477,9 +442,7 @@ compare(result *res, const opts *o, const input *in, const char *hist)
 	if (o->diff != NULL) {
 		vx_image d;
 		char sc[64];
-		vx_text text[4] = {
-			{ "Software", "voxlux " VX_VERSION },
-			{ "voxlux-history", hist },
+		vx_text text[2] = {
 			{ "voxlux-diff-map", o->diff_map == VX_DIFF_ABS ?
 			    "abs: mean |a - b| over channels, viridis from 0 to "
 			    "voxlux-diff-scale; magenta: NaN or unequal infinity" :
@@ -493,7 +456,8 @@ compare(result *res, const opts *o, const input *in, const char *hist)
 		    &e))
 			tool_fail_err(&e);
 		snprintf(sc, sizeof sc, "%.10g", res->dscale);
-		write_png(o->diff, &d, 8, 0, text, 4);
+		tool_write_png(o->diff, &d, 8, 0, in->history, in->history ?
+		    strlen(in->history) : 0, text, 2);
 		vx_image_free(&d);
 	}
 	res->w = a.w;
@@ -546,18 +510,13 @@ main(int argc, char **argv)
 	vx_image out;
 	vx_tonemap_stats st = { 0, 0, 0 };
 	result res;
-	char *hist;
 
 	tool_init("tonemap", argc, argv);
 	parse(&o, argc, argv);
+	(void)tool_threads(0);   /* the parallel loops' threads, made safely */
 	load(&in, o.in, o.name, 0);
-	hist = history_text(&in);
-	vx_text text[2] = {
-		{ "Software", "voxlux " VX_VERSION },
-		{ "voxlux-history", hist },
-	};
 	if (o.ref != NULL)
-		compare(&res, &o, &in, hist);
+		compare(&res, &o, &in);
 	if (o.ref == NULL || o.out != NULL) {
 		const char *path = o.out ? o.out : "-";
 
@@ -566,7 +525,9 @@ main(int argc, char **argv)
 			write_pfm(path, &out);
 		} else {
 			display(&out, &in.img, &o, o.tm.flatten, &st);
-			write_png(path, &out, o.bits, png_gamma(&o.tm), text, 2);
+			tool_write_png(path, &out, o.bits, png_gamma(&o.tm),
+			    in.history, in.history ? strlen(in.history) : 0,
+			    NULL, 0);
 			warn_repairs(&st);
 		}
 		vx_image_free(&out);
@@ -575,6 +536,5 @@ main(int argc, char **argv)
 		print_result(&res, &o);
 	vx_image_free(&in.img);
 	free(in.history);
-	free(hist);
 	return tool_finish();
 }

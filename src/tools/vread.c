@@ -296,9 +296,8 @@ main(int argc, char **argv)
 			tool_fail(VX_EUSAGE, "--spacing and --origin apply to "
 			    "volumes; %s is a tet mesh", o.in);
 		if (info.nskip_volume > 0)
-			fprintf(stderr, "vread: note: %s: skipped %zu volume "
-			    "cells that are not linear tetrahedra\n", o.in,
-			    info.nskip_volume);
+			tool_note("%s: skipped %zu volume cells that are not "
+			    "linear tetrahedra", o.in, info.nskip_volume);
 		if (o.name != NULL)
 			vx_tetmesh_set_name(&m, o.name);
 	} else {
@@ -313,6 +312,8 @@ main(int argc, char **argv)
 			if (o.have_origin)
 				g.origin[a] = o.origin[a];
 		}
+		if (vx_grid_check_box(&g, &e) != 0)
+			tool_fail_err(&e);
 		if (o.split) {
 			/* the volume's tet split: vertices at the samples */
 			if (vx_tetsynth_from_grid(&m, &g, o.split, &e) != 0) {

@@ -199,6 +199,12 @@ case("volm-spacing-negative.vxs", W, 65, "spacing", "spacing -1",
      stream(volm(spacing="1 1 -1")))
 case("volm-origin-inf.vxs", W, 65, "origin", "origin 1e400",
      stream(volm(origin="0 1e400 0")))
+case("volm-extent-overflow.vxs", W, 65, "extent overflows",
+     "dims 3 2 2, spacing 1e308: the far corner is beyond the double range",
+     stream(volm(dims="3 2 2", spacing="1e308 1 1", body=bytes(12))))
+case("volm-extent-diagonal.vxs", W, 65, "extent overflows",
+     "sides 1.5e308 on two axes: the diagonal is beyond the double range",
+     stream(volm(spacing="1.5e308 1.5e308 1")))
 case("volm-type.vxs", W, 65, "type", "type u32 (not a voxlux type)",
      stream(volm(type="u32")))
 case("volm-encoding.vxs", W, 65, "encoding", "encoding gzip",
@@ -311,6 +317,23 @@ case("nrrd-ascii-word.nrrd", R, 65, "", "ascii data with a word in it",
      nrrd("encoding: ascii", body=b"0 1 2 x 4 5 6 7\n"))
 case("nrrd-hex-odd.nrrd", R, 65, "", "hex data with an odd digit count",
      nrrd("encoding: hex", body=b"000102030405060\n"))
+case("nrrd-extent-overflow.nrrd", R, 65, "extent overflows",
+     "sizes 3 2 2, spacings 1e308 1 1", nrrd("sizes: 3 2 2",
+                                               "spacings: 1e308 1 1",
+                                               body=bytes(12)))
+case("nrrd-ascii-overflow.nrrd", R, 65, "beyond the double range",
+     "ascii double data holding 1e999", nrrd("type: double",
+                                             "encoding: ascii",
+                                             body=b"0 1 2 1e999 4 5 6 7\n"))
+case("nrrd-ascii-overflow-float.nrrd", R, 65, "beyond the double range",
+     "ascii float data holding -1e999", nrrd("type: float", "encoding: ascii",
+                                             body=b"0 1 2 -1e999 4 5 6 7\n"))
+case("nrrd-ascii-overflow-u8.nrrd", R, 65, "beyond the double range",
+     "ascii uchar data holding 1e400", nrrd("encoding: ascii",
+                                            body=b"0 1 2 3 1e400 5 6 7\n"))
+case("nrrd-ascii-float-range.nrrd", R, 65, "beyond the float range",
+     "ascii float data holding 1e39 (finite, beyond float)",
+     nrrd("type: float", "encoding: ascii", body=b"0 1 2 3 4 5 6 1e39\n"))
 case("nrrd-detached-missing.nhdr", R, 66, "No such file",
      "detached data file that does not exist",
      nrrd("data file: no-such-file.raw", body=b""))
@@ -368,6 +391,15 @@ case("vtk-spacing-zero.vtk", R, 65, "SPACING", "SPACING 0 1 1",
      vtk(ASC8, SPACING="SPACING 0 1 1"))
 case("vtk-point-data.vtk", R, 65, "POINT_DATA", "POINT_DATA 9 for 8 points",
      vtk(ASC8, POINT_DATA="POINT_DATA 9"))
+case("vtk-extent-overflow.vtk", R, 65, "extent overflows",
+     "DIMENSIONS 3 2 2, SPACING 1e308 1 1",
+     vtk(b"0 1 2 3 4 5 6 7 8 9 10 11\n", DIMENSIONS="DIMENSIONS 3 2 2",
+         SPACING="SPACING 1e308 1 1", POINT_DATA="POINT_DATA 12"))
+case("vtk-ascii-overflow.vtk", R, 65, "beyond the double range",
+     "ascii double data holding -1e999", vtk(b"0 1 2 3 -1e999 5 6 7\n",
+                                             t="double"))
+case("vtk-ascii-overflow-float.vtk", R, 65, "beyond the double range",
+     "ascii float data holding 1e999", vtk(b"0 1 2 3 4 5 6 1e999\n"))
 case("vtk-header.vtk", R, 65, "", "first line not a VTK header",
      b"hello vtk\n" + vtk(ASC8)[27:])
 
@@ -376,6 +408,32 @@ case("raw-short.raw", "vread --raw 2,2,2 --type u16 -o OUT FILE", 65,
      "truncated", "8 bytes for 2x2x2 u16", bytes(8))
 case("raw-long.raw", "vread --raw 2,2,2 --type u8 -o OUT FILE", 65, "",
      "9 bytes for 2x2x2 u8", bytes(9))
+
+case("raw-extent-x.raw", "vread --raw 3,2,2 --type u8 --spacing 1e308,1,1 "
+     "-o OUT FILE", 65, "extent overflows", "3 samples 1e308 apart along x",
+     bytes(12))
+
+# ---- tet meshes: ASCII numbers beyond the double range (vread) ----
+TV = ("# vtk DataFile Version 3.0", "catalog", "ASCII",
+      "DATASET UNSTRUCTURED_GRID", "POINTS 4 double",
+      "0 0 0 1 0 0 0 1 0 0 0 {z}", "CELLS 1 5", "4 0 1 2 3", "CELL_TYPES 1",
+      "10", "POINT_DATA 4", "SCALARS d double 1", "LOOKUP_TABLE default",
+      "0.5 1.5 2.5 {v}")
+
+
+def tetvtk(z="1", v="3.5"):
+    return ("\n".join(TV) + "\n").format(z=z, v=v).encode()
+
+
+case("tetvtk-point-overflow.vtk", R, 65, "POINTS",
+     "a tet mesh point coordinate 1e999", tetvtk(z="1e999"))
+case("tetvtk-scalar-overflow.vtk", R, 65, "SCALARS",
+     "a tet mesh scalar -1e999", tetvtk(v="-1e999"))
+case("gmsh-node-overflow.msh", R, 65, "$Nodes",
+     "a gmsh node coordinate 1e999",
+     b"$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n"
+     b"2 1 0 0\n3 0 1 0\n4 0 0 1e999\n$EndNodes\n$Elements\n1\n"
+     b"1 4 2 0 0 1 2 3 4\n$EndElements\n")
 
 # ---- PFM (tonemap) ----
 P = "tonemap -o OUT FILE"

@@ -10,7 +10,8 @@
 
 #include "vx_err.h"
 #include "vx_grid.h"
-#include "vx_macro.h"
+#include "vx_macrowalk.h"
+#include "vx_macroio.h"
 #include "vx_stream.h"
 #include "vx_tetmesh.h"
 
