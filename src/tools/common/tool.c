@@ -214,6 +214,33 @@ tool_parse_enum(const char *opt, const vx_enum *en, const char *s)
 	return v;
 }
 
+void
+tool_opt_other(int ch, const char *usage, char **argv)
+{
+	const char *arg = argv[optind - 1];
+	char opt[8];
+
+	if (ch == 'h') {
+		printf("usage: %s\n", usage);
+		exit(tool_finish());
+	}
+	if (strncmp(arg, "--", 2) != 0 && optopt > 0 && optopt < 256) {
+		snprintf(opt, sizeof opt, "-%c", optopt);   /* in a cluster */
+		arg = opt;
+	}
+	if (ch == ':')
+		tool_usage_fail(usage, "%s needs a value", arg);
+	tool_usage_fail(usage, "unknown option '%s'", arg);
+}
+
+const char *
+tool_opt_input(int argc, char **argv, const char *usage)
+{
+	if (argc - optind > 1)
+		tool_usage_fail(usage, "at most one input");
+	return optind < argc ? argv[optind] : "-";
+}
+
 /* pipe_widen: a pipe's buffer as large as an unprivileged process may make
  * it (1 MiB by default, /proc/sys/fs/pipe-max-size): a 126 MB stream then
  * crosses in 1 MiB turns instead of 64 KiB ones.  Not a pipe, or not
@@ -568,6 +595,31 @@ tool_threads(long j)
 #endif
 }
 
+/* scene_paths: a relative file name in a scene file names a file beside
+ * the scene: prefix the scene's directory (formats/scene.md). */
+static void
+scene_paths(vx_scene *s, const char *file)
+{
+	const char *slash = strrchr(file, '/');
+	size_t dl = slash != NULL ? (size_t)(slash - file) + 1 : 0;
+
+	if (dl == 0)
+		return;
+	for (int k = 0; k < s->nlight; k++) {
+		vx_light *l = &s->light[k];
+		size_t fl = strlen(l->file);
+
+		if (l->type != VX_LIGHT_ENVIRONMENT || l->file[0] == '/')
+			continue;
+		if (dl + fl >= sizeof l->file)
+			tool_fail(VX_EDATA, "%s: light %d: file name longer than "
+			    "%zu bytes with the scene's directory", file, k + 1,
+			    sizeof l->file - 1);
+		memmove(l->file + dl, l->file, fl + 1);
+		memcpy(l->file, file, dl);
+	}
+}
+
 void
 tool_scene_load(vx_scene *s, const char *file, const vx_stream *st, int n,
     const char *const *names, const char *const *vals)
@@ -587,6 +639,7 @@ tool_scene_load(vx_scene *s, const char *file, const vx_stream *st, int n,
 			tool_fail_err(&e);
 		}
 		fclose(f);
+		scene_paths(s, file);
 	} else if (vx_scene_from_stream(s, st, NULL, &e) != 0)
 		tool_fail_err(&e);
 	for (i = 0; i < n; i++)
