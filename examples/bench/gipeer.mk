@@ -10,9 +10,9 @@
 #                                                 samples (noise against surface)
 #   GIP_PACKETS=0                                leave out embree_pt --packets
 #
-# The scene is examples/scenes/head-gi.scn's light and surface (a sky, a
-# directional light with shadows, one bounce, Lambertian albedo) with the
-# benchmark camera of the ch2 dataset (ch2_ISOCAM); gipeer.py writes it as
+# The scene: a sky, a directional light with shadows, one bounce, Lambertian
+# albedo (the surface of examples/scenes/head-gi.scn, whose light is an
+# environment map), with the benchmark camera of the ch2 dataset (ch2_ISOCAM); gipeer.py writes it as
 # a voxlux scene and as embree_pt's flags, runs both tools round by round
 # (time per path, the marginal cost of a sample), compares the pictures
 # and runs giprobe (the GI rays' work per ray).  Results in results/gipeer/

@@ -50,7 +50,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 import numpy as np  # noqa: E402
 
 PY = sys.executable
-# examples/scenes/head-gi.scn's light and surface (the README's picture)
+# a bluish sky, a warm key light with shadows and the skin's colour of the
+# README's head (examples/scenes/head-gi.scn, which lights it by an environment
+# map instead: the peer scene is a sky of radiance L)
 SCENE = {
     "sky": (0.55, 0.65, 0.85), "sky_i": 0.4,
     "sun_dir": (1, -1.5, -1), "sun": (1, 0.95, 0.85), "sun_i": 0.7,
