@@ -9,7 +9,8 @@
 # bit); its bake time is the one raycast --stats reports for them (wall
 # seconds, one run: the bake of the whole skin band costs about 11 times as
 # much at scale 1).  The reference's own noise is measured from a second
-# reference of a quarter of the paths.
+# reference of a quarter of the paths.  The reference is kept in results/
+# for the next run of the same GI_SIZE and GI_SPP (make clean drops it).
 . ./common.sh
 scene=../scenes/head-gi.scn
 : "${GI_SIZE:=256x256}" "${GI_SPP:=1024}" "${GI_SAMPLES:=4 16 64 256}"
