@@ -111,7 +111,6 @@ parse_args(opts *o, int argc, char **argv)
 	memset(o, 0, sizeof *o);
 	o->out = "-";
 	vx_import_opts_init(&o->imp);
-	opterr = 0;
 	while ((c = getopt_long(argc, argv, ":o:z:h", lo, NULL)) != -1) {
 		switch (c) {
 		case 'o':
@@ -179,26 +178,12 @@ parse_args(opts *o, int argc, char **argv)
 			parse_dims("--size", optarg, o->size, 1);
 			o->have_size = 1;
 			break;
-		case 'h':
-			printf("usage: %s\n", usage);
-			exit(tool_finish());
-		case ':':
-			if (optopt > 0 && optopt < 256)
-				tool_fail(VX_EUSAGE, "-%c: missing value", optopt);
-			tool_fail(VX_EUSAGE, "%s: missing value",
-			    argv[optind - 1]);
 		default:
-			if (optopt > 0 && optopt < 256)
-				tool_fail(VX_EUSAGE, "unknown option '-%c'",
-				    optopt);
-			tool_fail(VX_EUSAGE, "unknown option '%s'",
-			    argv[optind - 1]);
+			tool_opt_other(c, usage, argv);
 		}
 	}
 	if (optind < argc)
-		o->in = argv[optind++];
-	if (optind < argc)
-		tool_fail(VX_EUSAGE, "too many arguments ('%s')", argv[optind]);
+		o->in = tool_opt_input(argc, argv, usage);
 	if ((o->have_type || o->have_endian || o->have_skip) && !o->raw)
 		tool_fail(VX_EUSAGE, "--type, --endian and --skip go with "
 		    "--raw");
@@ -296,9 +281,8 @@ main(int argc, char **argv)
 			tool_fail(VX_EUSAGE, "--spacing and --origin apply to "
 			    "volumes; %s is a tet mesh", o.in);
 		if (info.nskip_volume > 0)
-			fprintf(stderr, "vread: note: %s: skipped %zu volume "
-			    "cells that are not linear tetrahedra\n", o.in,
-			    info.nskip_volume);
+			tool_note("%s: skipped %zu volume cells that are not "
+			    "linear tetrahedra", o.in, info.nskip_volume);
 		if (o.name != NULL)
 			vx_tetmesh_set_name(&m, o.name);
 	} else {
@@ -313,6 +297,8 @@ main(int argc, char **argv)
 			if (o.have_origin)
 				g.origin[a] = o.origin[a];
 		}
+		if (vx_grid_check_box(&g, &e) != 0)
+			tool_fail_err(&e);
 		if (o.split) {
 			/* the volume's tet split: vertices at the samples */
 			if (vx_tetsynth_from_grid(&m, &g, o.split, &e) != 0) {

@@ -43,9 +43,8 @@ parse_args(opts *o, int argc, char **argv)
 	memset(o, 0, sizeof *o);
 	o->out = "-";
 	o->chunk = VX_CHUNK_VOLUME;
-	o->in = "-";
 	o->flag_bytes = 1;
-	while ((ch = getopt_long(argc, argv, "o:", lo, NULL)) != -1) {
+	while ((ch = getopt_long(argc, argv, ":o:", lo, NULL)) != -1) {
 		switch (ch) {
 		case 'o':
 			o->out = optarg;
@@ -71,20 +70,13 @@ parse_args(opts *o, int argc, char **argv)
 				tool_usage_fail(usage, "--flags-type: u8 or u32, "
 				    "not '%s'", optarg);
 			break;
-		case 'h':
-			printf("usage: %s\n", usage);
-			exit(tool_finish());
 		default:
-			tool_usage_fail(usage, "option '%s' is unknown or lacks its value",
-			    argv[optind - 1]);
+			tool_opt_other(ch, usage, argv);
 		}
 	}
-	if (argc - optind > 1)
-		tool_usage_fail(usage, "at most one input");
-	if (argc - optind == 1)
-		o->in = argv[optind];
-	/* Which chunk kinds can be exported: volumes and irradiance
-	 * volumes. */
+	o->in = tool_opt_input(argc, argv, usage);
+	/* which chunk kinds can be exported: volumes and irradiance
+	 * volumes */
 	if (strlen(o->chunk) != 4 || !vx_chunk_type_valid(o->chunk))
 		tool_usage_fail(usage, "--chunk %s: not a chunk type", o->chunk);
 	if (strcmp(o->chunk, VX_CHUNK_VOLUME) != 0 &&

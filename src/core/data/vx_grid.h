@@ -172,6 +172,13 @@ int vx_grid_view_stream(vx_grid *g, const vx_stream *s, const char *name,
 /* vx_grid_box: the world box spanned by the samples: lo = origin,
  * hi = origin + (dims - 1) * spacing. */
 void vx_grid_box(const vx_grid *g, double lo[3], double hi[3]);
+
+/* vx_grid_check_box: 0 when g's geometry is usable: spacing finite and
+ * positive, origin finite, and the box finite: each hi, each side hi - lo
+ * and the diagonal's length (what a camera frames) do not overflow.
+ * Else VX_EDATA, "extent overflows on axis A: origin X + (N - 1) x
+ * spacing S" (or the spacing's or origin's fault). */
+int vx_grid_check_box(const vx_grid *g, vx_err *e);
 void vx_world_to_index(const vx_grid *g, const double w[3], double i[3]);
 void vx_index_to_world(const vx_grid *g, const double i[3], double w[3]);
 void vx_world_to_index_dir(const vx_grid *g, const double w[3], double i[3]);

@@ -3,6 +3,7 @@
  * mirrored axes). */
 #include "import_priv.h"
 
+#include <errno.h>
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
@@ -465,6 +466,16 @@ vx_imp_conv_ascii(vx_imp_conv *c, vx_imp_src *s, vx_err *e)
 				rc = vx_err_set(e, VX_EDATA, "value %llu '%s' is "
 				    "not a number", (unsigned long long)(c->next +
 				    nb), vx_imp_show(buf, i - t0));
+				goto out;
+			}
+			/* a number beyond the double range is refused as one
+			 * beyond the float range is (ascii_store), whatever
+			 * the type; "inf" written out is taken as it is, and
+			 * underflow rounds */
+			if (errno == ERANGE && isinf(v)) {
+				rc = vx_err_set(e, VX_EDATA, "value %llu '%s' is "
+				    "beyond the double range", (unsigned long long)
+				    (c->next + nb), vx_imp_show(buf, i - t0));
 				goto out;
 			}
 			if ((rc = ascii_store(c, v, c->tmp + nb * c->ss, buf,
