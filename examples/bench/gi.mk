@@ -6,7 +6,7 @@
 #   make -C examples/bench gi GI_PARTS=t2 RUNS=3      one part: t1, t2, acc, mem
 #   make -C examples/bench gi GI_SAMPLES=16,100       fewer sample counts
 #
-# Datasets: the MRI head (ch2, skin at 40: examples/scenes/head-gi.scn) and,
+# Datasets: the MRI head (ch2, skin at 40: examples/scenes/head-gi-sky.scn) and,
 # when $(DATA) has it, the Visible Human CT head (skin at 600.5:
 # examples/scenes/vhf-gi.scn); GI_RANGE_D is each one's --iso-range band.
 # Bakes of more than GI_MAX_PATHS paths (lazy images: GI_MAX_LAZY_PATHS)
@@ -19,7 +19,7 @@ GI_SAMPLES ?= 16,100,625
 GI_MAX_PATHS ?= 2e7
 GI_MAX_LAZY_PATHS ?= 8e7
 GI_CASES ?= ch2 $(if $(wildcard $(vhf_SRC)),vhf)
-ch2_GISCENE := ../scenes/head-gi.scn
+ch2_GISCENE := ../scenes/head-gi-sky.scn
 ch2_GIRANGE := 30,50
 vhf_GISCENE := ../scenes/vhf-gi.scn
 vhf_GIRANGE := 500,700

@@ -1,7 +1,7 @@
 #!/bin/sh
 # gi.sh: irradiance shading (Wyman et al. 2006) against its bake time: the
 # relative RMSE of the irradiance-shaded MRI head (examples/scenes/
-# head-gi.scn: sky, key light with shadows, one bounce) against the
+# head-gi-sky.scn: sky, key light with shadows, one bounce) against the
 # path-traced reference (raycast --set "illumination pathtrace" --spp
 # GI_SPP), over the pixels both cover, for samples per texel GI_SAMPLES and
 # lattice scales GI_SCALES.  Each irradiance volume is baked lazily (raycast
@@ -12,7 +12,7 @@
 # reference of a quarter of the paths.  The reference is kept in results/
 # for the next run of the same GI_SIZE and GI_SPP (make clean drops it).
 . ./common.sh
-scene=../scenes/head-gi.scn
+scene=../scenes/head-gi-sky.scn
 : "${GI_SIZE:=256x256}" "${GI_SPP:=1024}" "${GI_SAMPLES:=4 16 64 256}"
 : "${GI_SCALES:=0.5 1 2}"
 R() { raycast --scene "$scene" --size "$GI_SIZE" --hdr "$@"; }
