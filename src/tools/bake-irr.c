@@ -10,16 +10,13 @@
 #include <string.h>
 #include <unistd.h>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include "tool.h"
 #include "vx_bake.h"
 #include "vx_gi.h"
 #include "vx_grid.h"
 #include "vx_irrvol.h"
 #include "vx_macro.h"
+#include "vx_par.h"
 #include "vx_scene.h"
 
 static const char usage[] =
@@ -98,7 +95,6 @@ parse(opts *o, int argc, char **argv)
 	o->zlevel = 0;
 	o->store = VX_IRR_ACCUM;
 	vx_bake_opts_init(&o->b);
-	opterr = 0;
 	while ((ch = getopt_long(argc, argv, ":j:o:nz:", lo, NULL)) != -1) {
 		switch (ch) {
 		case O_SCENE: o->scene = optarg; break;
@@ -179,21 +175,11 @@ parse(opts *o, int argc, char **argv)
 		case 'j':
 			o->threads = tool_parse_long("-j", optarg, 0, 1024);
 			break;
-		case 'h':
-			printf("usage: %s\n", usage);
-			exit(tool_finish());
-		case ':':
-			tool_usage_fail(usage, "%s needs a value",
-			    argv[optind - 1]);
 		default:
-			tool_usage_fail(usage, "unknown option '%s'",
-			    argv[optind - 1]);
+			tool_opt_other(ch, usage, argv);
 		}
 	}
-	if (argc - optind > 1)
-		tool_usage_fail(usage, "at most one input");
-	if (argc - optind == 1)
-		o->in = argv[optind];
+	o->in = tool_opt_input(argc, argv, usage);
 	if (o->all && o->has_range)
 		tool_usage_fail(usage, "--all and --iso-range exclude each other");
 }
@@ -208,7 +194,7 @@ typedef struct progress {
 static double
 now(void)
 {
-	return omp_get_wtime();
+	return vx_par_seconds();
 }
 
 static void

@@ -12,6 +12,7 @@
 #include "tool.h"
 #include "vx_grid.h"
 #include "vx_macro.h"
+#include "vx_macroio.h"
 #include "vx_stream.h"
 #include "vx_tetimport.h"
 #include "vx_tetleaf.h"
@@ -93,56 +94,19 @@ parse_args(opts *o, int argc, char **argv)
 		o->in = argv[optind];
 }
 
-/* owner: the name a hierarchy chunk (MCEL: key "volume", TLEF: "mesh")
- * belongs to, copied into buf; NULL for an MCEL over explicit leaves (it
- * belongs to no volume).  A chunk that cannot be read or lacks its
- * required key is bad input: one line and exit 65 (keeping it would leave
- * a stream the renderers refuse; dropping it would lose data). */
-static const char *
-owner(const vx_stream *s, long i, const char *key, char *buf, size_t n)
-{
-	const unsigned char *body;
-	const char *v, *lv;
-	size_t len;
-	vx_hdr h;
-	vx_err e = { 0, "" };
-	int expl;
-
-	vx_hdr_init(&h);
-	if (vx_payload_parse(&s->chunk[i], &h, &body, &len, &e) != 0) {
-		vx_hdr_free(&h);
-		tool_fail(VX_EDATA, "chunk %.4s at %llu: %s", s->chunk[i].type,
-		    (unsigned long long)s->chunk[i].offset, e.msg);
-	}
-	v = vx_hdr_get(&h, key);
-	lv = vx_hdr_get(&h, "leaves");
-	expl = strcmp(key, "volume") == 0 && lv != NULL &&
-	    strcmp(lv, "explicit") == 0;
-	if (v == NULL && !expl) {
-		vx_hdr_free(&h);
-		tool_fail(VX_EDATA, "chunk %.4s at %llu: no '%s' key",
-		    s->chunk[i].type, (unsigned long long)s->chunk[i].offset,
-		    key);
-	}
-	if (v != NULL)
-		snprintf(buf, n, "%s", v);
-	vx_hdr_free(&h);
-	return v != NULL ? buf : NULL;
-}
-
-/* find_mcel: index of the MCEL chunk that belongs to volume `name`, or -1. */
+/* find_owned: the index of the MCEL (TLEF) chunk of volume (mesh) `name`,
+ * or -1; a chunk of the type that nobody can place is bad input: one line
+ * and exit 65 (keeping it would leave a stream the renderers refuse;
+ * dropping it would lose data). */
 static long
-find_mcel(const vx_stream *s, const char *name)
+find_owned(const vx_stream *s, const char *type, const char *name)
 {
-	char buf[256];
-	const char *v;
-	long i = -1;
+	vx_err e = { 0, "" };
+	long i;
 
-	while ((i = vx_stream_find(s, VX_CHUNK_MACRO, (size_t)(i + 1))) >= 0)
-		if ((v = owner(s, i, "volume", buf, sizeof buf)) != NULL &&
-		    strcmp(v, name) == 0)
-			return i;
-	return -1;
+	if (vx_macro_find_owned(s, type, name, &i, &e) != 0)
+		tool_fail_err(&e);
+	return i;
 }
 
 static double
@@ -196,21 +160,6 @@ print_stats(const vx_macro *m, const vx_grid *g, double tbuild, int nt)
 	fprintf(stderr, "%s: memory %zu bytes = %.3f %% of the data (%.0f "
 	    "bytes); build %.3f s with %d threads\n", tool_name, bytes,
 	    data > 0 ? 100.0 * (double)bytes / data : 0.0, data, tbuild, nt);
-}
-
-/* find_tlef: index of the TLEF chunk of mesh `name`, or -1. */
-static long
-find_tlef(const vx_stream *s, const char *name)
-{
-	char buf[256];
-	const char *v;
-	long i = -1;
-
-	while ((i = vx_stream_find(s, VX_CHUNK_TETLEAF, (size_t)(i + 1))) >= 0)
-		if ((v = owner(s, i, "mesh", buf, sizeof buf)) != NULL &&
-		    strcmp(v, name) == 0)
-			return i;
-	return -1;
 }
 
 static void
@@ -277,7 +226,7 @@ mesh_main(vx_stream *s, long idx, const opts *o, int nlev,
 	memset(&c, 0, sizeof c);
 	if (vx_tetleaf_to_chunk(&lg, &m, 0, &c, &e) != 0)
 		tool_fail_err(&e);
-	if ((old = find_tlef(s, m.name)) >= 0)
+	if ((old = find_owned(s, VX_CHUNK_TETLEAF, m.name)) >= 0)
 		vx_stream_replace(s, (size_t)old, &c);
 	else if (vx_stream_insert(s, (size_t)idx + 1, &c, &e) != 0)
 		tool_fail_err(&e);
@@ -346,7 +295,7 @@ main(int argc, char **argv)
 	memset(&c, 0, sizeof c);
 	if (vx_macro_to_chunk(&m, 0, &c, &e) != 0)
 		tool_fail_err(&e);
-	if ((old = find_mcel(&s, g.name)) >= 0)
+	if ((old = find_owned(&s, VX_CHUNK_MACRO, g.name)) >= 0)
 		vx_stream_replace(&s, (size_t)old, &c);
 	else if (vx_stream_insert(&s, (size_t)idx + 1, &c, &e) != 0)
 		tool_fail_err(&e);

@@ -6,10 +6,6 @@
 #include <string.h>
 #include <time.h>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include "tool.h"
 #include "vx_camera.h"
 #include "vx_grid.h"
@@ -161,7 +157,7 @@ main(int argc, char **argv)
 	double lo[3], hi[3], wlo, whi;
 	int nthr, i;
 	long gi = -1;
-	struct timespec t0, t1, c0, c1;
+	struct timespec c0, c1;
 
 	tool_init("mip", argc, argv);
 	parse(&o, argc, argv);
@@ -196,74 +192,21 @@ main(int argc, char **argv)
 	vx_grid_box(&g, lo, hi);
 	if (vx_camera_resolve(&s.camera, lo, hi, &e) != 0)
 		tool_fail_err(&e);
-	int w = s.camera.w, h = s.camera.h, tile = 16;
-	int ntx = (w + tile - 1) / tile, nty = (h + tile - 1) / tile;
+	int w = s.camera.w, h = s.camera.h;
+	vx_mip_opts mo;
+
 	vx_image_init(&val);
 	vx_image_init(&dep);
-	if (vx_image_alloc(&val, w, h, 1, &e) != 0 ||
-	    vx_image_alloc(&dep, w, h, 1, &e) != 0)
-		tool_fail_err(&e);
-	snprintf(val.name, sizeof val.name, "mip");
-	snprintf(dep.name, sizeof dep.name, "depth");
-	vx_mip_work *wk = calloc((size_t)nthr, sizeof *wk);
-	vx_mip_stats *mst = calloc((size_t)nthr, sizeof *mst);
-	if (wk == NULL || mst == NULL)
-		tool_fail(VX_ENOMEM, "out of memory");
-	for (i = 0; i < nthr; i++)
-		if (vx_mip_work_init(&wk[i], &m, &e) != 0)
-			tool_fail_err(&e);
-	double miss = g.has_range ? g.vmin : 0;
+	vx_mip_opts_init(&mo);
+	mo.nthreads = nthr;
+	mo.last_t = o.lastt;
+	mo.exhaustive = o.exhaustive;
 	clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c0);
-	clock_gettime(CLOCK_MONOTONIC, &t0);
-#ifdef _OPENMP
-#pragma omp parallel for num_threads(nthr) schedule(dynamic, 1)
-#endif
-	for (int ti = 0; ti < ntx * nty; ti++) {
-#ifdef _OPENMP
-		int me = omp_get_thread_num();
-#else
-		int me = 0;
-#endif
-		int x0 = (ti % ntx) * tile, y0 = (ti / ntx) * tile;
-
-		wk[me].last_t = NAN;      /* the bound starts fresh per tile */
-		for (int y = y0; y < y0 + tile && y < h; y++)
-			for (int x = x0; x < x0 + tile && x < w; x++) {
-				double ow[3], dw[3], oi[3], di[3], v, t;
-				int hit;
-
-				vx_camera_ray(&s.camera, x + 0.5, y + 0.5, ow, dw);
-				vx_world_to_index(&g, ow, oi);
-				vx_world_to_index_dir(&g, dw, di);
-				hit = o.exhaustive ?
-				    vx_mip_ray_exhaustive(&g, oi, di, 0, INFINITY, &v,
-				    &t) : vx_mip_ray(&g, &m, &wk[me], oi, di, 0,
-				    INFINITY, o.lastt, &v, &t, &mst[me]);
-				*vx_image_pixel(&val, x, y) = (float)(hit ? v : miss);
-				*vx_image_pixel(&dep, x, y) = (float)(hit ? t :
-				    INFINITY);
-			}
-	}
-	clock_gettime(CLOCK_MONOTONIC, &t1);
+	if (vx_mip_render(&s.camera, &g, &m, &mo, &val, &dep, &ms, &e) != 0)
+		tool_fail_err(&e);
 	clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c1);
-	memset(&ms, 0, sizeof ms);
-	for (i = 0; i < nthr; i++) {
-		ms.rays += mst[i].rays;
-		ms.pushes += mst[i].pushes;
-		ms.pops += mst[i].pops;
-		ms.macro_opened += mst[i].macro_opened;
-		ms.cells += mst[i].cells;
-		ms.cells_skipped += mst[i].cells_skipped;
-		ms.bound_pruned += mst[i].bound_pruned;
-		if (mst[i].max_queue > ms.max_queue)
-			ms.max_queue = mst[i].max_queue;
-		vx_mip_work_free(&wk[i]);
-	}
-	free(wk);
-	free(mst);
 	if (o.stats) {
-		double sec = (double)(t1.tv_sec - t0.tv_sec) +
-		    1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+		double sec = ms.seconds;
 		double cpu = (double)(c1.tv_sec - c0.tv_sec) +
 		    1e-9 * (double)(c1.tv_nsec - c0.tv_nsec);
 
@@ -300,10 +243,9 @@ main(int argc, char **argv)
 		vx_stream_free(&os);
 	} else {
 		vx_image disp;
-		tool_out out;
 		int nc = o.cmap == VX_COLORMAP_GRAY ? 1 : 3;
-		vx_text text[2] = { { "Software", "voxlux mip" },
-		    { "voxlux-history", tool_history_line() } };
+		size_t hl = 0;
+		const char *hist = vx_stream_history(&st, &hl);
 
 		wlo = o.has_window ? o.window[0] : g.vmin;
 		whi = o.has_window ? o.window[1] : g.vmax;
@@ -326,12 +268,8 @@ main(int argc, char **argv)
 						    (float)vx_srgb_oetf(rgb[k]);
 				}
 			}
-		tool_out_open(&out, o.out);
-		if (vx_image_png_write(&disp, out.f, o.bits, text, 2, &e) != 0) {
-			tool_out_abort(&out);
-			tool_fail_err(&e);
-		}
-		tool_out_close(&out);
+		/* display values as they are (no color-space chunk) */
+		tool_write_png(o.out, &disp, o.bits, -1, hist, hl, NULL, 0);
 		vx_image_free(&disp);
 	}
 	vx_image_free(&val);

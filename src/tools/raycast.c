@@ -15,6 +15,7 @@
 #include "vx_gi.h"
 #include "vx_irrvol.h"
 #include "vx_macro.h"
+#include "vx_macroio.h"
 #include "vx_plan.h"
 #include "vx_raycast.h"
 #include "vx_scene.h"
@@ -280,7 +281,7 @@ lazy_mark(void *ctx, int64_t i, int64_t j, int64_t k)
  * defaults): a collecting pass over the view, then the missing texels
  * baked.  Prints what it spent with --stats. */
 static void
-lazy_bake(vx_irrvol *irr, int have, const vx_scene *s, const vx_grid *g,
+lazy_bake(vx_irrvol *irr, int have, vx_scene *s, const vx_grid *g,
     const vx_macro *m, const vx_plan *plan, const vx_grid *const *tex,
     vx_raycast_opts *ro, int nthr, int stats)
 {
@@ -398,7 +399,7 @@ main(int argc, char **argv)
 	vx_err e = { 0, "" };
 	double lo[3], hi[3];
 	long gi;
-	int status, k, nthr, is_mesh = 0;
+	int k, nthr, is_mesh = 0;
 	vx_tetmesh mesh;
 	vx_tetleaf lg;
 	const char *want;
@@ -493,26 +494,10 @@ main(int argc, char **argv)
 	/* the hierarchy: from the stream, else built here; for a mesh, its
 	 * leaf grid (--flat: the leaves alone, no levels above) */
 	vx_macro_init(&m);
-	if (is_mesh) {
-		status = VX_MACRO_ABSENT;
-		if (!o.flat && vx_tetleaf_from_stream(&lg, &st, &mesh, &status,
-		    NULL, &e) != 0)
-			tool_fail_err(&e);
-		if (status != VX_MACRO_LOADED) {
-			int sizes[VX_MACRO_MAXLEV][3];
-			int nlev = o.flat ? 0 : vx_macro_default_sizes(VX_F32,
-			    VX_MACRO_DEFAULT_LEVELS, sizes);
-
-			if (!o.dry && !o.flat)
-				tool_note("%s leaf grid for mesh '%s'; built it "
-				    "(run macrocell(1) in the pipeline to keep "
-				    "it)", status == VX_MACRO_STALE ? "stale" :
-				    "no", mesh.name);
-			if (!o.dry && vx_tetleaf_build_levels(&lg, &mesh, 1, 0,
-			    nlev, (const int (*)[3])sizes, nthr, &e) != 0)
-				tool_fail_err(&e);
-		}
-	} else if (!o.flat)
+	if (is_mesh)
+		tool_tetleaf_load(&lg, &st, &mesh, o.flat ? 0 :
+		    VX_MACRO_DEFAULT_LEVELS, nthr, o.dry, o.dry);
+	else if (!o.flat)
 		tool_macro_load(&m, &st, &g, gi, nthr, o.dry);
 	if (o.dry) {
 		vx_tetleaf_free(&lg);
@@ -648,47 +633,9 @@ main(int argc, char **argv)
 		}
 		tool_write_stream(&out, o.out);
 		vx_stream_free(&out);
-	} else {
-		vx_tonemap_opts tm;
-		vx_image disp;
-		tool_out out;
-		size_t hl;
-		const char *h = vx_stream_history(&st, &hl);
-		char *hist = malloc(hl + strlen(tool_history_line()) + 2);
-		vx_text text[2];
-
-		if (hist == NULL)
-			tool_fail(VX_ENOMEM, "out of memory");
-		memcpy(hist, h ? h : "", hl);
-		strcpy(hist + hl, tool_history_line());
-		text[0].key = "Software";
-		text[0].value = "voxlux raycast";
-		text[1].key = "voxlux-history";
-		text[1].value = hist;
-		/* color is premultiplied by coverage: composite it over the
-		 * scene's background, drop the coverage */
-		vx_image rgb;
-		if (vx_image_alloc(&rgb, color.w, color.h, 3, &e) != 0)
-			tool_fail_err(&e);
-		for (size_t i = 0; i < (size_t)color.w * color.h; i++)
-			for (int c = 0; c < 3; c++)
-				rgb.px[3 * i + c] = color.px[4 * i + c] +
-				    (1 - color.px[4 * i + 3]) * (float)s.background[c];
-		vx_tonemap_defaults(&tm);
-		tm.exposure = o.exposure;
-		if (vx_tonemap_image(&disp, &rgb, &tm, NULL, &e) != 0)
-			tool_fail_err(&e);
-		vx_image_free(&rgb);
-		tool_out_open(&out, o.out);
-		if (vx_image_png_write_gamma(&disp, out.f, o.bits, 0, text, 2,
-		    &e) != 0) {
-			tool_out_abort(&out);
-			tool_fail_err(&e);
-		}
-		tool_out_close(&out);
-		vx_image_free(&disp);
-		free(hist);
-	}
+	} else
+		tool_write_png_radiance(o.out, &color, o.exposure, s.background,
+		    o.bits, &st);
 	for (k = 0; k < VX_SCENE_MAX_SURFACES; k++)
 		vx_grid_free(&texg[k]);
 	vx_image_free(&color);

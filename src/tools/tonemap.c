@@ -1,5 +1,6 @@
-/* tonemap.c: float image (stream IMAG chunk or PFM) to PNG or PFM, and
- * image comparison metrics for studies.  See tonemap(1). */
+/* tonemap.c: float image (stream IMAG chunk, PFM, Radiance HDR or
+ * OpenEXR) to PNG or PFM, and image comparison metrics for studies.  See
+ * tonemap(1). */
 #include <errno.h>
 #include <getopt.h>
 #include <math.h>
@@ -73,12 +74,10 @@ parse(opts *o, int argc, char **argv)
 	size_t len;
 
 	memset(o, 0, sizeof *o);
-	o->in = "-";
 	o->bits = 8;
 	o->peak = 1;
 	o->diff_map = VX_DIFF_ABS;
 	vx_tonemap_defaults(&o->tm);
-	opterr = 0;
 	while ((c = getopt_long(argc, argv, ":o:h", lo, NULL)) != -1) {
 		switch (c) {
 		case 'o': o->out = optarg; break;
@@ -136,20 +135,13 @@ parse(opts *o, int argc, char **argv)
 			o->peak = tool_parse_double("--peak", optarg, 1e-30, 1e30);
 			break;
 		case O_JSON: o->json = 1; break;
-		case 'h': case O_HELP:
-			printf("usage: %s\n", usage);
-			exit(tool_finish());
-		case ':':
-			tool_usage_fail(usage, "%s needs a value", argv[optind - 1]);
+		case O_HELP:
+			tool_opt_other('h', usage, argv);
 		default:
-			tool_usage_fail(usage, "unknown option '%s'",
-			    argv[optind - 1]);
+			tool_opt_other(c, usage, argv);
 		}
 	}
-	if (optind < argc)
-		o->in = argv[optind++];
-	if (optind < argc)
-		tool_usage_fail(usage, "one input at most ('%s')", argv[optind]);
+	o->in = tool_opt_input(argc, argv, usage);
 	if (ntf > 1)
 		tool_fail(VX_EUSAGE, "--srgb, --gamma and --linear exclude "
 		    "each other");
@@ -205,14 +197,15 @@ peeked_read(void *ctx, void *buf, size_t n)
 }
 
 /* load: read path ("-": stdin) as a stream (image `name`, or the first),
- * a PFM, or (when allow_png) a PNG; exits on error. */
+ * a PFM, Radiance HDR or OpenEXR file, or (when allow_png) a PNG; exits
+ * on error. */
 static void
 load(input *in, const char *path, const char *name, int allow_png)
 {
 	const char *shown = strcmp(path, "-") ? path : "<stdin>";
 	struct peeked p;
 	vx_err e = { 0, "" };
-	int rc = 0;
+	int rc = 0, linear;
 
 	memset(in, 0, sizeof *in);
 	memset(&p, 0, sizeof p);
@@ -220,7 +213,7 @@ load(input *in, const char *path, const char *name, int allow_png)
 	if (strcmp(path, "-") == 0) {
 		if (isatty(STDIN_FILENO))
 			tool_fail(VX_EUSAGE, "standard input is a terminal: pipe "
-			    "a voxlux stream or a PFM in");
+			    "a voxlux stream or an image file in");
 		p.f = stdin;
 	} else if ((p.f = fopen(path, "rb")) == NULL)
 		tool_fail(VX_ENOINPUT, "%s: %s", path, strerror(errno));
@@ -230,6 +223,8 @@ load(input *in, const char *path, const char *name, int allow_png)
 	if (p.nhead == 0)
 		tool_fail(VX_ENOINPUT, "%s: empty input", shown);
 	in->fmt = vx_image_sniff(p.head, p.nhead);
+	linear = in->fmt == VX_IMGFMT_PFM || in->fmt == VX_IMGFMT_HDR ||
+	    in->fmt == VX_IMGFMT_EXR;
 	if (in->fmt == VX_IMGFMT_STREAM) {
 		vx_stream s;
 		const char *h;
@@ -245,14 +240,13 @@ load(input *in, const char *path, const char *name, int allow_png)
 			in->history[hl] = '\0';
 		}
 		vx_stream_free(&s);
-	} else if (in->fmt == VX_IMGFMT_PFM || (allow_png &&
-	    in->fmt == VX_IMGFMT_PNG)) {
+	} else if (linear || (allow_png && in->fmt == VX_IMGFMT_PNG)) {
 		unsigned char *buf, *all;
 		size_t n;
 
-		if (name != NULL && in->fmt == VX_IMGFMT_PFM && !allow_png)
-			tool_fail(VX_EUSAGE, "%s: --name: a PFM file holds one "
-			    "unnamed image", shown);
+		if (name != NULL && linear && !allow_png)
+			tool_fail(VX_EUSAGE, "%s: --name: a %s file holds one "
+			    "unnamed image", shown, vx_image_format_name(in->fmt));
 		if ((rc = vx_file_read_all(p.f, MAX_FILE, &buf, &n, &e)) == 0) {
 			if ((all = malloc(n + p.nhead)) == NULL)
 				tool_fail(VX_ENOMEM, "out of memory");
@@ -261,8 +255,9 @@ load(input *in, const char *path, const char *name, int allow_png)
 				memcpy(all + p.nhead, buf, n);
 			free(buf);
 			n += p.nhead;
-			if (in->fmt == VX_IMGFMT_PFM)
-				rc = vx_pfm_read_mem(&in->img, all, n, &e);
+			if (linear)
+				rc = vx_image_read_linear_mem(&in->img, all, n,
+				    NULL, &e);
 			else
 				rc = vx_image_png_read_mem(&in->img, all, n,
 				    &in->bits, &e);
@@ -270,10 +265,11 @@ load(input *in, const char *path, const char *name, int allow_png)
 		}
 	} else if (in->fmt == VX_IMGFMT_PNG)
 		tool_fail(VX_EDATA, "%s: a PNG holds display values; tonemap "
-		    "reads linear images (voxlux stream or PFM)", shown);
+		    "reads linear images (voxlux stream, PFM, Radiance HDR or "
+		    "OpenEXR)", shown);
 	else
-		tool_fail(VX_EDATA, "%s: not a voxlux stream%s file", shown,
-		    allow_png ? ", PFM or PNG" : " or PFM");
+		tool_fail(VX_EDATA, "%s: not a voxlux stream, PFM, Radiance HDR%s "
+		    "file", shown, allow_png ? ", OpenEXR or PNG" : " or OpenEXR");
 	if (p.f != stdin)
 		fclose(p.f);
 	if (rc != 0) {
@@ -282,59 +278,15 @@ load(input *in, const char *path, const char *name, int allow_png)
 	}
 }
 
-/* history_text: the stream's history plus this run's line. */
-static char *
-history_text(const input *in)
-{
-	const char *line = tool_history_line();
-	size_t hl = in->history ? strlen(in->history) : 0;
-	char *t = malloc(hl + strlen(line) + 1);
-
-	if (t == NULL)
-		tool_fail(VX_ENOMEM, "out of memory");
-	memcpy(t, in->history ? in->history : "", hl);
-	strcpy(t + hl, line);
-	return t;
-}
-
 /* ---- outputs ---- */
 
+/* refuse_tty: a picture is not written to a terminal. */
 static void
-write_png(const char *path, const vx_image *img, int bits, double gamma,
-    const vx_text *text, size_t ntext)
+refuse_tty(const char *path)
 {
-	vx_err e = { 0, "" };
-	tool_out o;
-
 	if (strcmp(path, "-") == 0 && isatty(STDOUT_FILENO))
 		tool_fail(VX_EUSAGE, "standard output is a terminal: give -o "
 		    "FILE or redirect");
-	tool_out_open(&o, path);
-	if (vx_image_png_write_gamma(img, o.f, bits, gamma, text, ntext,
-	    &e) != 0) {
-		tool_out_abort(&o);
-		vx_err_push(&e, "%s", o.path);
-		tool_fail_err(&e);
-	}
-	tool_out_close(&o);
-}
-
-static void
-write_pfm(const char *path, const vx_image *img)
-{
-	vx_err e = { 0, "" };
-	tool_out o;
-
-	if (strcmp(path, "-") == 0 && isatty(STDOUT_FILENO))
-		tool_fail(VX_EUSAGE, "standard output is a terminal: give -o "
-		    "FILE or redirect");
-	tool_out_open(&o, path);
-	if (vx_pfm_write(img, o.f, &e) != 0) {
-		tool_out_abort(&o);
-		vx_err_push(&e, "%s", o.path);
-		tool_fail_err(&e);
-	}
-	tool_out_close(&o);
 }
 
 static double
@@ -422,7 +374,7 @@ typedef struct result {
 /* compare: load REF, put the image in its form, compute the metrics and
  * write the difference picture; exits on error. */
 static void
-compare(result *res, const opts *o, const input *in, const char *hist)
+compare(result *res, const opts *o, const input *in)
 {
 	input ref;
 	vx_image a, b;
@@ -472,9 +424,7 @@ compare(result *res, const opts *o, const input *in, const char *hist)
 	if (o->diff != NULL) {
 		vx_image d;
 		char sc[64];
-		vx_text text[4] = {
-			{ "Software", "voxlux " VX_VERSION },
-			{ "voxlux-history", hist },
+		vx_text text[2] = {
 			{ "voxlux-diff-map", o->diff_map == VX_DIFF_ABS ?
 			    "abs: mean |a - b| over channels, viridis from 0 to "
 			    "voxlux-diff-scale; magenta: NaN or unequal infinity" :
@@ -488,7 +438,8 @@ compare(result *res, const opts *o, const input *in, const char *hist)
 		    &e))
 			tool_fail_err(&e);
 		snprintf(sc, sizeof sc, "%.10g", res->dscale);
-		write_png(o->diff, &d, 8, 0, text, 4);
+		tool_write_png(o->diff, &d, 8, 0, in->history, in->history ?
+		    strlen(in->history) : 0, text, 2);
 		vx_image_free(&d);
 	}
 	res->w = a.w;
@@ -541,28 +492,25 @@ main(int argc, char **argv)
 	vx_image out;
 	vx_tonemap_stats st = { 0, 0, 0 };
 	result res;
-	char *hist;
 
 	tool_init("tonemap", argc, argv);
 	parse(&o, argc, argv);
 	(void)tool_threads(0);   /* the parallel loops' threads, made safely */
 	load(&in, o.in, o.name, 0);
-	hist = history_text(&in);
-	vx_text text[2] = {
-		{ "Software", "voxlux " VX_VERSION },
-		{ "voxlux-history", hist },
-	};
 	if (o.ref != NULL)
-		compare(&res, &o, &in, hist);
+		compare(&res, &o, &in);
 	if (o.ref == NULL || o.out != NULL) {
 		const char *path = o.out ? o.out : "-";
 
 		if (o.pfm) {
 			scene(&out, &in.img, &o);
-			write_pfm(path, &out);
+			refuse_tty(path);
+			tool_write_pfm(path, &out);
 		} else {
 			display(&out, &in.img, &o, o.tm.flatten, &st);
-			write_png(path, &out, o.bits, png_gamma(&o.tm), text, 2);
+			tool_write_png(path, &out, o.bits, png_gamma(&o.tm),
+			    in.history, in.history ? strlen(in.history) : 0,
+			    NULL, 0);
 			warn_repairs(&st);
 		}
 		vx_image_free(&out);
@@ -571,6 +519,5 @@ main(int argc, char **argv)
 		print_result(&res, &o);
 	vx_image_free(&in.img);
 	free(in.history);
-	free(hist);
 	return tool_finish();
 }

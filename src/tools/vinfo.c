@@ -10,7 +10,8 @@
 #include "tool.h"
 #include "vx_grid.h"
 #include "vx_image.h"
-#include "vx_macro.h"
+#include "vx_irrvol.h"
+#include "vx_macroio.h"
 #include "vx_stats.h"
 #include "vx_stream.h"
 #include "vx_tetimport.h"
@@ -75,8 +76,7 @@ parse_args(opts *o, int argc, char **argv)
 
 	memset(o, 0, sizeof *o);
 	o->bins = 16;
-	o->in = "-";
-	while ((ch = getopt_long(argc, argv, "", lo, NULL)) != -1) {
+	while ((ch = getopt_long(argc, argv, ":", lo, NULL)) != -1) {
 		switch (ch) {
 		case 'j':
 			o->json = 1;
@@ -88,18 +88,11 @@ parse_args(opts *o, int argc, char **argv)
 		case 'c':
 			o->chunks_only = 1;
 			break;
-		case 'h':
-			printf("usage: %s\n", usage);
-			exit(tool_finish());
 		default:
-			tool_usage_fail(usage, "option '%s' is unknown or lacks its value",
-			    argv[optind - 1]);
+			tool_opt_other(ch, usage, argv);
 		}
 	}
-	if (argc - optind > 1)
-		tool_usage_fail(usage, "at most one input");
-	if (argc - optind == 1)
-		o->in = argv[optind];
+	o->in = tool_opt_input(argc, argv, usage);
 }
 
 /* ---- text output helpers ---- */
@@ -366,23 +359,45 @@ decode_mcel(const vx_stream *s, const vx_chunk *c, mcel_info *mi, vx_err *e)
 	return 0;
 }
 
+/* text_levels, json_levels: a hierarchy's levels above its leaves and its
+ * root range (macrocells and leaf grids alike). */
 static void
-text_mcel(const mcel_info *mi)
+text_levels(const vx_macro *mc)
 {
 	int l;
 
+	for (l = 1; l <= mc->nlev; l++)
+		printf("    level %d: %dx%dx%d of level %d, %lld x %lld x %lld "
+		    "cells\n", l, mc->size[l][0], mc->size[l][1],
+		    mc->size[l][2], l - 1, (long long)mc->dims[l][0],
+		    (long long)mc->dims[l][1], (long long)mc->dims[l][2]);
+	printf("    root range: %.9g %.9g\n", (double)mc->root[0],
+	    (double)mc->root[1]);
+}
+
+static void
+json_levels(const vx_macro *mc)
+{
+	double r[2] = { mc->root[0], mc->root[1] };
+	int l;
+
+	printf("\"sizes\":[");
+	for (l = 1; l <= mc->nlev; l++)
+		printf("%s[%d,%d,%d]", l > 1 ? "," : "", mc->size[l][0],
+		    mc->size[l][1], mc->size[l][2]);
+	printf("],\"root\":");
+	json_nums(r, 2);
+}
+
+static void
+text_mcel(const mcel_info *mi)
+{
 	printf("  macrocells: %d level%s over %lld x %lld x %lld %s leaves\n",
 	    mi->m.nlev, mi->m.nlev == 1 ? "" : "s",
 	    (long long)mi->m.dims[0][0], (long long)mi->m.dims[0][1],
 	    (long long)mi->m.dims[0][2],
 	    mi->m.explicit_leaves ? "explicit" : "cell");
-	for (l = 1; l <= mi->m.nlev; l++)
-		printf("    level %d: %dx%dx%d of level %d, %lld x %lld x %lld "
-		    "cells\n", l, mi->m.size[l][0], mi->m.size[l][1],
-		    mi->m.size[l][2], l - 1, (long long)mi->m.dims[l][0],
-		    (long long)mi->m.dims[l][1], (long long)mi->m.dims[l][2]);
-	printf("    root range: %.9g %.9g\n", (double)mi->m.root[0],
-	    (double)mi->m.root[1]);
+	text_levels(&mi->m);
 	if (!mi->m.explicit_leaves) {
 		printf("    volume: ");
 		put_str(mi->m.name);
@@ -393,19 +408,12 @@ text_mcel(const mcel_info *mi)
 static void
 json_mcel(const mcel_info *mi)
 {
-	double r[2] = { mi->m.root[0], mi->m.root[1] };
-	int l;
-
 	printf(",\"macrocells\":{\"levels\":%d,\"leaf_dims\":[%lld,%lld,%lld],"
-	    "\"explicit\":%s,\"sizes\":[", mi->m.nlev,
+	    "\"explicit\":%s,", mi->m.nlev,
 	    (long long)mi->m.dims[0][0], (long long)mi->m.dims[0][1],
 	    (long long)mi->m.dims[0][2],
 	    mi->m.explicit_leaves ? "true" : "false");
-	for (l = 1; l <= mi->m.nlev; l++)
-		printf("%s[%d,%d,%d]", l > 1 ? "," : "", mi->m.size[l][0],
-		    mi->m.size[l][1], mi->m.size[l][2]);
-	printf("],\"root\":");
-	json_nums(r, 2);
+	json_levels(&mi->m);
 	if (!mi->m.explicit_leaves) {
 		printf(",\"volume\":");
 		json_str(mi->m.name);
@@ -491,7 +499,6 @@ text_tlef(const tlef_info *ti)
 {
 	const vx_macro *mc = &ti->lg.mc;
 	double nt = ti->id.ntet ? (double)ti->id.ntet : 1;
-	int l;
 
 	printf("  leaf grid: %lld x %lld x %lld leaves, %lu list entries "
 	    "(%.2f per tet), %d level%s\n", (long long)ti->lg.dims[0],
@@ -499,13 +506,7 @@ text_tlef(const tlef_info *ti)
 	    (unsigned long)ti->lg.off[ti->lg.nleaf],
 	    (double)ti->lg.off[ti->lg.nleaf] / nt, mc->nlev,
 	    mc->nlev == 1 ? "" : "s");
-	for (l = 1; l <= mc->nlev; l++)
-		printf("    level %d: %dx%dx%d of level %d, %lld x %lld x %lld "
-		    "cells\n", l, mc->size[l][0], mc->size[l][1],
-		    mc->size[l][2], l - 1, (long long)mc->dims[l][0],
-		    (long long)mc->dims[l][1], (long long)mc->dims[l][2]);
-	printf("    root range: %.9g %.9g\n", (double)mc->root[0],
-	    (double)mc->root[1]);
+	text_levels(mc);
 	printf("    memory: %zu bytes (%.1f per tet)\n",
 	    vx_tetleaf_bytes(&ti->lg), (double)vx_tetleaf_bytes(&ti->lg) / nt);
 	printf("    mesh: ");
@@ -517,23 +518,373 @@ static void
 json_tlef(const tlef_info *ti)
 {
 	const vx_macro *mc = &ti->lg.mc;
-	double r[2] = { mc->root[0], mc->root[1] };
-	int l;
 
 	printf(",\"leaf_grid\":{\"leaf_dims\":[%lld,%lld,%lld],\"entries\":%lu,"
-	    "\"levels\":%d,\"sizes\":[", (long long)ti->lg.dims[0],
+	    "\"levels\":%d,", (long long)ti->lg.dims[0],
 	    (long long)ti->lg.dims[1], (long long)ti->lg.dims[2],
 	    (unsigned long)ti->lg.off[ti->lg.nleaf], mc->nlev);
-	for (l = 1; l <= mc->nlev; l++)
-		printf("%s[%d,%d,%d]", l > 1 ? "," : "", mc->size[l][0],
-		    mc->size[l][1], mc->size[l][2]);
-	printf("],\"root\":");
-	json_nums(r, 2);
+	json_levels(mc);
 	printf(",\"bytes\":%zu,\"mesh\":", vx_tetleaf_bytes(&ti->lg));
 	json_str(ti->id.mesh);
 	printf(",\"status\":");
 	json_str(ti->status);
 	putchar('}');
+}
+
+/* What vinfo learned about an irradiance volume: the lattice, the volume
+ * it belongs to (for the lattice's world spacing) and counts over the
+ * texels of its stored bricks. */
+typedef struct irrv_info {
+	vx_irrvol v;
+	const char *status;     /* "matches", "stale" or "no such volume" */
+	int has_world;          /* the volume is in the stream */
+	double spacing[3];      /* world distance between texels per axis */
+	double origin[3];       /* world position of texel (0,0,0) */
+	uint64_t lattice;       /* texels of the lattice */
+	uint64_t bricks;        /* bricks of the lattice, stored or not */
+	uint64_t stored;        /* texels inside the lattice in stored bricks */
+	uint64_t wanted, baked, usable, flat, nan, overflow, border;
+	uint64_t smin, smax;    /* samples per baked texel (accum) */
+	double samples;         /* samples over all texels (accum) */
+	double emin[3], emax[3], emean[3];   /* over usable texels */
+} irrv_info;
+
+/* irrv_usable: texel s is wanted, holds an irradiance and is neither flat
+ * nor NaN (a final store keeps no count: wanted is the test there). */
+static int
+irrv_usable(const vx_irrvol *v, int64_t s)
+{
+	return (v->flags[s] & VX_TEXEL_WANTED) && vx_irr_usable(v, s);
+}
+
+static void
+irrv_count(irrv_info *ii)
+{
+	const vx_irrvol *v = &ii->v;
+	double sum[3] = { 0, 0, 0 };
+	uint64_t b;
+	int64_t i, j, k;
+	int c;
+
+	ii->lattice = (uint64_t)v->dims[0] * (uint64_t)v->dims[1] *
+	    (uint64_t)v->dims[2];
+	ii->bricks = (uint64_t)v->bdims[0] * (uint64_t)v->bdims[1] *
+	    (uint64_t)v->bdims[2];
+	for (c = 0; c < 3; c++) {
+		ii->emin[c] = INFINITY;
+		ii->emax[c] = -INFINITY;
+	}
+	ii->smin = UINT64_MAX;
+	/* stored bricks only: a sparse bake of a huge lattice is quick */
+	for (b = 0; b < ii->bricks; b++) {
+		int64_t b0[3];
+
+		if (v->slot[b] == 0)
+			continue;
+		b0[0] = (int64_t)(b % (uint64_t)v->bdims[0]) * VX_IRR_BRICK;
+		b0[1] = (int64_t)(b / (uint64_t)v->bdims[0] %
+		    (uint64_t)v->bdims[1]) * VX_IRR_BRICK;
+		b0[2] = (int64_t)(b / (uint64_t)v->bdims[0] /
+		    (uint64_t)v->bdims[1]) * VX_IRR_BRICK;
+		for (k = b0[2]; k < b0[2] + VX_IRR_BRICK; k++)
+		    for (j = b0[1]; j < b0[1] + VX_IRR_BRICK; j++)
+			for (i = b0[0]; i < b0[0] + VX_IRR_BRICK; i++) {
+				int64_t s = vx_irr_texel(v, i, j, k);
+				uint32_t f;
+				double e[3];
+
+				if (s < 0)     /* past the lattice's edge */
+					continue;
+				f = v->flags[s];
+				ii->stored++;
+				ii->wanted += (f & VX_TEXEL_WANTED) != 0;
+				ii->flat += (f & VX_TEXEL_FLAT) != 0;
+				ii->nan += (f & VX_TEXEL_NAN) != 0;
+				ii->overflow += (f & VX_TEXEL_OVERFLOW) != 0;
+				ii->border += (f & VX_TEXEL_BORDER) != 0;
+				if (v->store == VX_IRR_ACCUM) {
+					uint32_t n = v->acc[s].count;
+
+					if (n > 0) {
+						ii->baked++;
+						ii->samples += n;
+						if (n < ii->smin)
+							ii->smin = n;
+						if (n > ii->smax)
+							ii->smax = n;
+					}
+				} else if ((f & VX_TEXEL_WANTED) &&
+				    !(f & (VX_TEXEL_FLAT | VX_TEXEL_NAN)))
+					ii->baked++;
+				if (!irrv_usable(v, s))
+					continue;
+				ii->usable++;
+				if (v->store == VX_IRR_ACCUM)
+					vx_irr_acc_mean(&v->acc[s], v->fixed, e);
+				else
+					for (c = 0; c < 3; c++)
+						e[c] = v->mean[3 * s + c];
+				for (c = 0; c < 3; c++) {
+					sum[c] += e[c];
+					if (e[c] < ii->emin[c])
+						ii->emin[c] = e[c];
+					if (e[c] > ii->emax[c])
+						ii->emax[c] = e[c];
+				}
+			}
+	}
+	for (c = 0; c < 3; c++)
+		if (ii->usable > 0)
+			ii->emean[c] = sum[c] / (double)ii->usable;
+		else
+			ii->emin[c] = ii->emax[c] = ii->emean[c] = NAN;
+	if (ii->baked == 0 || v->store != VX_IRR_ACCUM)
+		ii->smin = 0;
+}
+
+static int
+decode_irrv(const vx_stream *s, const vx_chunk *c, irrv_info *ii, vx_err *e)
+{
+	vx_grid g;
+	vx_err ge = { 0, "" };
+	int rc, a;
+
+	memset(ii, 0, sizeof *ii);
+	if ((rc = vx_irr_from_chunk(&ii->v, c, e)) != 0)
+		return rc;
+	irrv_count(ii);
+	if (vx_grid_view_stream(&g, s, ii->v.volume, NULL, &ge) != 0) {
+		ii->status = "no such volume";
+		return 0;
+	}
+	ii->status = g.dims[0] == ii->v.vdims[0] &&
+	    g.dims[1] == ii->v.vdims[1] && g.dims[2] == ii->v.vdims[2] &&
+	    vx_macro_grid_crc(&g) == ii->v.vcrc ? "matches" : "stale";
+	ii->has_world = 1;
+	for (a = 0; a < 3; a++) {
+		ii->spacing[a] = ii->v.step[a] * g.spacing[a];
+		ii->origin[a] = g.origin[a];
+	}
+	vx_grid_free(&g);
+	return 0;
+}
+
+static double
+pct(uint64_t a, uint64_t b)
+{
+	return b ? 100.0 * (double)a / (double)b : 0;
+}
+
+static void
+text_irrv(const irrv_info *ii)
+{
+	const vx_irrvol *v = &ii->v;
+	static const char rgb[] = "RGB";
+	int c;
+
+	printf("  irradiance volume: of ");
+	put_str(v->volume);
+	printf(" (%s)\n", ii->status);
+	printf("    lattice: %lld x %lld x %lld texels (%llu) at scale %.9g, "
+	    "%.9g %.9g %.9g samples apart\n", (long long)v->dims[0],
+	    (long long)v->dims[1], (long long)v->dims[2],
+	    (unsigned long long)ii->lattice, v->scale, v->step[0], v->step[1],
+	    v->step[2]);
+	if (ii->has_world)
+		printf("    world spacing: %.17g %.17g %.17g, origin %.17g %.17g "
+		    "%.17g\n", ii->spacing[0], ii->spacing[1], ii->spacing[2],
+		    ii->origin[0], ii->origin[1], ii->origin[2]);
+	else
+		printf("    world spacing: unknown (the volume is not in the "
+		    "stream)\n");
+	printf("    store: %s, %zu bytes a texel", vx_irr_store_name(v->store),
+	    vx_irr_texel_bytes(v->store));
+	if (v->store == VX_IRR_ACCUM)
+		printf(", %d fraction bits\n", v->fixed);
+	else
+		printf(" (final: no counts, not resumable)\n");
+	printf("    bricks: %zu of %llu stored (%.1f%%), %llu texels of the "
+	    "lattice in them\n", v->nslot, (unsigned long long)ii->bricks,
+	    pct(v->nslot, ii->bricks), (unsigned long long)ii->stored);
+	printf("    texels: %llu wanted, %llu baked, %llu usable, %llu flat, "
+	    "%llu NaN, %llu overflow, %llu at the border\n",
+	    (unsigned long long)ii->wanted, (unsigned long long)ii->baked,
+	    (unsigned long long)ii->usable, (unsigned long long)ii->flat,
+	    (unsigned long long)ii->nan, (unsigned long long)ii->overflow,
+	    (unsigned long long)ii->border);
+	if (v->store == VX_IRR_ACCUM)
+		printf("    samples per baked texel: %llu to %llu, %.17g in all "
+		    "(from sample %u; the bake asked %u)\n",
+		    (unsigned long long)ii->smin,
+		    (unsigned long long)ii->smax, ii->samples, v->first,
+		    v->samples);
+	else
+		printf("    samples per texel: not kept (the bake asked %u)\n",
+		    v->samples);
+	if (ii->usable > 0) {
+		printf("    irradiance over the %llu usable texels:\n",
+		    (unsigned long long)ii->usable);
+		for (c = 0; c < 3; c++)
+			printf("      %c: min %.9g max %.9g mean %.9g\n", rgb[c],
+			    ii->emin[c], ii->emax[c], ii->emean[c]);
+	} else
+		printf("    irradiance: no usable texel\n");
+	printf("    memory: %zu bytes\n", vx_irr_bytes(v));
+	printf("    bake: key %s, offset %.9g voxels, seed %llu, lit side "
+	    "%s\n", v->key, v->offset, (unsigned long long)v->seed,
+	    v->high ? "high" : "low");
+	printf("    settings: ");
+	put_str(v->settings);
+	putchar('\n');
+}
+
+static void
+json_irrv(const irrv_info *ii)
+{
+	const vx_irrvol *v = &ii->v;
+
+	printf(",\"irradiance\":{\"volume\":");
+	json_str(v->volume);
+	printf(",\"status\":");
+	json_str(ii->status);
+	printf(",\"lattice_dims\":[%lld,%lld,%lld],\"scale\":",
+	    (long long)v->dims[0], (long long)v->dims[1],
+	    (long long)v->dims[2]);
+	json_num(v->scale);
+	printf(",\"step\":");
+	json_nums(v->step, 3);
+	printf(",\"spacing\":");
+	if (ii->has_world)
+		json_nums(ii->spacing, 3);
+	else
+		fputs("null", stdout);
+	printf(",\"origin\":");
+	if (ii->has_world)
+		json_nums(ii->origin, 3);
+	else
+		fputs("null", stdout);
+	printf(",\"store\":\"%s\",\"texel_bytes\":%zu,\"fixed\":",
+	    vx_irr_store_name(v->store), vx_irr_texel_bytes(v->store));
+	if (v->store == VX_IRR_ACCUM)
+		printf("%d", v->fixed);
+	else
+		fputs("null", stdout);
+	printf(",\"bricks\":%zu,\"bricks_total\":%llu,\"texels\":%llu,"
+	    "\"stored\":%llu,\"wanted\":%llu,\"baked\":%llu,\"usable\":%llu,"
+	    "\"flat\":%llu,\"nan\":%llu,\"overflow\":%llu,\"border\":%llu",
+	    v->nslot, (unsigned long long)ii->bricks,
+	    (unsigned long long)ii->lattice, (unsigned long long)ii->stored,
+	    (unsigned long long)ii->wanted, (unsigned long long)ii->baked,
+	    (unsigned long long)ii->usable, (unsigned long long)ii->flat,
+	    (unsigned long long)ii->nan, (unsigned long long)ii->overflow,
+	    (unsigned long long)ii->border);
+	if (v->store == VX_IRR_ACCUM)
+		printf(",\"samples_min\":%llu,\"samples_max\":%llu,"
+		    "\"samples_total\":%.17g", (unsigned long long)ii->smin,
+		    (unsigned long long)ii->smax, ii->samples);
+	else
+		printf(",\"samples_min\":null,\"samples_max\":null,"
+		    "\"samples_total\":null");
+	printf(",\"first_sample\":%u,\"samples_asked\":%u,\"e_min\":",
+	    v->first, v->samples);
+	json_nums(ii->emin, 3);
+	printf(",\"e_max\":");
+	json_nums(ii->emax, 3);
+	printf(",\"e_mean\":");
+	json_nums(ii->emean, 3);
+	printf(",\"bytes\":%zu,\"key\":", vx_irr_bytes(v));
+	json_str(v->key);
+	printf(",\"offset\":");
+	json_num(v->offset);
+	printf(",\"seed\":%llu,\"side\":\"%s\",\"settings\":",
+	    (unsigned long long)v->seed, v->high ? "high" : "low");
+	json_str(v->settings);
+	putchar('}');
+}
+
+/* What vinfo decoded of a content chunk, for either report. */
+enum { K_OTHER, K_VOLUME, K_IMAGE, K_SCENE, K_MCEL, K_TETM, K_TLEF,
+    K_IRRV };
+
+typedef struct content {
+	int kind;
+	vol_info v;
+	img_info m;
+	unsigned char *text;    /* K_SCENE: NULL when the chunk has none */
+	size_t ntext;
+	mcel_info mi;
+	vx_tetmesh tm;
+	tlef_info ti;
+	irrv_info ii;
+} content;
+
+/* decode_content: the payload of c as its type says (K_OTHER: nothing to
+ * decode beyond the header); 0 or the decoder's error.  d is freed by
+ * free_content either way. */
+static int
+decode_content(const vx_stream *s, const vx_chunk *c, const opts *o,
+    content *d, vx_err *e)
+{
+	memset(d, 0, sizeof *d);
+	vx_tetmesh_init(&d->tm);
+	if (memcmp(c->type, VX_CHUNK_VOLUME, 4) == 0) {
+		d->kind = K_VOLUME;
+		return decode_volume(c, o, &d->v, e);
+	}
+	if (memcmp(c->type, VX_CHUNK_IMAGE, 4) == 0) {
+		d->kind = K_IMAGE;
+		return decode_image(c, &d->m, e);
+	}
+	if (memcmp(c->type, VX_CHUNK_SCENE, 4) == 0) {
+		d->kind = K_SCENE;
+		return decode_text_body(c, &d->text, &d->ntext, e);
+	}
+	if (memcmp(c->type, VX_CHUNK_MACRO, 4) == 0) {
+		d->kind = K_MCEL;
+		return decode_mcel(s, c, &d->mi, e);
+	}
+	if (memcmp(c->type, VX_CHUNK_TETMESH, 4) == 0) {
+		d->kind = K_TETM;
+		return vx_tetmesh_from_chunk(&d->tm, c, e);
+	}
+	if (memcmp(c->type, VX_CHUNK_TETLEAF, 4) == 0) {
+		d->kind = K_TLEF;
+		return decode_tlef(s, c, &d->ti, e);
+	}
+	if (memcmp(c->type, VX_CHUNK_IRRAD, 4) == 0) {
+		d->kind = K_IRRV;
+		return decode_irrv(s, c, &d->ii, e);
+	}
+	return 0;
+}
+
+static void
+free_content(content *d)
+{
+	switch (d->kind) {
+	case K_VOLUME: free_volume(&d->v); break;
+	case K_IMAGE: vx_image_free(&d->m.img); break;
+	case K_SCENE: free(d->text); break;
+	case K_MCEL: vx_macro_free(&d->mi.m); break;
+	case K_TETM: vx_tetmesh_free(&d->tm); break;
+	case K_TLEF: vx_tetleaf_free(&d->ti.lg); break;
+	case K_IRRV: vx_irr_free(&d->ii.v); break;
+	default: break;
+	}
+}
+
+/* check_range: a volume whose header's range is not its samples' is an
+ * error of the stream (reported after the chunk). */
+static void
+check_range(const vx_chunk *c, const content *d)
+{
+	vx_err e = { 0, "" };
+
+	if (d->kind == K_VOLUME && !d->v.agrees) {
+		vx_err_set(&e, VX_EDATA, "volume: the header's range differs "
+		    "from the samples'");
+		chunk_error(c, &e);
+	}
 }
 
 /* ---- text report ---- */
@@ -644,6 +995,7 @@ static void
 text_chunk(const vx_stream *s, size_t idx, const vx_chunk *c, const opts *o)
 {
 	vx_err e = { 0, "" };
+	content d;
 	int rc;
 
 	printf("chunk %zu: %s at %llu, length %zu, %s, %s\n", idx, c->type,
@@ -684,70 +1036,29 @@ text_chunk(const vx_stream *s, size_t idx, const vx_chunk *c, const opts *o)
 		}
 		vx_hdr_free(&h);
 	}
-	if (memcmp(c->type, VX_CHUNK_VOLUME, 4) == 0) {
-		vol_info v;
-
-		if ((rc = decode_volume(c, o, &v, &e)) != 0) {
-			printf("  error: %s\n", e.msg);
-			chunk_error(c, &e);
-		} else {
-			text_volume(&v, o->bins);
-			if (!v.agrees) {
-				vx_err_set(&e, VX_EDATA, "volume: the header's "
-				    "range differs from the samples'");
-				chunk_error(c, &e);
-			}
-		}
-		free_volume(&v);
-	} else if (memcmp(c->type, VX_CHUNK_IMAGE, 4) == 0) {
-		img_info m;
-
-		if ((rc = decode_image(c, &m, &e)) != 0) {
-			printf("  error: %s\n", e.msg);
-			chunk_error(c, &e);
-		} else
-			text_image(&m);
-		vx_image_free(&m.img);
-	} else if (memcmp(c->type, VX_CHUNK_SCENE, 4) == 0) {
-		unsigned char *text;
-		size_t n;
-
-		if ((rc = decode_text_body(c, &text, &n, &e)) != 0) {
-			printf("  error: %s\n", e.msg);
-			chunk_error(c, &e);
-		} else if (text != NULL) {
-			printf("  scene:\n");
-			text_lines(text, n, "    ");
-		}
-		free(text);
-	} else if (memcmp(c->type, VX_CHUNK_MACRO, 4) == 0) {
-		mcel_info mi;
-
-		if ((rc = decode_mcel(s, c, &mi, &e)) != 0) {
-			printf("  error: %s\n", e.msg);
-			chunk_error(c, &e);
-		} else
-			text_mcel(&mi);
-		vx_macro_free(&mi.m);
-	} else if (memcmp(c->type, VX_CHUNK_TETMESH, 4) == 0) {
-		vx_tetmesh m;
-
-		if ((rc = vx_tetmesh_from_chunk(&m, c, &e)) != 0) {
-			printf("  error: %s\n", e.msg);
-			chunk_error(c, &e);
-		} else
-			text_tetm(&m);
-		vx_tetmesh_free(&m);
-	} else if (memcmp(c->type, VX_CHUNK_TETLEAF, 4) == 0) {
-		tlef_info ti;
-
-		if ((rc = decode_tlef(s, c, &ti, &e)) != 0) {
-			printf("  error: %s\n", e.msg);
-			chunk_error(c, &e);
-		} else
-			text_tlef(&ti);
-		vx_tetleaf_free(&ti.lg);
+	if (decode_content(s, c, o, &d, &e) != 0) {
+		printf("  error: %s\n", e.msg);
+		chunk_error(c, &e);
+		free_content(&d);
+		return;
 	}
+	switch (d.kind) {
+	case K_VOLUME: text_volume(&d.v, o->bins); break;
+	case K_IMAGE: text_image(&d.m); break;
+	case K_SCENE:
+		if (d.text != NULL) {
+			printf("  scene:\n");
+			text_lines(d.text, d.ntext, "    ");
+		}
+		break;
+	case K_MCEL: text_mcel(&d.mi); break;
+	case K_TETM: text_tetm(&d.tm); break;
+	case K_TLEF: text_tlef(&d.ti); break;
+	case K_IRRV: text_irrv(&d.ii); break;
+	default: break;
+	}
+	check_range(c, &d);
+	free_content(&d);
 }
 
 /* ---- JSON report ---- */
@@ -851,6 +1162,7 @@ static void
 json_chunk(const vx_stream *s, size_t idx, const vx_chunk *c, const opts *o)
 {
 	vx_err e = { 0, "" };
+	content d;
 
 	printf("%s{\"index\":%zu,\"type\":", idx ? "," : "", idx);
 	json_text((const unsigned char *)c->type, 4);
@@ -894,64 +1206,28 @@ json_chunk(const vx_stream *s, size_t idx, const vx_chunk *c, const opts *o)
 		putchar('}');
 		vx_hdr_free(&h);
 	}
-	if (memcmp(c->type, VX_CHUNK_VOLUME, 4) == 0) {
-		vol_info v;
-
-		if (decode_volume(c, o, &v, &e) != 0)
-			json_error(c, &e);
-		else {
-			json_volume(&v, o->bins);
-			if (!v.agrees) {
-				vx_err_set(&e, VX_EDATA, "volume: the header's "
-				    "range differs from the samples'");
-				chunk_error(c, &e);
-			}
-		}
-		free_volume(&v);
-	} else if (memcmp(c->type, VX_CHUNK_IMAGE, 4) == 0) {
-		img_info m;
-
-		if (decode_image(c, &m, &e) != 0)
-			json_error(c, &e);
-		else
-			json_image(&m);
-		vx_image_free(&m.img);
-	} else if (memcmp(c->type, VX_CHUNK_SCENE, 4) == 0) {
-		unsigned char *text;
-		size_t n;
-
-		if (decode_text_body(c, &text, &n, &e) != 0)
-			json_error(c, &e);
-		else if (text != NULL) {
-			printf(",\"text\":");
-			json_text(text, n);
-		}
-		free(text);
-	} else if (memcmp(c->type, VX_CHUNK_MACRO, 4) == 0) {
-		mcel_info mi;
-
-		if (decode_mcel(s, c, &mi, &e) != 0)
-			json_error(c, &e);
-		else
-			json_mcel(&mi);
-		vx_macro_free(&mi.m);
-	} else if (memcmp(c->type, VX_CHUNK_TETMESH, 4) == 0) {
-		vx_tetmesh m;
-
-		if (vx_tetmesh_from_chunk(&m, c, &e) != 0)
-			json_error(c, &e);
-		else
-			json_tetm(&m);
-		vx_tetmesh_free(&m);
-	} else if (memcmp(c->type, VX_CHUNK_TETLEAF, 4) == 0) {
-		tlef_info ti;
-
-		if (decode_tlef(s, c, &ti, &e) != 0)
-			json_error(c, &e);
-		else
-			json_tlef(&ti);
-		vx_tetleaf_free(&ti.lg);
+	if (decode_content(s, c, o, &d, &e) != 0) {
+		json_error(c, &e);
+		free_content(&d);
+		goto done;
 	}
+	switch (d.kind) {
+	case K_VOLUME: json_volume(&d.v, o->bins); break;
+	case K_IMAGE: json_image(&d.m); break;
+	case K_SCENE:
+		if (d.text != NULL) {
+			printf(",\"text\":");
+			json_text(d.text, d.ntext);
+		}
+		break;
+	case K_MCEL: json_mcel(&d.mi); break;
+	case K_TETM: json_tetm(&d.tm); break;
+	case K_TLEF: json_tlef(&d.ti); break;
+	case K_IRRV: json_irrv(&d.ii); break;
+	default: break;
+	}
+	check_range(c, &d);
+	free_content(&d);
 done:
 	putchar('}');
 }

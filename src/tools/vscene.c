@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "tool.h"
+#include "vx_env.h"
 #include "vx_scene.h"
 
 static const char usage[] =
@@ -28,7 +29,7 @@ main(int argc, char **argv)
 		{ "print", 0, 0, O_PRINT }, { "remove", 0, 0, O_REMOVE },
 		{ "output", 1, 0, 'o' }, { "help", 0, 0, 'h' }, { 0, 0, 0, 0 }
 	};
-	const char *in = "-", *out = "-", *file = NULL;
+	const char *in, *out = "-", *file = NULL;
 	const char *set_name[64], *set_val[64];
 	int nset = 0, print = 0, remove = 0, c, li;
 	vx_stream st;
@@ -37,12 +38,9 @@ main(int argc, char **argv)
 	long idx;
 
 	tool_init("vscene", argc, argv);
-	while ((c = getopt_long(argc, argv, "o:h", lo, &li)) != -1) {
+	while ((c = getopt_long(argc, argv, ":o:h", lo, &li)) != -1) {
 		switch (c) {
 		case 'o': out = optarg; break;
-		case 'h':
-			printf("usage: %s\n", usage);
-			return 0;
 		case O_SCENE: file = optarg; break;
 		case O_PRINT: print = 1; break;
 		case O_REMOVE: remove = 1; break;
@@ -54,14 +52,10 @@ main(int argc, char **argv)
 			set_val[nset++] = optarg;
 			break;
 		default:
-			tool_usage_fail(usage, "option '%s' is unknown or lacks its value",
-			    argv[optind - 1]);
+			tool_opt_other(c, usage, argv);
 		}
 	}
-	if (optind < argc)
-		in = argv[optind++];
-	if (optind < argc)
-		tool_usage_fail(usage, "too many arguments");
+	in = tool_opt_input(argc, argv, usage);
 	if (remove && (file != NULL || nset > 0))
 		tool_usage_fail(usage, "--remove takes no scene options");
 	vx_stream_init(&st);
@@ -75,6 +69,9 @@ main(int argc, char **argv)
 	}
 	/* the base: the file, else the stream's scene, else the defaults */
 	tool_scene_load(&s, file, &st, nset, set_name, set_val);
+	/* environment maps: read, their content hashes recorded or checked */
+	if (vx_env_scene_resolve(&s, &e) != 0)
+		tool_fail_err(&e);
 	if (print) {
 		char *text;
 		size_t n;

@@ -88,8 +88,29 @@ check "explain: no compositing for one opaque surface" grep -q 'off .*transparen
 raycast --iso 0.5 --light "directional direction 0 0 -1 shadows on" -n "$T/sph.vx" 2>"$T/ex"
 check "explain: shadow rays for a shadow-casting light" grep -q 'on .*shadows' "$T/ex"
 
-# 6. the PNG says how it was made
-check "PNG carries the history" grep -a -q 'vread 0.1.0 --synth sphere' "$T/s.png"
+# 6. the PNG says how it was made: the whole history, the input's lines
+# and then this run's
+check_eq "PNG carries the history" "$(px pngtext "$T/s.png" voxlux-history)" \
+    "$(printf 'vread 0.1.0 --synth sphere --size 48\nraycast 0.1.0 --iso 0.5 --size 65x65 --set %s --depth %s %s' \
+    "$cam" "$T/d.pfm" "$T/sph.vx")"
+
+# 6b. one compositing rule: raycast's PNG is what tonemap makes of the
+# --hdr stream with the same exposure and background, pixel for pixel
+# (transparent layers and 2x2 samples: partly covered pixels), and the
+# background is a display color composited after the exposure, which does
+# not brighten it: a background pixel holds the sRGB codes of 0.2 0.3 0.4
+# (oracle: the IEC 61966-2-1 curve, evaluated here)
+layers() {
+	raycast --iso 0.3,0.6 --set "surface iso 0.6 opacity 0.4" --aa 2 \
+	    --size 40x30 --view 30,20 --background 0.2,0.3,0.4 "$@" "$T/sph.vx"
+}
+layers --exposure 2 > "$T/e.png"
+layers --hdr | tonemap --exposure 2 --background 0.2,0.3,0.4 > "$T/e2.png"
+check_eq "raycast PNG = raycast --hdr | tonemap, exposure and background" \
+    "$(px pngsame "$T/e.png" "$T/e2.png")" same
+check_eq "the background is not brightened by the exposure" \
+    "$(px pngpx "$T/e.png" 0 0 0) $(px pngpx "$T/e.png" 0 0 1) $(px pngpx "$T/e.png" 0 0 2)" \
+    "$(python3 -c 'print(*[int(255 * (1.055 * v ** (1 / 2.4) - 0.055) + 0.5) for v in (0.2, 0.3, 0.4)])')"
 
 # 7. errors: one line, documented codes
 expect_fail "no surface: usage" 64 "no surface" raycast "$T/sph.vx"
@@ -113,6 +134,11 @@ check_eq "mip: queue = exhaustive at the centre" "$(px img "$T/m4.vx" mip 32 32 
 mip --size 65x65 --stats "$T/sph.vx" 2>"$T/mst" >/dev/null
 check "mip: stats report queue work" grep -q 'queue pushes [0-9]*, pops [0-9]*' "$T/mst"
 check "mip: stats report wall and CPU time" grep -q ' [0-9.]* s (cpu [0-9.]* s)$' "$T/mst"
+# mip's PNG carries the whole history: the input's lines, then its own
+mip --size 33x33 "$T/sph.vx" > "$T/m.png"
+check_eq "mip: PNG carries the stream's history and its own line" \
+    "$(px pngtext "$T/m.png" voxlux-history)" \
+    "$(printf 'vread 0.1.0 --synth sphere --size 48\nmip 0.1.0 --size 33x33 %s' "$T/sph.vx")"
 
 # 9. -z: the images of --hdr are zlib level 1 by default, raw with -z 0,
 # and decode to the same bytes at every level (oracle: vximg.py decodes

@@ -8,6 +8,9 @@ voxlux stream, written from formats/stream.md and the PFM definition only
                                      decode to the same bytes, else "differ"
     vximg.py pngsame A B             "same" if two PNGs hold the same pixel
                                      bytes (text chunks ignored)
+    vximg.py pngpx FILE X Y C        the code of sample C of pixel (X, Y) of
+                                     an 8- or 16-bit PNG (filters undone)
+    vximg.py pngtext FILE KEY        the value of the tEXt chunk KEY
     vximg.py covdiff A B             pixels where one depth PFM is finite
                                      (a hit) and the other is not
     vximg.py relrmse A B             the RMSE of the colour channels of
@@ -80,7 +83,55 @@ def png_pixels(path):
         p += 12 + n
     return head, zlib.decompress(idat)
 
+def png_chunks(path):
+    data = open(path, 'rb').read()
+    assert data[:8] == b'\x89PNG\r\n\x1a\n'
+    p = 8
+    while p < len(data):
+        n = struct.unpack('>I', data[p:p + 4])[0]
+        yield data[p + 4:p + 8], data[p + 8:p + 8 + n]
+        p += 12 + n
+
+def png_sample(path, x, y, c):
+    # non-interlaced, 8 or 16 bits; the five filters of the PNG spec
+    head, raw = png_pixels(path)
+    w, h, depth, ctype = struct.unpack('>IIBB', head[:10])
+    nc = {0: 1, 2: 3, 4: 2, 6: 4}[ctype]
+    bpp = nc * depth // 8
+    stride = w * bpp
+    prev = bytearray(stride)
+    for r in range(y + 1):
+        f = raw[r * (stride + 1)]
+        line = bytearray(raw[r * (stride + 1) + 1:(r + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - bpp] if i >= bpp else 0
+            b = prev[i]
+            cc = prev[i - bpp] if i >= bpp else 0
+            if f == 1:
+                line[i] = (line[i] + a) & 255
+            elif f == 2:
+                line[i] = (line[i] + b) & 255
+            elif f == 3:
+                line[i] = (line[i] + (a + b) // 2) & 255
+            elif f == 4:
+                pa, pb, pc = abs(b - cc), abs(a - cc), abs(a + b - 2 * cc)
+                pr = a if pa <= pb and pa <= pc else b if pb <= pc else cc
+                line[i] = (line[i] + pr) & 255
+        prev = line
+    i = x * bpp + c * depth // 8
+    return prev[i] if depth == 8 else prev[i] << 8 | prev[i + 1]
+
 a = sys.argv[1:]
+if a[0] == 'pngpx':
+    print(png_sample(a[1], int(a[2]), int(a[3]), int(a[4])))
+    raise SystemExit
+if a[0] == 'pngtext':
+    for t, d in png_chunks(a[1]):
+        if t == b'tEXt' and d.split(b'\0', 1)[0].decode('latin-1') == a[2]:
+            sys.stdout.write(d.split(b'\0', 1)[1].decode('latin-1'))
+            raise SystemExit
+    print('<absent>')
+    raise SystemExit
 if a[0] == 'same':
     print('same' if images(a[1]) == images(a[2]) and images(a[1]) else 'differ')
     raise SystemExit

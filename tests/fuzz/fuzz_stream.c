@@ -12,6 +12,7 @@
 
 #include "fuzz.h"
 #include "vx_macro.h"
+#include "vx_macroio.h"
 #include "vx_scene.h"
 #include "vx_tetimport.h"
 #include "vx_tetleaf.h"

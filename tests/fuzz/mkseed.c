@@ -13,6 +13,7 @@
 #include "vx_grid.h"
 #include "vx_image.h"
 #include "vx_macro.h"
+#include "vx_macroio.h"
 #include "vx_scene.h"
 #include "vx_stream.h"
 #include "vx_tetimport.h"

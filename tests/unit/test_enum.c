@@ -155,6 +155,7 @@ library_tables(void **state)
 		{ &vx_plan_state_enum, VX_PLAN_ON, VX_PLAN_LAST },
 		{ &vx_light_type_enum, VX_LIGHT_POINT, VX_LIGHT_LAST },
 		{ &vx_falloff_enum, VX_FALLOFF_NONE, VX_FALLOFF_LAST },
+		{ &vx_env_layout_enum, VX_ENV_LATLONG, VX_ENV_LAYOUT_LAST },
 		{ &vx_illum_enum, VX_ILLUM_LOCAL, VX_ILLUM_LAST },
 		{ &vx_interp_enum, VX_INTERP_NEAREST, VX_INTERP_LAST },
 		{ &vx_phase_enum, VX_PHASE_ISOTROPIC, VX_PHASE_LAST },

@@ -13,6 +13,8 @@
 #include <cmocka.h>
 
 #include "vx_macro.h"
+#include "vx_macrobox.h"
+#include "vx_macroio.h"
 
 typedef long double ld;
 

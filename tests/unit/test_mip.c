@@ -11,6 +11,7 @@
 #include <math.h>
 #include <cmocka.h>
 
+#include "vx_camera.h"
 #include "vx_cell.h"
 #include "vx_mip.h"
 #include "helper_ray.h"
@@ -884,6 +885,117 @@ never_above_exact(void **state)
 	}
 }
 
+static int
+same_f(float a, float b)
+{
+	return memcmp(&a, &b, sizeof a) == 0;
+}
+
+/* render_equals_rays: vx_mip_render's pictures, for a u8 volume (rays
+ * along an axis take the column walk) and an f32 one with a NaN voxel, an
+ * axis-aligned orthographic view and a perspective one that sees past the
+ * volume, images that are not a whole number of tiles, 1 and 3 threads,
+ * tiles of 16, 7 and 5, the last-t bound on and off, the exhaustive mode.
+ * Oracle: pixel (x, y) is vx_mip_ray_exhaustive on the camera ray through
+ * its centre, value and depth bit for bit, and the volume's minimum
+ * (depth +Inf) where that ray finds nothing. */
+static void
+render_equals_rays(void **state)
+{
+	static const int64_t d[3] = { 13, 11, 9 };
+	static const struct { int nthreads, tile, last_t, exhaustive; } cfg[] = {
+		{ 1, 16, 1, 0 }, { 3, 16, 1, 0 }, { 3, 5, 0, 0 }, { 2, 7, 1, 1 },
+	};
+	vx_err e = { 0, "" };
+
+	(void)state;
+	for (int vol = 0; vol < 2; vol++) {
+		vx_grid g;
+		vx_macro m;
+		double lo[3], hi[3];
+
+		if (vol == 0) {
+			uint64_t i = 0;
+
+			assert_int_equal(vx_grid_alloc(&g, d, VX_U8, "linear", &e),
+			    0);
+			for (int64_t z = 0; z < d[2]; z++)
+				for (int64_t y = 0; y < d[1]; y++)
+					for (int64_t x = 0; x < d[0]; x++)
+						vx_grid_set(&g, x, y, z,
+						    floor(255 * hash01(7, i++)));
+			vx_grid_range(&g);
+		} else {
+			make_random(&g, d, 11, "linear");
+			vx_grid_set(&g, 4, 5, 6, NAN);
+			vx_grid_range(&g);
+		}
+		build(&m, &g, 2, 3);
+		vx_grid_box(&g, lo, hi);
+		for (int view = 0; view < 2; view++) {
+			vx_camera cam;
+
+			vx_camera_init(&cam);
+			cam.w = 23;
+			cam.h = 17;
+			if (view == 0) {
+				cam.projection = VX_ORTHOGRAPHIC;
+				cam.view = VX_VIEW_TOP;
+			} else {
+				cam.view = VX_VIEW_ANGLES;
+				cam.azimuth = 30;
+				cam.elevation = 20;
+				cam.distance = 0.8;   /* the box spills over */
+			}
+			assert_int_equal(vx_camera_resolve(&cam, lo, hi, &e), 0);
+			for (size_t c = 0; c < sizeof cfg / sizeof cfg[0]; c++) {
+				vx_mip_opts o;
+				vx_mip_stats st;
+				vx_image val, dep;
+				int misses = 0;
+
+				vx_mip_opts_init(&o);
+				o.nthreads = cfg[c].nthreads;
+				o.tile = cfg[c].tile;
+				o.last_t = cfg[c].last_t;
+				o.exhaustive = cfg[c].exhaustive;
+				vx_image_init(&val);
+				vx_image_init(&dep);
+				assert_int_equal(vx_mip_render(&cam, &g, &m, &o, &val,
+				    &dep, &st, &e), 0);
+				assert_int_equal(val.w, 23);
+				assert_int_equal(dep.h, 17);
+				assert_int_equal(st.threads, cfg[c].nthreads);
+				assert_int_equal(st.rays, cfg[c].exhaustive ? 0 :
+				    23 * 17);
+				for (int y = 0; y < 17; y++)
+					for (int x = 0; x < 23; x++) {
+						double ow[3], dw[3], oi[3], di[3], v, t;
+						int hit;
+
+						vx_camera_ray(&cam, x + 0.5, y + 0.5, ow, dw);
+						vx_world_to_index(&g, ow, oi);
+						vx_world_to_index_dir(&g, dw, di);
+						hit = vx_mip_ray_exhaustive(&g, oi, di, 0,
+						    INFINITY, &v, &t);
+						misses += !hit;
+						assert_true(same_f(*vx_image_pixel(&val, x,
+						    y), (float)(hit ? v : g.vmin)));
+						assert_true(same_f(*vx_image_pixel(&dep, x,
+						    y), (float)(hit ? t : INFINITY)));
+					}
+				/* both views see the volume and past it (the
+				 * top view's frame is wider than the box) */
+				assert_true(misses > 0 && misses < 23 * 17);
+				vx_image_free(&val);
+				vx_image_free(&dep);
+			}
+		}
+		vx_macro_free(&m);
+		vx_grid_free(&g);
+	}
+}
+
 int
 main(void)
 {
@@ -897,6 +1009,7 @@ main(void)
 		cmocka_unit_test(fast_equals_plain),
 		cmocka_unit_test(axis_rays_equal_plain),
 		cmocka_unit_test(ties_smallest_t),
+		cmocka_unit_test(render_equals_rays),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

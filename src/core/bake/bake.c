@@ -4,12 +4,12 @@
 #include "vx_smooth.h"
 #include "vx_vec.h"
 
+#include "vx_par.h"
+
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 void
 vx_bake_opts_init(vx_bake_opts *o)
@@ -90,11 +90,7 @@ vx_bake_sign(vx_irrvol *v, const vx_gi *gi, const vx_bake_opts *o)
 static double
 wall(void)
 {
-#ifdef _OPENMP
-	return omp_get_wtime();
-#else
-	return 0;
-#endif
+	return vx_par_seconds();
 }
 
 /* the volume samples' range over the index box [lo, hi] (inclusive,
@@ -142,6 +138,51 @@ brick_of(const vx_irrvol *v, int64_t i, int64_t j, int64_t k)
 	    v->bdims[1] * (k / VX_IRR_BRICK)));
 }
 
+/* what the plan's parallel pass reads and writes */
+typedef struct plan_ctx {
+	const vx_irrvol *v;
+	const vx_grid *g;
+	const vx_bake_opts *o;
+	const int64_t *cd;       /* lattice cells per axis */
+	uint8_t *cellw;          /* per cell: 1 where it meets a band */
+} plan_ctx;
+
+/* plan_slab: which lattice cells of slab k meet a band */
+static int
+plan_slab(void *ctx, void *lp, const vx_par_block *b)
+{
+	const plan_ctx *C = ctx;
+	const vx_irrvol *v = C->v;
+	const vx_grid *g = C->g;
+	const int64_t *cd = C->cd;
+	int64_t k = b->lo[2];
+
+	(void)lp;
+	for (int64_t j = 0; j < cd[1]; j++)
+		for (int64_t i = 0; i < cd[0]; i++) {
+			int64_t lo[3], hi[3], c[3] = { i, j, k };
+			double mn, mx;
+
+			for (int a = 0; a < 3; a++) {
+				double p0 = (double)c[a] * v->step[a];
+				double p1 = v->dims[a] > 1 ?
+				    (double)(c[a] + 1) * v->step[a] : p0;
+
+				lo[a] = (int64_t)floor(p0);
+				hi[a] = (int64_t)ceil(p1);
+				if (hi[a] > g->dims[a] - 1)
+					hi[a] = g->dims[a] - 1;
+				if (lo[a] > hi[a])
+					lo[a] = hi[a];
+			}
+			box_range(g, lo, hi, &mn, &mx);
+			if (meets(C->o, mn, mx))
+				C->cellw[(size_t)i + (size_t)cd[0] *
+				    ((size_t)j + (size_t)cd[1] * (size_t)k)] = 1;
+		}
+	return 0;
+}
+
 int
 vx_bake_plan(vx_irrvol *v, const vx_grid *g, const vx_bake_opts *o,
     vx_bake_stats *st, vx_err *e)
@@ -179,32 +220,20 @@ vx_bake_plan(vx_irrvol *v, const vx_grid *g, const vx_bake_opts *o,
 	if ((cellw = vx_calloc(ncell, 1, e)) == NULL)
 		return VX_ENOMEM;
 	/* which lattice cells meet a band: the range of the samples their
-	 * box covers */
-#pragma omp parallel for schedule(dynamic, 1)
-	for (int64_t k = 0; k < cd[2]; k++)
-		for (int64_t j = 0; j < cd[1]; j++)
-			for (int64_t i = 0; i < cd[0]; i++) {
-				int64_t lo[3], hi[3], c[3] = { i, j, k };
-				double mn, mx;
+	 * box covers (a slab of cells a block) */
+	{
+		plan_ctx C = { v, g, o, cd, cellw };
+		vx_par_loop slabs = { { cd[0], cd[1], cd[2] },
+		    { cd[0], cd[1], 1 }, 1 };
+		vx_par team;
 
-				for (int a = 0; a < 3; a++) {
-					double p0 = (double)c[a] * v->step[a];
-					double p1 = v->dims[a] > 1 ?
-					    (double)(c[a] + 1) * v->step[a] : p0;
-
-					lo[a] = (int64_t)floor(p0);
-					hi[a] = (int64_t)ceil(p1);
-					if (hi[a] > g->dims[a] - 1)
-						hi[a] = g->dims[a] - 1;
-					if (lo[a] > hi[a])
-						lo[a] = hi[a];
-				}
-				box_range(g, lo, hi, &mn, &mx);
-				if (meets(o, mn, mx))
-					cellw[(size_t)i + (size_t)cd[0] *
-					    ((size_t)j + (size_t)cd[1] *
-					    (size_t)k)] = 1;
-			}
+		if ((rc = vx_par_init(&team, o->threads, 0, e)) != 0) {
+			free(cellw);
+			return rc;
+		}
+		vx_par_run(&team, &slabs, plan_slab, &C, NULL);
+		vx_par_free(&team);
+	}
 	/* bricks first (serially, in brick order), then the texels */
 	for (int64_t k = 0; k < cd[2]; k++)
 		for (int64_t j = 0; j < cd[1]; j++)
@@ -323,14 +352,88 @@ vx_bake_texel(const vx_irrvol *v, const vx_gi *gi, const vx_grid *g,
 	}
 }
 
+/* what the bake's parallel pass reads */
+typedef struct run_ctx {
+	vx_irrvol *v;
+	const vx_gi *gi;
+	const vx_grid *g;
+	const vx_bake_opts *o;
+	const uint64_t *todo;    /* the texels, packed i | j << 21 | k << 42 */
+	size_t n;
+	_Atomic uint64_t done;   /* texels done, for the progress report */
+} run_ctx;
+
+/* a thread's state: its estimator's counters and its texels' */
+typedef struct run_local {
+	vx_gi_stats ls;
+	uint64_t sampled, baked, flat, nan, border;
+	double last;             /* when it last reported progress */
+	int t;                   /* the thread */
+} run_local;
+
+static int
+run_start(void *ctx, void *lp, int t)
+{
+	run_local *L = lp;
+
+	(void)ctx;
+	memset(L, 0, sizeof *L);
+	L->t = t;
+	L->last = wall();
+	return 0;
+}
+
+static int
+run_merge(void *ctx, void *lp, int t)
+{
+	vx_gi_stats_add(ctx, &((run_local *)lp)->ls);
+	return 0;
+}
+
+/* run_texel: the samples of texel q of the list (thread 0 reports the
+ * progress) */
+static int
+run_texel(void *ctx, void *lp, const vx_par_block *b)
+{
+	run_ctx *C = ctx;
+	run_local *L = lp;
+	vx_irrvol *v = C->v;
+	size_t q = (size_t)b->index;
+	int64_t i = (int64_t)(C->todo[q] & 0x1fffff);
+	int64_t j = (int64_t)(C->todo[q] >> 21 & 0x1fffff);
+	int64_t k = (int64_t)(C->todo[q] >> 42);
+	int64_t s = vx_irr_texel(v, i, j, k);
+	vx_irr_acc *a = &v->acc[s];
+	uint32_t before = a->count;
+
+	vx_bake_texel(v, C->gi, C->g, C->o, i, j, k, a, &L->ls);
+	/* the wanted bit lives in the accumulators' flags too, so a stored
+	 * bake keeps its plan */
+	a->flags |= VX_TEXEL_WANTED;
+	L->sampled += a->count - before;
+	L->baked += a->count > before;
+	L->flat += (a->flags & VX_TEXEL_FLAT) != 0;
+	L->nan += (a->flags & VX_TEXEL_NAN) != 0;
+	L->border += (a->flags & VX_TEXEL_BORDER) != 0;
+	if (C->o->progress != NULL) {
+		uint64_t d = atomic_fetch_add_explicit(&C->done, 1,
+		    memory_order_relaxed) + 1;
+
+		if (L->t == 0 && wall() - L->last > 0.25) {
+			L->last = wall();
+			C->o->progress(C->o->progress_ctx, d, C->n);
+		}
+	}
+	return 0;
+}
+
 int
 vx_bake_run(vx_irrvol *v, const vx_gi *gi, const vx_grid *g,
     const vx_bake_opts *o, vx_bake_stats *st, vx_err *e)
 {
 	size_t nb = (size_t)v->bdims[0] * (size_t)v->bdims[1] *
 	    (size_t)v->bdims[2], nt = 0, n = 0;
-	uint64_t *todo, done = 0, sampled = 0, baked = 0, flat = 0, nan = 0,
-	    border = 0;
+	uint64_t *todo, sampled = 0, baked = 0, flat = 0, nan = 0, border = 0;
 	double t0 = wall();
 	vx_gi_stats gs;
 
@@ -368,49 +471,39 @@ vx_bake_run(vx_irrvol *v, const vx_gi *gi, const vx_grid *g,
 			    (uint64_t)k << 42;
 		}
 	}
-	memset(&gs, 0, sizeof gs);
-#pragma omp parallel num_threads(o->threads > 0 ? o->threads : \
-    omp_get_max_threads())
 	{
-		vx_gi_stats ls;
-		double last = wall();
+		run_ctx C;
+		vx_par team;
+		int rc;
 
-		memset(&ls, 0, sizeof ls);
-#pragma omp for schedule(dynamic, 16) reduction(+ : sampled, baked, flat, \
-    nan, border)
-		for (size_t q = 0; q < n; q++) {
-			int64_t i = (int64_t)(todo[q] & 0x1fffff);
-			int64_t j = (int64_t)(todo[q] >> 21 & 0x1fffff);
-			int64_t k = (int64_t)(todo[q] >> 42);
-			int64_t s = vx_irr_texel(v, i, j, k);
-			vx_irr_acc *a = &v->acc[s];
-			uint32_t before = a->count;
-
-			vx_bake_texel(v, gi, g, o, i, j, k, a, &ls);
-			/* the wanted bit lives in the accumulators' flags too,
-			 * so a stored bake keeps its plan */
-			a->flags |= VX_TEXEL_WANTED;
-			sampled += a->count - before;
-			baked += a->count > before;
-			flat += (a->flags & VX_TEXEL_FLAT) != 0;
-			nan += (a->flags & VX_TEXEL_NAN) != 0;
-			border += (a->flags & VX_TEXEL_BORDER) != 0;
-			if (o->progress != NULL) {
-				uint64_t d;
-
-#pragma omp atomic capture
-				d = ++done;
-#ifdef _OPENMP
-				if (omp_get_thread_num() == 0 &&
-				    wall() - last > 0.25) {
-					last = wall();
-					o->progress(o->progress_ctx, d, n);
-				}
-#endif
-			}
+		memset(&C, 0, sizeof C);
+		C.v = v;
+		C.gi = gi;
+		C.g = g;
+		C.o = o;
+		C.todo = todo;
+		C.n = n;
+		if ((rc = vx_par_init(&team, o->threads, sizeof(run_local),
+		    e)) != 0) {
+			free(todo);
+			return rc;
 		}
-#pragma omp critical
-		vx_gi_stats_add(&gs, &ls);
+		vx_par_each(&team, run_start, NULL);
+		vx_par_loop texels = VX_PAR_ITEMS((int64_t)n, 16);
+
+		vx_par_run(&team, &texels, run_texel, &C, NULL);
+		memset(&gs, 0, sizeof gs);
+		vx_par_each(&team, run_merge, &gs);
+		for (int t = 0; t < team.nthreads; t++) {
+			const run_local *L = vx_par_local(&team, t);
+
+			sampled += L->sampled;
+			baked += L->baked;
+			flat += L->flat;
+			nan += L->nan;
+			border += L->border;
+		}
+		vx_par_free(&team);
 	}
 	free(todo);
 	if (o->progress != NULL)

@@ -198,12 +198,13 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 		snprintf(name, sizeof name, "light %d %s", k + 1,
 		    vx_enum_str(&vx_light_type_enum, l->type));
 		if (p->pathtrace) {
-			vx_plan_add(p, name, l->type == VX_LIGHT_HEADLIGHT ||
-			    l->type == VX_LIGHT_ENVIRONMENT ? VX_PLAN_OFF :
-			    VX_PLAN_ON, 0, "%s", l->type == VX_LIGHT_HEADLIGHT ?
-			    "illumination pathtrace: a headlight is not part of "
-			    "global illumination" : l->type == VX_LIGHT_ENVIRONMENT ?
-			    "illumination pathtrace: environment maps not yet" :
+			vx_plan_add(p, name, l->type == VX_LIGHT_HEADLIGHT ?
+			    VX_PLAN_OFF : VX_PLAN_ON, 0, "%s",
+			    l->type == VX_LIGHT_HEADLIGHT ? "illumination "
+			    "pathtrace: a headlight is not part of global "
+			    "illumination" : l->type == VX_LIGHT_ENVIRONMENT ?
+			    "illumination pathtrace: importance-sampled at every "
+			    "path vertex (MIS with the cosine lobe)" :
 			    "illumination pathtrace: sampled at every path vertex");
 			continue;
 		}
@@ -215,10 +216,25 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 			    "irradiance volume");
 			continue;
 		}
-		if (l->type == VX_LIGHT_ENVIRONMENT || l->type == VX_LIGHT_SKY) {
-			vx_plan_add(p, name, VX_PLAN_UNSUPPORTED, 0, "%s light: "
-			    "not supported by raycast yet, skipped",
-			    vx_enum_str(&vx_light_type_enum, l->type));
+		if (l->type == VX_LIGHT_ENVIRONMENT) {
+			char hash[24];
+
+			if (l->has_hash)
+				snprintf(hash, sizeof hash, "hash %016llx",
+				    (unsigned long long)l->hash);
+			else
+				snprintf(hash, sizeof hash, "no hash yet");
+			vx_plan_add(p, name, VX_PLAN_UNSUPPORTED, 0, "%.60s (%s, "
+			    "%s): not shaded by raycast yet, skipped", l->file,
+			    vx_enum_str(&vx_env_layout_enum, l->layout), hash);
+			continue;
+		}
+		if (l->type == VX_LIGHT_SKY) {
+			vx_plan_add(p, name, VX_PLAN_UNSUPPORTED, 0, "radiance %g "
+			    "%g %g: not in local shading (illumination "
+			    "irradiance or pathtrace use it), skipped",
+			    l->color[0] * l->intensity, l->color[1] * l->intensity,
+			    l->color[2] * l->intensity);
 			continue;
 		}
 		if (light_black(l)) {

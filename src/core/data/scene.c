@@ -21,6 +21,7 @@ vx_light_init(vx_light *l, vx_light_type type)
 	l->intensity = 1;
 	l->falloff = VX_FALLOFF_NONE;
 	l->shadows = type == VX_LIGHT_POINT || type == VX_LIGHT_DIRECTIONAL;
+	l->layout = VX_ENV_LATLONG;
 }
 
 void
@@ -294,8 +295,10 @@ light_equal(const vx_light *a, const vx_light *b)
 	case VX_LIGHT_HEADLIGHT:
 		return a->falloff == b->falloff;
 	case VX_LIGHT_ENVIRONMENT:
-		return strcmp(a->file, b->file) == 0 &&
-		    same(a->rotation, b->rotation, 3);
+		return strcmp(a->file, b->file) == 0 && a->layout == b->layout &&
+		    same(a->rotation, b->rotation, 3) &&
+		    a->has_hash == b->has_hash &&
+		    (!a->has_hash || a->hash == b->hash);
 	default:
 		return 1;
 	}

@@ -204,7 +204,16 @@ format_light(sbuf *b, const vx_light *l)
 		break;
 	case VX_LIGHT_ENVIRONMENT:
 		sb_str(b, "file", l->file);
+		sb_put(b, " layout ");
+		sb_put(b, vx_enum_str(&vx_env_layout_enum, l->layout));
 		sb_key(b, "rotation", l->rotation, 3);
+		if (l->has_hash) {
+			char t[24];
+
+			snprintf(t, sizeof t, " hash %016llx",
+			    (unsigned long long)l->hash);
+			sb_put(b, t);
+		}
 		break;
 	default:
 		break;

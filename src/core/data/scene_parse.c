@@ -24,6 +24,12 @@ static const vx_enum_name light_names[] = {
 const vx_enum vx_light_type_enum = { "light type", light_names, "unknown",
     0 };
 
+static const vx_enum_name layout_names[] = {
+	{ "latlong", VX_ENV_LATLONG }, { "angular", VX_ENV_ANGULAR },
+	{ NULL, VX_ENV_LAYOUT_UNKNOWN }
+};
+const vx_enum vx_env_layout_enum = { "layout", layout_names, "unknown", 0 };
+
 static const vx_enum_name falloff_names[] = {
 	{ "none", VX_FALLOFF_NONE },
 	{ "inverse-square", VX_FALLOFF_INVERSE_SQUARE },
@@ -641,12 +647,13 @@ static int
 do_light(pctx *P)
 {
 	enum { L_POS, L_DIR, L_COLOR, L_INT, L_FALL, L_SHAD, L_FILE, L_ROT,
-	    L_N };
+	    L_LAYOUT, L_HASH, L_N };
 	static const keydef defs[] = {
 		{ "position", K_NUM3 }, { "direction", K_NUM3 },
 		{ "color", K_NUM3 }, { "intensity", K_NUM1 },
 		{ "falloff", K_WORD }, { "shadows", K_ONOFF },
-		{ "file", K_STR }, { "rotation", K_NUM3 }, { NULL, 0 }
+		{ "file", K_STR }, { "rotation", K_NUM3 }, { "layout", K_WORD },
+		{ "hash", K_WORD }, { NULL, 0 }
 	};
 	/* keys each type accepts (bit per key), and the one it requires */
 	static const unsigned allow[VX_LIGHT_LAST] = {
@@ -655,8 +662,8 @@ do_light(pctx *P)
 		    1u << L_SHAD,
 		1u << L_DIR | 1u << L_COLOR | 1u << L_INT | 1u << L_SHAD,
 		1u << L_COLOR | 1u << L_INT | 1u << L_FALL | 1u << L_SHAD,
-		1u << L_FILE | 1u << L_ROT | 1u << L_COLOR | 1u << L_INT |
-		    1u << L_SHAD,
+		1u << L_FILE | 1u << L_ROT | 1u << L_LAYOUT | 1u << L_HASH |
+		    1u << L_COLOR | 1u << L_INT | 1u << L_SHAD,
 		1u << L_COLOR | 1u << L_INT | 1u << L_SHAD,
 	};
 	static const int require[VX_LIGHT_LAST] = { -1, L_POS, L_DIR, -1, L_FILE,
@@ -730,6 +737,34 @@ do_light(pctx *P)
 	}
 	if (kv[L_ROT].seen)
 		memcpy(l.rotation, kv[L_ROT].v, sizeof l.rotation);
+	if (kv[L_LAYOUT].seen) {
+		int ly;
+
+		if ((rc = need_word(P, dir, "layout", kv[L_LAYOUT].w,
+		    &vx_env_layout_enum, &ly)) != 0)
+			return rc;
+		l.layout = (vx_env_layout)ly;
+	}
+	if (kv[L_HASH].seen) {
+		const char *w = kv[L_HASH].w;
+		uint64_t h = 0;
+		int nd;
+
+		for (nd = 0; w[nd] != '\0' && nd < 16; nd++) {
+			char c = w[nd];
+			int d = c >= '0' && c <= '9' ? c - '0' :
+			    c >= 'a' && c <= 'f' ? c - 'a' + 10 : -1;
+
+			if (d < 0)
+				break;
+			h = h << 4 | (uint64_t)d;
+		}
+		if (nd != 16 || w[nd] != '\0')
+			return perr(P, "%s: hash: expected 16 hexadecimal digits "
+			    "(0-9, a-f), got '%.40s'", dir, w);
+		l.has_hash = 1;
+		l.hash = h;
+	}
 	if (s->default_lights) {
 		s->nlight = 0;
 		s->default_lights = 0;

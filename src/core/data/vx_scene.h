@@ -14,6 +14,7 @@
 #define VX_SCENE_H
 
 #include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 
 #include "vx_camera.h"
@@ -55,8 +56,8 @@ typedef enum vx_light_type {
 	VX_LIGHT_DIRECTIONAL,
 	VX_LIGHT_HEADLIGHT,       /* at the camera: a point light at the eye, or
 	                             along forward for orthographic cameras */
-	VX_LIGHT_ENVIRONMENT,     /* reserved: HDR environment map */
-	VX_LIGHT_SKY,             /* reserved: constant sky */
+	VX_LIGHT_ENVIRONMENT,     /* HDR environment map (vx_env.h) */
+	VX_LIGHT_SKY,             /* constant sky (vx_env.h) */
 	VX_LIGHT_LAST
 } vx_light_type;
 
@@ -67,6 +68,14 @@ typedef enum vx_falloff {
 	VX_FALLOFF_LAST
 } vx_falloff;
 
+/* How an environment map's pixels cover the sphere (formats/scene.md). */
+typedef enum vx_env_layout {
+	VX_ENV_LAYOUT_UNKNOWN = 0,
+	VX_ENV_LATLONG,           /* latitude-longitude (equirectangular) */
+	VX_ENV_ANGULAR,           /* Debevec's angular map (light probe) */
+	VX_ENV_LAYOUT_LAST
+} vx_env_layout;
+
 typedef struct vx_light {
 	vx_light_type type;
 	double color[3];          /* linear RGB, >= 0 */
@@ -76,9 +85,14 @@ typedef struct vx_light {
 	                             nonzero, not normalized */
 	vx_falloff falloff;       /* point and headlight */
 	int shadows;              /* 1: casts shadows when the effect is on */
-	char file[VX_SCENE_PATH_MAX];  /* environment: image file (reserved) */
-	double rotation[3];       /* environment: degrees about x, then y, then z
-	                             (reserved) */
+	char file[VX_SCENE_PATH_MAX];  /* environment: image file (PFM, Radiance
+	                             HDR or OpenEXR) */
+	vx_env_layout layout;     /* environment: the map's layout */
+	double rotation[3];       /* environment: degrees about x, then y, then
+	                             z (world axes): R = Rz Ry Rx */
+	int has_hash;             /* environment: 1 when hash is set */
+	uint64_t hash;            /* environment: the pixels' content hash
+	                             (vx_env.h), checked when the file is read */
 } vx_light;
 
 typedef enum vx_colormap {
@@ -248,12 +262,14 @@ int vx_scene_from_stream(vx_scene *s, const vx_stream *st, long *index,
 int vx_scene_to_stream(const vx_scene *s, vx_stream *st, vx_err *e);
 
 /* ---- names and helpers ----
- * The words of the format (vx_enum.h): light types, falloffs,
- * illumination modes, interpolations, phases, colormaps (an unknown name
- * has the UNKNOWN value, an unknown value the name "unknown"); effects,
- * named by their VX_FX_ bit (an unknown bit has no name, NULL). */
-extern const vx_enum vx_light_type_enum, vx_falloff_enum, vx_illum_enum,
-    vx_interp_enum, vx_phase_enum, vx_colormap_enum, vx_effect_enum;
+ * The words of the format (vx_enum.h): light types, environment layouts,
+ * falloffs, illumination modes, interpolations, phases, colormaps (an
+ * unknown name has the UNKNOWN value, an unknown value the name
+ * "unknown"); effects, named by their VX_FX_ bit (an unknown bit has no
+ * name, NULL). */
+extern const vx_enum vx_light_type_enum, vx_env_layout_enum, vx_falloff_enum,
+    vx_illum_enum, vx_interp_enum, vx_phase_enum, vx_colormap_enum,
+    vx_effect_enum;
 /* vx_colormap_parse: shorthand for vx_enum_val(&vx_colormap_enum, s). */
 vx_colormap vx_colormap_parse(const char *s);
 /* vx_colormap_eval: color for t (clamped to [0,1]) under map m; unknown

@@ -2,6 +2,7 @@
  * (formats/tetmesh.md), the mesh CRC that ties it to its mesh, and finding
  * the one that belongs to a mesh. */
 #include "vx_tetleaf.h"
+#include "vx_macroio.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -332,54 +333,29 @@ int
 vx_tetleaf_from_stream(vx_tetleaf *lg, const vx_stream *s,
     const vx_tetmesh *m, int *status, long *index, vx_err *e)
 {
-	long i = -1;
-	int rc;
+	vx_tetleaf_ident id;
+	long i;
 
 	vx_tetleaf_init(lg);
 	*status = VX_MACRO_ABSENT;
 	if (index != NULL)
 		*index = -1;
-	while ((i = vx_stream_find(s, VX_CHUNK_TETLEAF, (size_t)(i + 1))) >= 0) {
-		const unsigned char *body;
-		const char *v;
-		size_t bodylen;
-		vx_tetleaf_ident id;
-		vx_hdr h;
-		int mine;
-
-		vx_hdr_init(&h);
-		if ((rc = vx_payload_parse(&s->chunk[i], &h, &body, &bodylen,
-		    e)) != 0) {
-			vx_hdr_free(&h);
-			vx_err_push(e, "leaf grid");
-			return vx_err_push(e, "chunk TLEF at %llu",
-			    (unsigned long long)s->chunk[i].offset);
-		}
-		v = vx_hdr_get(&h, "mesh");
-		mine = v != NULL && strcmp(v, m->name) == 0;
-		vx_hdr_free(&h);
-		if (v == NULL) {
-			/* a required key: a critical chunk nobody can place */
-			vx_err_set(e, VX_EDATA, "leaf grid: no 'mesh' key");
-			return vx_err_push(e, "chunk TLEF at %llu",
-			    (unsigned long long)s->chunk[i].offset);
-		}
-		if (!mine)
-			continue;
-		if (index != NULL)
-			*index = i;
-		if ((rc = vx_tetleaf_from_chunk(lg, &id, &s->chunk[i], e)) != 0)
-			return vx_err_push(e, "chunk TLEF at %llu",
-			    (unsigned long long)s->chunk[i].offset);
-		if (id.npoint == m->npoint && id.ntet == m->ntet &&
-		    id.crc == vx_tetmesh_crc(m)) {
-			*status = VX_MACRO_LOADED;
-			return 0;
-		}
-		vx_tetleaf_free(lg);
-		*status = VX_MACRO_STALE;
+	if (vx_macro_find_owned(s, VX_CHUNK_TETLEAF, m->name, &i, e) != 0)
+		return vx_err_push(e, "leaf grid");
+	if (i < 0)
+		return 0;
+	if (index != NULL)
+		*index = i;
+	if (vx_tetleaf_from_chunk(lg, &id, &s->chunk[i], e) != 0)
+		return vx_err_push(e, "chunk TLEF at %llu",
+		    (unsigned long long)s->chunk[i].offset);
+	if (id.npoint == m->npoint && id.ntet == m->ntet &&
+	    id.crc == vx_tetmesh_crc(m)) {
+		*status = VX_MACRO_LOADED;
 		return 0;
 	}
+	vx_tetleaf_free(lg);
+	*status = VX_MACRO_STALE;
 	return 0;
 }
 

@@ -31,7 +31,7 @@
 
 #include "vx_cell.h"
 #include "vx_grid.h"
-#include "vx_macro.h"
+#include "vx_macrobox.h"
 
 #define VX_ISO_MAX 16            /* isovalues per query */
 

@@ -56,7 +56,10 @@
 
 #include <stdint.h>
 
+#include "vx_camera.h"
+#include "vx_err.h"
 #include "vx_grid.h"
+#include "vx_image.h"
 #include "vx_macro.h"
 
 typedef struct vx_mip_stats {
@@ -68,6 +71,10 @@ typedef struct vx_mip_stats {
 	                                their face values: column walk) */
 	uint64_t bound_pruned;       /* pushes avoided by the last-t bound */
 	uint64_t max_queue;          /* largest queue length seen */
+	/* vx_mip_render only: */
+	int threads;                 /* threads the picture ran on */
+	double seconds;              /* wall time of its tiles */
+	double thread_seconds;       /* the threads' time in them, summed */
 } vx_mip_stats;
 
 /* Per-thread workspace: the fixed-capacity queue (no allocation per ray). */
@@ -109,5 +116,34 @@ int vx_mip_ray(const vx_grid *g, const vx_macro *m, vx_mip_work *w,
 int vx_mip_ray_exhaustive(const vx_grid *g, const double o[3],
     const double d[3], double tmin, double tmax, double *vmax,
     double *tmaxp);
+
+/* ---- the picture ---- */
+
+typedef struct vx_mip_opts {
+	int nthreads;            /* <= 0: OpenMP's default (vx_par_threads) */
+	int tile;                /* tile edge in pixels (default 16): the
+	                            last-t bound starts afresh in each tile,
+	                            whose rays go row by row */
+	int last_t;              /* 1 (default): the last-t bound */
+	int exhaustive;          /* 1: every cell along every ray solved
+	                            (vx_mip_ray_exhaustive: the reference) */
+} vx_mip_opts;
+
+void vx_mip_opts_init(vx_mip_opts *o);
+
+/* vx_mip_render: the MIP picture of volume g, with hierarchy m built over
+ * it, through the pixel centres of camera cam (resolved over g's box):
+ * val (allocated w x h x 1, named "mip") gets each ray's maximum, or the
+ * volume's minimum (0 without a known range) where the ray meets no finite
+ * sample; depth (NULL, or allocated w x h x 1, "depth") the distance along
+ * the unit camera ray to the first point where the maximum is reached
+ * (+Inf: none).  Tiles run in parallel (vx_par.h), each thread with a
+ * workspace of its own; the pictures are the same bits at any thread
+ * count, tile size and last-t setting.  st (may be NULL) gets the rays'
+ * work summed over the threads and the tiles' times.  Errors: VX_ENOMEM.
+ * On error no image is allocated. */
+int vx_mip_render(const vx_camera *cam, const vx_grid *g, const vx_macro *m,
+    const vx_mip_opts *o, vx_image *val, vx_image *depth, vx_mip_stats *st,
+    vx_err *e);
 
 #endif

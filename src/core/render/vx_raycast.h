@@ -20,13 +20,14 @@
 #include "vx_image.h"
 #include "vx_irrvol.h"
 #include "vx_iso.h"
+#include "vx_cellmask.h"
 #include "vx_macro.h"
 #include "vx_plan.h"
 #include "vx_scene.h"
 #include "vx_tetleaf.h"
 
 typedef struct vx_raycast_opts {
-	int nthreads;            /* <= 0: all cores */
+	int nthreads;            /* <= 0: OpenMP's default (vx_par_threads) */
 	int solver;              /* vx_cell_solver */
 	int flat;                /* 1: no hierarchy (benchmarks) */
 	int aa;                  /* samples per pixel edge (aa x aa grid), >= 1 */

@@ -15,7 +15,10 @@
 #include "vx_image.h"
 #include "vx_imageio.h"
 #include "vx_macro.h"
+#include "vx_macroio.h"
 #include "vx_scene.h"
+#include "vx_tetleaf.h"
+#include "vx_tonemap.h"
 #include "vx_version.h"
 
 #ifdef _OPENMP
@@ -209,6 +212,33 @@ tool_parse_enum(const char *opt, const vx_enum *en, const char *s)
 	if (vx_enum_parse(en, s, &v, VX_EUSAGE, &e) != 0)
 		tool_fail(e.code, "%s: %s", opt, e.msg);
 	return v;
+}
+
+void
+tool_opt_other(int ch, const char *usage, char **argv)
+{
+	const char *arg = argv[optind - 1];
+	char opt[8];
+
+	if (ch == 'h') {
+		printf("usage: %s\n", usage);
+		exit(tool_finish());
+	}
+	if (strncmp(arg, "--", 2) != 0 && optopt > 0 && optopt < 256) {
+		snprintf(opt, sizeof opt, "-%c", optopt);   /* in a cluster */
+		arg = opt;
+	}
+	if (ch == ':')
+		tool_usage_fail(usage, "%s needs a value", arg);
+	tool_usage_fail(usage, "unknown option '%s'", arg);
+}
+
+const char *
+tool_opt_input(int argc, char **argv, const char *usage)
+{
+	if (argc - optind > 1)
+		tool_usage_fail(usage, "at most one input");
+	return optind < argc ? argv[optind] : "-";
 }
 
 /* pipe_widen: a pipe's buffer as large as an unprivileged process may make
@@ -565,6 +595,31 @@ tool_threads(long j)
 #endif
 }
 
+/* scene_paths: a relative file name in a scene file names a file beside
+ * the scene: prefix the scene's directory (formats/scene.md). */
+static void
+scene_paths(vx_scene *s, const char *file)
+{
+	const char *slash = strrchr(file, '/');
+	size_t dl = slash != NULL ? (size_t)(slash - file) + 1 : 0;
+
+	if (dl == 0)
+		return;
+	for (int k = 0; k < s->nlight; k++) {
+		vx_light *l = &s->light[k];
+		size_t fl = strlen(l->file);
+
+		if (l->type != VX_LIGHT_ENVIRONMENT || l->file[0] == '/')
+			continue;
+		if (dl + fl >= sizeof l->file)
+			tool_fail(VX_EDATA, "%s: light %d: file name longer than "
+			    "%zu bytes with the scene's directory", file, k + 1,
+			    sizeof l->file - 1);
+		memmove(l->file + dl, l->file, fl + 1);
+		memcpy(l->file, file, dl);
+	}
+}
+
 void
 tool_scene_load(vx_scene *s, const char *file, const vx_stream *st, int n,
     const char *const *names, const char *const *vals)
@@ -584,6 +639,7 @@ tool_scene_load(vx_scene *s, const char *file, const vx_stream *st, int n,
 			tool_fail_err(&e);
 		}
 		fclose(f);
+		scene_paths(s, file);
 	} else if (vx_scene_from_stream(s, st, NULL, &e) != 0)
 		tool_fail_err(&e);
 	for (i = 0; i < n; i++)
@@ -628,6 +684,15 @@ tool_stream_keep(vx_stream *out, vx_stream *in, const char *const *drop)
 	}
 }
 
+/* build_note: the note that a hierarchy (what, of `name`) is built now */
+static void
+build_note(int status, const char *what, const char *name, const char *them)
+{
+	tool_note("%s %s '%s'; built %s (run macrocell(1) in the pipeline to "
+	    "keep %s)", status == VX_MACRO_STALE ? "stale" : "no", what, name,
+	    them, them);
+}
+
 void
 tool_macro_load(vx_macro *m, const vx_stream *st, const vx_grid *g,
     long src, int nthr, int quiet)
@@ -642,9 +707,88 @@ tool_macro_load(vx_macro *m, const vx_stream *st, const vx_grid *g,
 		return;
 	nlev = vx_macro_default_sizes(g->type, VX_MACRO_DEFAULT_LEVELS, sizes);
 	if (!quiet)
-		tool_note("%s macrocells for '%s'; built them (run macrocell(1) "
-		    "in the pipeline to keep them)", status == VX_MACRO_STALE ?
-		    "stale" : "no", g->name);
+		build_note(status, "macrocells for", g->name, "them");
 	if (vx_macro_build(m, g, nlev, (const int (*)[3])sizes, nthr, &e) != 0)
 		tool_fail_err(&e);
+}
+
+void
+tool_tetleaf_load(vx_tetleaf *lg, const vx_stream *st, const vx_tetmesh *mesh,
+    int nlev, int nthr, int quiet, int dry)
+{
+	int sizes[VX_MACRO_MAXLEV][3], status = VX_MACRO_ABSENT;
+	vx_err e = { 0, "" };
+
+	vx_tetleaf_init(lg);
+	if (nlev > 0 && vx_tetleaf_from_stream(lg, st, mesh, &status, NULL,
+	    &e) != 0)
+		tool_fail_err(&e);
+	if (status == VX_MACRO_LOADED)
+		return;
+	if (nlev > 0)
+		vx_macro_default_sizes(VX_F32, nlev, sizes);
+	if (!quiet && nlev > 0)
+		build_note(status, "leaf grid for mesh", mesh->name, "it");
+	if (!dry && vx_tetleaf_build_levels(lg, mesh, 1, 0, nlev,
+	    (const int (*)[3])sizes, nthr, &e) != 0)
+		tool_fail_err(&e);
+}
+
+void
+tool_write_png(const char *path, const vx_image *img, int bits, double gamma,
+    const char *hist, size_t hlen, const vx_text *extra, size_t nextra)
+{
+	vx_text text[8];
+	vx_err e = { 0, "" };
+	size_t n = 0, line = strlen(history);
+	char *all;
+	tool_out o;
+
+	if (nextra > sizeof text / sizeof text[0] - 2)
+		tool_fail(VX_EINTERNAL, "too many PNG text chunks");
+	if (strcmp(path, "-") == 0 && isatty(STDOUT_FILENO))
+		tool_fail(VX_EUSAGE, "standard output is a terminal: give -o "
+		    "FILE or redirect");
+	if (hist == NULL)
+		hlen = 0;
+	if ((all = malloc(hlen + line + 1)) == NULL)
+		tool_fail(VX_ENOMEM, "out of memory");
+	memcpy(all, hist != NULL ? hist : "", hlen);
+	memcpy(all + hlen, history, line + 1);
+	text[n].key = "Software";
+	text[n++].value = "voxlux " VX_VERSION;
+	text[n].key = "voxlux-history";
+	text[n++].value = all;
+	for (size_t k = 0; k < nextra; k++)
+		text[n++] = extra[k];
+	tool_out_open(&o, path);
+	if (vx_image_png_write_gamma(img, o.f, bits, gamma, text, n, &e) != 0) {
+		tool_out_abort(&o);
+		free(all);
+		vx_err_push(&e, "%s", o.path);
+		tool_fail_err(&e);
+	}
+	tool_out_close(&o);
+	free(all);
+}
+
+void
+tool_write_png_radiance(const char *path, const vx_image *color,
+    double exposure, const double bg[3], int bits, const vx_stream *in)
+{
+	vx_tonemap_opts tm;
+	vx_image disp;
+	vx_err e = { 0, "" };
+	const char *h;
+	size_t hl = 0;
+
+	vx_tonemap_defaults(&tm);
+	tm.exposure = exposure;
+	tm.flatten = 1;
+	memcpy(tm.background, bg, sizeof tm.background);
+	if (vx_tonemap_image(&disp, color, &tm, NULL, &e) != 0)
+		tool_fail_err(&e);
+	h = in != NULL ? vx_stream_history(in, &hl) : NULL;
+	tool_write_png(path, &disp, bits, 0, h, hl, NULL, 0);
+	vx_image_free(&disp);
 }

@@ -5,6 +5,7 @@
 #ifndef VX_TOOL_H
 #define VX_TOOL_H
 
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 
@@ -45,6 +46,16 @@ void tool_parse_doubles(const char *opt, const char *s, double *out, int n);
 /* tool_parse_enum: the value s names in en; else exits 64 with "name: opt:
  * unknown WHAT 'S' (one of: ...)". */
 int tool_parse_enum(const char *opt, const vx_enum *en, const char *s);
+
+/* tool_opt_other: the getopt_long results a program leaves to every
+ * program's rule: 'h' prints the usage and exits 0; ':' (a value missing,
+ * with an option string that starts with ':') and any other exit 64
+ * naming the option ("--size needs a value", "unknown option '-x'"). */
+_Noreturn void tool_opt_other(int ch, const char *usage, char **argv);
+
+/* tool_opt_input: the input operand after the options, "-" (standard
+ * input) when there is none; a second one exits 64. */
+const char *tool_opt_input(int argc, char **argv, const char *usage);
 
 /* tool_read_stream: read a whole stream from path ("-" is stdin); exits on
  * error.  Refuses a terminal on stdin with a usage hint. */
@@ -112,12 +123,50 @@ struct vx_macro;
 void tool_macro_load(struct vx_macro *m, const vx_stream *st,
     const struct vx_grid *g, long src, int nthr, int quiet);
 
+/* tool_tetleaf_load: the leaf grid of tet mesh `mesh` into lg
+ * (initialized here): the stream's TLEF chunk when it was built over this
+ * mesh, else built now with macrocell(1)'s defaults (nlev levels above the
+ * leaves: VX_MACRO_DEFAULT_LEVELS, or 0 for the leaves alone) and nthr
+ * threads, with a note on standard error unless quiet (as
+ * tool_macro_load).  With nlev 0 the stream's chunk is not looked at.
+ * Nothing is built when dry.  Exits on error. */
+struct vx_tetleaf;
+struct vx_tetmesh;
+void tool_tetleaf_load(struct vx_tetleaf *lg, const vx_stream *st,
+    const struct vx_tetmesh *mesh, int nlev, int nthr, int quiet, int dry);
+
+/* tool_write_png: img (display values in [0,1], encoded as gamma says,
+ * vx_image_png_write_gamma: 0 sRGB, G > 0 gamma, -1 no color-space chunk)
+ * as a PNG of bits 8 or 16 at path ("-": standard output, refused when it
+ * is a terminal; else atomically), with the tEXt chunks Software ("voxlux
+ * VERSION") and voxlux-history, the whole history: the input stream's
+ * lines (hist, hlen bytes as vx_stream_history gives them; NULL: none)
+ * followed by this run's; then the nextra chunks of extra.  Exits on
+ * error. */
+struct vx_text;
+void tool_write_png(const char *path, const struct vx_image *img, int bits,
+    double gamma, const char *hist, size_t hlen,
+    const struct vx_text *extra, size_t nextra);
+
+/* tool_write_png_radiance: the PNG of `color`, linear radiance (RGBA
+ * premultiplied by coverage, or RGB, gray, gray+alpha), exactly as
+ * tonemap(1) makes it with its defaults and --exposure `exposure`
+ * --background bg: the one compositing rule of the renderers' pictures
+ * (vx_tonemap.h: exposure on the color, clamp, then composited over the
+ * background in display values, which exposure does not touch; sRGB).
+ * History from the input stream `in` as tool_write_png.  Exits on
+ * error. */
+void tool_write_png_radiance(const char *path, const struct vx_image *color,
+    double exposure, const double bg[3], int bits, const vx_stream *in);
+
 /* tool_gi_setup: the global-illumination estimator (vx_gi.h) for scene s
- * over volume g and hierarchy m; exits 64 when the scene has no light a
- * bake can use (headlights move with the camera). */
+ * over volume g and hierarchy m, with the scene's environment map (at most
+ * one; read now, its content hash checked or recorded in s); exits 64
+ * when the scene has no light global illumination can use (headlights
+ * move with the camera), 65 or 66 for a map that cannot be read. */
 struct vx_gi;
 struct vx_scene;
-void tool_gi_setup(struct vx_gi *gi, const struct vx_scene *s,
+void tool_gi_setup(struct vx_gi *gi, struct vx_scene *s,
     const struct vx_grid *g, const struct vx_macro *m);
 
 /* tool_threads: number of threads for -j N (0: all cores), made the
