@@ -77,6 +77,45 @@ for sz in 1,5,6 5,1,1 1,1,1; do
 	check "raycast of a $sz volume runs" sh -c "raycast --iso 0.5 --size 8x8 -o '$T/t.png' '$T/thin.vx' 2>/dev/null"
 done
 
+# 6. Inputs that are not regular files are read only as far as their
+# header (or --raw) implies, plus the slack the reader checks: endless
+# ones (yes, /dev/zero) are refused at once, a FIFO without a writer is
+# an empty input (no wait), one with an endless writer is refused, and a
+# pipe holding a valid volume reads once (as the file does).  Each run is
+# limited to 60 seconds where timeout(1) exists (a regression hangs no
+# longer than that).  Oracle: exit codes, and the file's stream.
+tmo() { if command -v timeout >/dev/null 2>&1; then timeout 60 "$@"; else "$@"; fi; }
+yes | tmo vread --raw 4,4,4 --type u8 -o "$T/y.vx" - 2> "$T/y.err"
+check_eq "yes | vread --raw 4,4,4: refused (65)" "$?" 65
+check "yes | vread --raw: 'longer than'" grep -q "longer than" "$T/y.err"
+yes | tmo vread -o "$T/y.vx" - 2> "$T/y.err"
+check_eq "yes | vread: refused at once (65)" "$?" 65
+printf 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 4\nencoding: raw\ndata file: fifo\n\n' > "$T/f.nhdr"
+rm -f "$T/fifo"
+if mkfifo "$T/fifo" 2>/dev/null; then
+	tmo vread -o "$T/f.vx" "$T/f.nhdr" 2> "$T/f.err"
+	check_eq "a FIFO data file without a writer: empty input (66), no wait" "$?" 66
+	yes > "$T/fifo" 2>/dev/null &
+	ypid=$!
+	tmo vread -o "$T/f.vx" "$T/f.nhdr" 2> "$T/f.err"
+	rc=$?
+	kill "$ypid" 2>/dev/null; wait "$ypid" 2>/dev/null
+	check_eq "a FIFO data file with an endless writer: refused (65)" "$rc" 65
+else
+	skip "FIFO data files" "mkfifo failed"
+	skip "FIFO data files (writer)" "mkfifo failed"
+fi
+head -c 64 /dev/zero > "$T/z.raw"
+vread --raw 4,4,4 --type u8 -o "$T/z1.vx" "$T/z.raw"
+cat "$T/z.raw" | vread --raw 4,4,4 --type u8 -o "$T/z2.vx" -
+samples() { vinfo "$1" | sed -n 's/.*crc32: \([0-9a-f]*\) (samples.*/\1/p'; }
+check_eq "a pipe: the same samples as the file" "$(samples "$T/z2.vx")" "$(samples "$T/z1.vx")"
+gzip -c "$T/z.raw" | vread --raw 4,4,4 --type u8 -o "$T/z3.vx" -
+check_eq "a gzip pipe: the same samples" "$(samples "$T/z3.vx")" "$(samples "$T/z1.vx")"
+vread --synth sphere --size 12 | vwrite -o "$T/s.nrrd"
+cat "$T/s.nrrd" | vread -o "$T/sp.vx" /dev/stdin
+check_eq "a volume named by a pipe's path reads once (exit 0)" "$?" 0
+
 # 8. A signal during the output write removes the temporary: strace
 # delivers the signal as the process enters fsync (after every byte is
 # written, before the rename) or its first write; the run dies of it as it

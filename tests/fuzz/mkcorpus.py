@@ -285,3 +285,38 @@ put("exr", "y-float.exr", exr("Y", 2, 2))
 put("exr", "windows.exr", exr("BGR", 2, 2, dw=(1, 1, 2, 2), dp=(0, 0, 3, 3)))
 put("exr", "nan.exr", exr("BGR", 2, 1, vals=lambda c, x, y:
                           float("nan") if x == 1 else -0.5))
+
+
+# ---- readers over a pipe (fuzz_pipe: first byte 0 vx_import_file, 1
+# vx_import_volume_or_mesh, 2 raw with fuzz_raw's 8 parameter bytes) ----
+def seeds(sub):
+    d = os.path.join(top, sub)
+    return sorted((n, open(os.path.join(d, n), "rb").read())
+                  for n in os.listdir(d))
+
+
+for sub, mode in (("nrrd", 0), ("nifti", 0), ("vtk", 1), ("tetvtk", 1),
+                  ("gmsh", 1)):
+    for n, b in seeds(sub)[:4]:
+        if sub in ("tetvtk", "gmsh"):
+            b = b[1:]      # their targets' options byte
+        put("pipe", "%s-%s" % (sub, n), bytes([mode]) + b)
+put("pipe", "raw-u8", bytes([2, 2, 0, 3, 0, 2, 0, 1, 0]) + bytes(range(12)))
+put("pipe", "raw-gz", bytes([2, 2, 0, 2, 0, 2, 0, 3, 1]) +
+    gz(struct.pack(">8h", 1, -2, 3, -4, 5, -6, 7, -8)))
+put("pipe", "raw-long", bytes([2, 1, 0, 1, 0, 1, 0, 1, 0]) + bytes(64))
+
+# ---- numbers beyond the double range, extents that overflow ----
+put("nrrd", "ascii-overflow.nrrd", "NRRD0004\ntype: double\ndimension: 3\n"
+    "sizes: 2 1 1\nencoding: ascii\n\n1 1e999\n")
+put("nrrd", "extent-overflow.nrrd", b"NRRD0004\ntype: uchar\ndimension: 3\n"
+    b"sizes: 3 1 1\nencoding: raw\nspacings: 1e308 1 1\n\n" + bytes(3))
+put("vtk", "ascii-overflow.vtk", "# vtk DataFile Version 3.0\nx\nASCII\n"
+    "DATASET STRUCTURED_POINTS\nDIMENSIONS 2 1 1\nSPACING 1 1 1\n"
+    "ORIGIN 0 0 0\nPOINT_DATA 2\nSCALARS d float 1\n"
+    "LOOKUP_TABLE default\n-1e999 2\n")
+put("tetvtk", "scalar-overflow.vtk", "\x00# vtk DataFile Version 3.0\nx\n"
+    "ASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n"
+    "0 0 0 1 0 0 0 1 0 0 0 1\nCELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n10\n"
+    "POINT_DATA 4\nSCALARS d double 1\nLOOKUP_TABLE default\n"
+    "0.5 1.5 1e999 3.5\n")

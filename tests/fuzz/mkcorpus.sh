@@ -28,6 +28,9 @@ bin/vread --synth linear --size 2 | bin/vwrite --gzip -o "$out/nrrd/vwrite-gzip.
 bin/tonemap --pfm -o "$out/pfm/tonemap.pfm" "$tmp/img.vxs"
 bin/tonemap -o "$out/png/tonemap8.png" "$tmp/img.vxs"
 bin/tonemap --bits 16 -o "$out/png/tonemap16.png" "$tmp/img.vxs"
+# volumes whose box overflows (the malformed catalog's)
+cp tests/malformed/volm-extent-overflow.vxs tests/malformed/volm-extent-diagonal.vxs \
+    "$out/stream/"
 mkdir -p "$out/scene"
 cp examples/scenes/*.scn "$out/scene/"
 python3 tests/fuzz/mkcorpus.py "$out"

@@ -146,45 +146,100 @@ pair_image(const char *path)
 	return s;
 }
 
-int
-vx_import_file(vx_grid *g, const char *path, const vx_import_opts *o,
-    vx_err *e)
+/* import_stream: a volume from an input read as its reader asks (not
+ * mapped): the format from the gunzipped start, then the reader over it */
+static int
+import_stream(vx_grid *g, vx_imp_in *in, const char *name, const char *dir,
+    const vx_import_opts *o, vx_err *e)
 {
-	const char *name = strcmp(path, "-") == 0 ? NULL : path;
+	const unsigned char *p;
+	size_t avail;
+	vx_format f = o->format;
+	int rc;
+
+	if ((rc = vx_imp_peek(in->top, 352, &p, &avail, e)) != 0)
+		return rc;
+	if (f == VX_FORMAT_UNKNOWN)
+		f = from_magic(p, avail);
+	if (f == VX_FORMAT_UNKNOWN)
+		f = from_name(name);
+	switch (f) {
+	case VX_FORMAT_RAW:
+		if (o->format != VX_FORMAT_RAW || o->raw.type ==
+		    VX_SCALAR_UNKNOWN)
+			return vx_err_set(e, VX_EUSAGE, "raw data: give its dims "
+			    "and type (vread --raw NX,NY,NZ --type T)");
+		return vx_imp_read_raw(g, in->top, &o->raw, e);
+	case VX_FORMAT_NRRD:
+		return vx_imp_read_nrrd(g, in->top, dir, e);
+	case VX_FORMAT_NIFTI:
+		return vx_imp_read_nifti(g, in->top, e);
+	case VX_FORMAT_VTK:
+		return vx_imp_read_vtk(g, in->top, e);
+	default:
+		if (avail >= VX_SIGNATURE_LEN && memcmp(p, VX_SIGNATURE,
+		    VX_SIGNATURE_LEN) == 0)
+			return vx_err_set(e, VX_EDATA, "this is a voxlux stream "
+			    "already, not a volume to import");
+		return vx_err_set(e, VX_EDATA, "unknown format (not NRRD, "
+		    "NIfTI-1 or VTK; for raw data give --raw and --type)");
+	}
+}
+
+int
+vx_imp_import_in(vx_grid *g, vx_imp_in *in, const char *name,
+    const vx_import_opts *o, vx_err *e)
+{
 	char *dcopy = NULL, *img = NULL;
 	const char *dir = ".";
-	vx_imp_file f, fi;
 	vx_format fmt;
 	int rc;
 
 	vx_grid_init(g);
-	if ((rc = vx_imp_file_load(&f, path, e)) != 0)
-		return rc;
-	fmt = o->format != VX_FORMAT_UNKNOWN ? o->format :
-	    vx_import_detect(f.p, f.n, name);
 	if (name != NULL) {
-		if ((dcopy = strdup(name)) == NULL) {
-			vx_imp_file_free(&f);
+		if ((dcopy = strdup(name)) == NULL)
 			return vx_err_set(e, VX_ENOMEM, "out of memory");
-		}
 		dir = dirname(dcopy);
 	}
-	if (fmt == VX_FORMAT_NIFTI && name != NULL &&
+	fmt = o->format != VX_FORMAT_UNKNOWN ? o->format : in->stream ?
+	    VX_FORMAT_UNKNOWN : vx_import_detect(in->f.p, in->f.n, name);
+	if (!in->stream && fmt == VX_FORMAT_NIFTI && name != NULL &&
 	    (img = pair_image(name)) != NULL) {
-		if ((rc = vx_imp_file_load(&fi, img, e)) == 0) {
-			rc = vx_import_nifti_pair_mem(g, f.p, f.n, fi.p, fi.n, e);
-			vx_imp_file_free(&fi);
+		/* the image as its header implies, whatever kind of file */
+		vx_imp_in ii;
+
+		if ((rc = vx_imp_open(&ii, img, e)) == 0) {
+			rc = vx_imp_read_nifti_pair(g, in->f.p, in->f.n, ii.top,
+			    e);
+			vx_imp_close(&ii);
 		}
+	} else if (in->stream) {
+		rc = import_stream(g, in, name, dir, o, e);
 	} else {
 		vx_import_opts oo = *o;
 
 		oo.format = fmt;
-		rc = vx_import_mem(g, f.p, f.n, name, dir, &oo, e);
+		rc = vx_import_mem(g, in->f.p, in->f.n, name, dir, &oo, e);
 	}
 	if (rc != 0 && rc != VX_ENOINPUT)
 		vx_err_push(e, "%s", name ? name : "<stdin>");
 	free(img);
 	free(dcopy);
-	vx_imp_file_free(&f);
+	return rc;
+}
+
+int
+vx_import_file(vx_grid *g, const char *path, const vx_import_opts *o,
+    vx_err *e)
+{
+	vx_imp_in in;
+	int rc;
+
+	vx_grid_init(g);
+	if ((rc = vx_imp_open(&in, path, e)) != 0)
+		return rc;
+	rc = vx_imp_import_in(g, &in, strcmp(path, "-") == 0 ? NULL : path, o,
+	    e);
+	vx_imp_close(&in);
 	return rc;
 }

@@ -4,6 +4,7 @@
 #include "import_priv.h"
 #include "vx_scan.h"
 
+#include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
@@ -54,36 +55,49 @@ vx_import_volume_or_mesh(vx_grid *g, vx_tetmesh *m, int *is_mesh,
     const vx_tetimport_opt *mopt, vx_tetimport_info *info, vx_err *e)
 {
 	int stdin_ = strcmp(path, "-") == 0;
-	vx_imp_file f;
+	const unsigned char *p;
+	unsigned char *buf = NULL;
+	size_t n;
+	vx_imp_in in;
 	int rc;
 
 	vx_grid_init(g);
 	vx_tetmesh_init(m);
 	*is_mesh = 0;
-	if ((rc = vx_imp_file_load(&f, path, e)) != 0)
+	if ((rc = vx_imp_open(&in, path, e)) != 0)
 		return rc;
-	if ((vopt->format == VX_FORMAT_UNKNOWN ||
-	    vopt->format == VX_FORMAT_VTK) && vx_tetmesh_detect(f.p, f.n)) {
+	/* the content decides: the gunzipped start of a stream, the whole
+	 * mapped file */
+	if (in.stream)
+		rc = vx_imp_peek(in.top, 1024, &p, &n, e);
+	else {
+		p = in.f.p;
+		n = in.f.n;
+	}
+	if (rc == 0 && (vopt->format == VX_FORMAT_UNKNOWN ||
+	    vopt->format == VX_FORMAT_VTK) && vx_tetmesh_detect(p, n)) {
 		char name[VX_TETMESH_NAME];
 
 		*is_mesh = 1;
-		rc = vx_tetmesh_import_mem(m, f.p, f.n, mopt, info, e);
-		vx_imp_file_free(&f);
+		/* a mesh's header names no size: from a pipe or device it is
+		 * read up to VX_IMP_TEXT_MAX */
+		if (in.stream && (rc = vx_imp_slurp(in.top, VX_IMP_TEXT_MAX,
+		    &buf, &n, e)) == 0)
+			p = buf;
+		if (rc == 0)
+			rc = vx_tetmesh_import_mem(m, p, n, mopt, info, e);
+		free(buf);
+		vx_imp_close(&in);
 		if (rc != 0)
 			return vx_err_push(e, "%s", stdin_ ? "<stdin>" : path);
 		vx_imp_stem(stdin_ ? "stdin" : path, name, sizeof name);
 		vx_tetmesh_set_name(m, name);
 		return 0;
 	}
-	if (!stdin_) {
-		/* a volume: read it again by name (NIfTI pairs and detached
-		 * NRRD data need the path) */
-		vx_imp_file_free(&f);
-		return vx_import_file(g, path, vopt, e);
-	}
-	rc = vx_import_mem(g, f.p, f.n, NULL, ".", vopt, e);
-	vx_imp_file_free(&f);
-	if (rc != 0 && rc != VX_ENOINPUT)
-		vx_err_push(e, "<stdin>");
+	if (rc == 0)
+		rc = vx_imp_import_in(g, &in, stdin_ ? NULL : path, vopt, e);
+	else
+		vx_err_push(e, "%s", stdin_ ? "<stdin>" : path);
+	vx_imp_close(&in);
 	return rc;
 }

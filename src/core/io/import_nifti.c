@@ -256,18 +256,15 @@ nii_read(vx_grid *g, const unsigned char *h, vx_imp_src *d, uint64_t consumed,
 }
 
 int
-vx_import_nifti_mem(vx_grid *g, const void *buf, size_t n, vx_err *e)
+vx_imp_read_nifti(vx_grid *g, vx_imp_src *s, vx_err *e)
 {
 	unsigned char h[NII_HDR];
 	const unsigned char *p;
 	size_t avail;
-	vx_imp_src s;
 	int rc;
 
 	vx_grid_init(g);
-	if ((rc = vx_imp_src_auto(&s, buf, n, e)) != 0)
-		return rc;
-	if ((rc = vx_imp_peek(&s, NII_HDR, &p, &avail, e)) != 0)
+	if ((rc = vx_imp_peek(s, NII_HDR, &p, &avail, e)) != 0)
 		goto out;
 	if (avail < NII_HDR) {
 		rc = vx_err_set(e, VX_EDATA, "nifti: header truncated (%zu of "
@@ -275,13 +272,26 @@ vx_import_nifti_mem(vx_grid *g, const void *buf, size_t n, vx_err *e)
 		goto out;
 	}
 	memcpy(h, p, NII_HDR);
-	if ((rc = vx_imp_skip(&s, NII_HDR, e)) != 0)
+	if ((rc = vx_imp_skip(s, NII_HDR, e)) != 0)
 		goto out;
-	rc = nii_read(g, h, &s, NII_HDR, 0, e);
+	rc = nii_read(g, h, s, NII_HDR, 0, e);
 out:
-	vx_imp_src_close(&s);
 	if (rc != 0)
 		vx_grid_free(g);
+	return rc;
+}
+
+int
+vx_import_nifti_mem(vx_grid *g, const void *buf, size_t n, vx_err *e)
+{
+	vx_imp_src s;
+	int rc;
+
+	vx_grid_init(g);
+	if ((rc = vx_imp_src_auto(&s, buf, n, e)) != 0)
+		return rc;
+	rc = vx_imp_read_nifti(g, &s, e);
+	vx_imp_src_close(&s);
 	return rc;
 }
 
@@ -289,10 +299,25 @@ int
 vx_import_nifti_pair_mem(vx_grid *g, const void *hdr, size_t hn,
     const void *img, size_t in, vx_err *e)
 {
+	vx_imp_src s;
+	int rc;
+
+	vx_grid_init(g);
+	if ((rc = vx_imp_src_auto(&s, img, in, e)) != 0)
+		return rc;
+	rc = vx_imp_read_nifti_pair(g, hdr, hn, &s, e);
+	vx_imp_src_close(&s);
+	return rc;
+}
+
+int
+vx_imp_read_nifti_pair(vx_grid *g, const void *hdr, size_t hn,
+    vx_imp_src *img, vx_err *e)
+{
 	unsigned char h[NII_HDR];
 	const unsigned char *p;
 	size_t avail;
-	vx_imp_src hs, s;
+	vx_imp_src hs;
 	int rc;
 
 	vx_grid_init(g);
@@ -307,10 +332,7 @@ vx_import_nifti_pair_mem(vx_grid *g, const void *hdr, size_t hn,
 	vx_imp_src_close(&hs);
 	if (rc != 0)
 		return rc;
-	if ((rc = vx_imp_src_auto(&s, img, in, e)) != 0)
-		return rc;
-	rc = nii_read(g, h, &s, 0, 1, e);
-	vx_imp_src_close(&s);
+	rc = nii_read(g, h, img, 0, 1, e);
 	if (rc != 0)
 		vx_grid_free(g);
 	return rc;

@@ -699,9 +699,12 @@ read_piece(const nrrd *h, vx_imp_conv *c, vx_imp_src *file, vx_err *e)
 		/* raw data at the very end of the file */
 		uint64_t left = vx_imp_left_max(s);
 
-		if (s->gz)
+		if (s->gz == 1)
 			return vx_err_set(e, VX_EDATA, "byte skip: -1 needs an "
 			    "uncompressed data file");
+		if (s->gz == 2)     /* its size is what says where data start */
+			return vx_err_set(e, VX_EDATA, "byte skip: -1 needs a "
+			    "regular data file (not a pipe or device)");
 		if (left < bytes) {
 			rc = vx_err_set(e, VX_EDATA, "truncated: %llu bytes, "
 			    "%llu needed", (unsigned long long)left,
@@ -777,8 +780,12 @@ parse_pattern(const nrrd *h, pattern *pt, vx_err *e)
 		j = i + 1;
 		if (j < sp && v[j] == '0')
 			pt->zero = 1;
-		while (j < sp && isdigit((unsigned char)v[j]))
-			pt->width = pt->width * 10 + (v[j++] - '0');
+		/* (past 20 the pattern is refused below: no overflow) */
+		while (j < sp && isdigit((unsigned char)v[j])) {
+			if (pt->width <= 20)
+				pt->width = pt->width * 10 + (v[j] - '0');
+			j++;
+		}
 		if (j >= sp || v[j] != 'd' || found || pt->width > 20)
 			return vx_err_set(e, VX_EDATA, "data file: pattern '%s': "
 			    "only one %%d (or %%0Nd) conversion is allowed",
@@ -985,22 +992,21 @@ read_detached(const nrrd *h, const files *fl, vx_imp_conv *c, const char *dir,
 
 	for (k = 0; k < fl->n; k++) {
 		char *path = files_path(h, fl, k, dir);
-		vx_imp_file f;
-		vx_imp_src s;
+		vx_imp_in in;
 
 		if (path == NULL)
 			return vx_err_set(e, VX_EDATA, "data file: name too long "
 			    "or invalid");
-		if ((rc = vx_imp_file_load(&f, path, e)) != 0) {
+		/* mapped, or (a pipe, a FIFO, a device) read as far as the
+		 * piece needs and the slack after it: never more */
+		if ((rc = vx_imp_open(&in, path, e)) != 0) {
 			vx_err_push(e, "data file");
 			free(path);
 			return rc;
 		}
-		vx_imp_src_mem(&s, f.p, f.n);
 		c->stop = c->next + per;
-		rc = read_piece(h, c, &s, e);
-		vx_imp_src_close(&s);
-		vx_imp_file_free(&f);
+		rc = read_piece(h, c, &in.raw, e);
+		vx_imp_close(&in);
 		if (rc != 0) {
 			vx_err_push(e, "data file %s", path);
 			free(path);
@@ -1078,7 +1084,7 @@ nrrd_read(vx_grid *g, vx_imp_src *s, const char *dir, vx_err *e)
 		goto out;
 	/* bound the samples by the input before allocating them */
 	if (h.val[F_DATA_FILE] == NULL) {
-		if (h.enc == ENC_GZIP && s->gz) {
+		if (h.enc == ENC_GZIP && s->gz == 1) {
 			rc = vx_err_set(e, VX_EDATA, "nrrd: gzip encoding inside "
 			    "a gzip-compressed file is not supported");
 			goto out;
@@ -1096,6 +1102,13 @@ nrrd_read(vx_grid *g, vx_imp_src *s, const char *dir, vx_err *e)
 			goto out;
 		}
 	}
+	/* from a pipe: as many input bytes as the encoding needs at least
+	 * must be there before the samples are allocated */
+	if (h.val[F_DATA_FILE] == NULL && vx_imp_streamed(s) &&
+	    (rc = vx_imp_need(s, h.enc == ENC_GZIP ? bytes / IMP_GZ_RATIO :
+	    h.enc == ENC_ASCII ? 2 * total - 1 : h.enc == ENC_HEX ? 2 * bytes :
+	    bytes, "nrrd: data", e)) != 0)
+		goto out;
 	if (enc_holds(&h, in) < bytes) {
 		rc = vx_err_set(e, VX_EDATA, "nrrd: data: truncated: %llu bytes "
 		    "of %s data cannot hold the %llu bytes that sizes and type "
@@ -1121,6 +1134,17 @@ nrrd_read(vx_grid *g, vx_imp_src *s, const char *dir, vx_err *e)
 	vx_imp_conv_abort(&c);
 out:
 	nrrd_free(&h);
+	return rc;
+}
+
+int
+vx_imp_read_nrrd(vx_grid *g, vx_imp_src *s, const char *dir, vx_err *e)
+{
+	int rc;
+
+	vx_grid_init(g);
+	if ((rc = nrrd_read(g, s, dir, e)) != 0)
+		vx_grid_free(g);
 	return rc;
 }
 

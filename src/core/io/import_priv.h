@@ -22,7 +22,8 @@
 #define IMP_SLACK 4096        /* bytes tolerated after the samples */
 
 typedef struct vx_imp_src {
-	int gz;                       /* 0: memory, 1: gzip over `under` */
+	int gz;                       /* 0: memory, 1: gzip over `under`,
+	                                 2: a file descriptor (read as asked) */
 	const unsigned char *mem;     /* memory: the bytes */
 	size_t n, pos;
 	struct vx_imp_src *under;        /* gzip: compressed input */
@@ -30,8 +31,9 @@ typedef struct vx_imp_src {
 	z_stream zs;
 	int zinit, zend;
 	unsigned char *buf;           /* gzip: inflated, not yet consumed: */
-	size_t cap, off, len;         /*   buf[off .. len) */
+	size_t cap, off, len;         /*   buf[off .. len) (descriptor: read) */
 	uint64_t done;                /* bytes consumed so far */
+	int fd, eof;                  /* descriptor: it, and its end seen */
 } vx_imp_src;
 
 /* vx_imp_src_mem: a source over n bytes at p (borrowed). */
@@ -45,6 +47,11 @@ int vx_imp_src_auto(vx_imp_src *s, const void *p, size_t n, vx_err *e);
 void vx_imp_src_close(vx_imp_src *s);
 /* vx_imp_is_gzip: p starts with the gzip magic. */
 int vx_imp_is_gzip(const void *p, size_t n);
+/* vx_imp_src_fd: a source reading descriptor fd (borrowed) only as far as
+ * its readers ask: a header's window, the samples it implies, the slack
+ * after them.  Its size is unknown (vx_imp_left_max: unbounded), so a
+ * short input shows as "truncated" when read. */
+void vx_imp_src_fd(vx_imp_src *s, int fd);
 
 /* vx_imp_peek: make up to `want` bytes contiguous at the current position;
  * *avail gets how many (fewer only at the end of input). */
@@ -57,8 +64,14 @@ int vx_imp_read(vx_imp_src *s, void *dst, size_t n, size_t *got, vx_err *e);
 /* vx_imp_left_max: an upper bound of the bytes left (exact for memory; for
  * gzip, what the compressed bytes left could inflate to). */
 uint64_t vx_imp_left_max(const vx_imp_src *s);
-/* vx_imp_need: VX_EDATA "truncated: ..." unless vx_imp_left_max(s) >= n. */
-int vx_imp_need(const vx_imp_src *s, uint64_t n, const char *what, vx_err *e);
+/* vx_imp_need: VX_EDATA "truncated: ..." unless vx_imp_left_max(s) >= n;
+ * for a source over a descriptor (whose size is unknown), unless n bytes
+ * are there: they are read ahead into its buffer, which grows only as
+ * they arrive, so that what follows (the samples' allocation) is bounded
+ * by the input, not by a header's claim. */
+int vx_imp_need(vx_imp_src *s, uint64_t n, const char *what, vx_err *e);
+/* vx_imp_streamed: s reads a descriptor (directly or gunzipping one). */
+int vx_imp_streamed(const vx_imp_src *s);
 /* vx_imp_trailing: after the samples: *more gets 1 when more than slack
  * bytes follow.  Inflates at most slack + 1 bytes, so a gzip stream that
  * ends within the slack has its CRC checked. */
@@ -74,8 +87,55 @@ typedef struct vx_imp_file {
 
 /* vx_imp_file_load: the whole file ("-": standard input) in memory, mapped
  * when it is a regular file.  VX_ENOINPUT if it cannot be opened or is
- * empty, VX_EIO on read errors.  Messages start with the path. */
+ * empty, VX_EIO on read errors.  Messages start with the path.  For
+ * regular files (or a standard input that is one): the size is the
+ * file's; other inputs go through vx_imp_open. */
 int vx_imp_file_load(vx_imp_file *f, const char *path, vx_err *e);
+
+/* An input opened for reading: a regular file mapped (a memory source
+ * over it, exactly as vx_imp_file_load gives), anything else (a pipe, a
+ * FIFO, a device) read through a descriptor source, so that no reader
+ * takes more than its header implies plus the slack it checks (an
+ * endless /dev/zero or `yes` is refused after that).  A FIFO is opened
+ * without waiting for a writer (none: an empty input).  raw is the
+ * file's bytes; top is raw, or its gunzipped view when it starts with
+ * the gzip magic. */
+typedef struct vx_imp_in {
+	vx_imp_file f;                /* the mapping (regular files) */
+	int stream;                   /* 1: read through the descriptor */
+	int fd, own_fd;
+	vx_imp_src raw, gz, *top;
+} vx_imp_in;
+
+/* vx_imp_open: path ("-": standard input).  VX_ENOINPUT when it cannot be
+ * opened, is a directory or is empty; VX_EIO on read errors; messages
+ * start with the path. */
+int vx_imp_open(vx_imp_in *in, const char *path, vx_err *e);
+void vx_imp_close(vx_imp_in *in);
+/* vx_imp_import_in: a volume from in (opened by vx_imp_open), name its
+ * path (NULL: standard input) for detection, detached NRRD data and NIfTI
+ * pairs; errors prefixed with the name. */
+int vx_imp_import_in(vx_grid *g, vx_imp_in *in, const char *name,
+    const struct vx_import_opts *o, vx_err *e);
+/* VX_IMP_TEXT_MAX: the most bytes a tet mesh (whose header names no size)
+ * is read from a pipe or device */
+#define VX_IMP_TEXT_MAX ((uint64_t)1 << 30)
+/* vx_imp_slurp: the rest of s (a descriptor source's) in memory, at most
+ * max bytes (VX_EDATA beyond: what has no size in its header is read up to
+ * that bound); *p malloc'ed. */
+int vx_imp_slurp(vx_imp_src *s, uint64_t max, unsigned char **p, size_t *n,
+    vx_err *e);
+
+/* ---- the readers over a source (import_*.c) ----
+ * The memory entry points of vx_import.h over a source s (gunzipped
+ * already): what vx_import_file uses for inputs that are not mapped. */
+int vx_imp_read_raw(vx_grid *g, vx_imp_src *s, const vx_raw_info *r,
+    vx_err *e);
+int vx_imp_read_nrrd(vx_grid *g, vx_imp_src *s, const char *dir, vx_err *e);
+int vx_imp_read_nifti(vx_grid *g, vx_imp_src *s, vx_err *e);
+int vx_imp_read_nifti_pair(vx_grid *g, const void *hdr, size_t hn,
+    vx_imp_src *img, vx_err *e);
+int vx_imp_read_vtk(vx_grid *g, vx_imp_src *s, vx_err *e);
 /* vx_imp_stem: path's file name without directory and extensions
  * ("a/b.vtk.gz" -> "b"), at most cap - 1 bytes (imported meshes are named
  * so). */

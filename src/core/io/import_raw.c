@@ -10,54 +10,62 @@ vx_raw_info_init(vx_raw_info *r)
 	r->spacing[0] = r->spacing[1] = r->spacing[2] = 1;
 }
 
+/* raw_check: the sizes and frame before any byte is read */
+static int
+raw_check(const vx_raw_info *r, uint64_t *total, uint64_t *bytes,
+    vx_imp_frame *f, vx_err *e)
+{
+	int rc;
+
+	if (vx_scalar_size(r->type) == 0)
+		return vx_err_set(e, VX_EDATA, "raw: unknown sample type");
+	if ((rc = vx_imp_total(r->dims, vx_scalar_size(r->type), total, bytes,
+	    "raw: dims", e)) != 0)
+		return rc;
+	if ((rc = vx_imp_frame_plain(f, r->spacing, r->origin, r->dims,
+	    "raw: spacing", e)) != 0)
+		return rc;
+	for (int a = 0; a < 3; a++)
+		if (f->flip[a])
+			return vx_err_set(e, VX_EDATA, "raw: spacing must be "
+			    "positive");
+	return 0;
+}
+
 int
-vx_import_raw_mem(vx_grid *g, const void *buf, size_t n,
-    const vx_raw_info *r, vx_err *e)
+vx_imp_read_raw(vx_grid *g, vx_imp_src *s, const vx_raw_info *r, vx_err *e)
 {
 	uint64_t total, bytes;
 	vx_imp_frame f;
 	vx_imp_conv c;
-	vx_imp_src s;
 	int rc, more;
 
 	vx_grid_init(g);
-	if (vx_scalar_size(r->type) == 0)
-		return vx_err_set(e, VX_EDATA, "raw: unknown sample type");
-	if ((rc = vx_imp_total(r->dims, vx_scalar_size(r->type), &total, &bytes,
-	    "raw: dims", e)) != 0)
+	if ((rc = raw_check(r, &total, &bytes, &f, e)) != 0)
 		return rc;
-	if ((rc = vx_imp_frame_plain(&f, r->spacing, r->origin, r->dims,
-	    "raw: spacing", e)) != 0)
-		return rc;
-	for (int a = 0; a < 3; a++)
-		if (f.flip[a])
-			return vx_err_set(e, VX_EDATA, "raw: spacing must be "
-			    "positive");
-	if ((rc = vx_imp_src_auto(&s, buf, n, e)) != 0)
-		return rc;
-	if ((rc = vx_imp_need(&s, r->skip, "raw: skip", e)) != 0 ||
-	    (rc = vx_imp_skip(&s, r->skip, e)) != 0) {
+	if ((rc = vx_imp_need(s, r->skip, "raw: skip", e)) != 0 ||
+	    (rc = vx_imp_skip(s, r->skip, e)) != 0) {
 		if (rc == VX_EDATA)
 			vx_err_push(e, "raw: skip %llu",
 			    (unsigned long long)r->skip);
 		goto out;
 	}
-	if ((rc = vx_imp_need(&s, bytes, "raw", e)) != 0)
+	if ((rc = vx_imp_need(s, bytes, "raw", e)) != 0)
 		goto out;
 	if ((rc = vx_imp_conv_begin(&c, g, r->dims, r->type, r->big_endian, &f,
 	    NULL, e)) != 0)
 		goto out;
-	if ((rc = vx_imp_conv_binary(&c, &s, e)) != 0 ||
+	if ((rc = vx_imp_conv_binary(&c, s, e)) != 0 ||
 	    (rc = vx_imp_conv_end(&c, e)) != 0) {
 		vx_imp_conv_abort(&c);
 		vx_err_push(e, "raw: %lld x %lld x %lld %s",
 		    (long long)r->dims[0], (long long)r->dims[1],
-		    (long long)r->dims[2],
-		    vx_enum_str(&vx_scalar_enum, r->type));
+		    (long long)r->dims[2], vx_enum_str(&vx_scalar_enum, r->type));
 		goto out;
 	}
-	/* the input must end here: extra bytes mean wrong dims or type */
-	if ((rc = vx_imp_trailing(&s, 0, &more, e)) != 0) {
+	/* the input must end here: extra bytes mean wrong dims or type (one
+	 * byte more is read to see it: no more from an endless input) */
+	if ((rc = vx_imp_trailing(s, 0, &more, e)) != 0) {
 		vx_err_push(e, "raw");
 		goto out;
 	}
@@ -65,12 +73,29 @@ vx_import_raw_mem(vx_grid *g, const void *buf, size_t n,
 		rc = vx_err_set(e, VX_EDATA, "raw: input is longer than skip + "
 		    "%lld x %lld x %lld %s samples (%llu bytes): check the dims "
 		    "and type", (long long)r->dims[0], (long long)r->dims[1],
-		    (long long)r->dims[2],
-		    vx_enum_str(&vx_scalar_enum, r->type),
+		    (long long)r->dims[2], vx_enum_str(&vx_scalar_enum, r->type),
 		    (unsigned long long)(r->skip + bytes));
 out:
-	vx_imp_src_close(&s);
 	if (rc != 0)
 		vx_grid_free(g);
+	return rc;
+}
+
+int
+vx_import_raw_mem(vx_grid *g, const void *buf, size_t n,
+    const vx_raw_info *r, vx_err *e)
+{
+	uint64_t total, bytes;
+	vx_imp_frame f;
+	vx_imp_src s;
+	int rc;
+
+	vx_grid_init(g);
+	if ((rc = raw_check(r, &total, &bytes, &f, e)) != 0)
+		return rc;
+	if ((rc = vx_imp_src_auto(&s, buf, n, e)) != 0)
+		return rc;
+	rc = vx_imp_read_raw(g, &s, r, e);
+	vx_imp_src_close(&s);
 	return rc;
 }

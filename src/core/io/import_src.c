@@ -29,6 +29,36 @@ vx_imp_src_mem(vx_imp_src *s, const void *p, size_t n)
 	memset(s, 0, sizeof *s);
 	s->mem = p != NULL ? p : none;
 	s->n = n;
+	s->fd = -1;
+}
+
+void
+vx_imp_src_fd(vx_imp_src *s, int fd)
+{
+	memset(s, 0, sizeof *s);
+	s->gz = 2;
+	s->fd = fd;
+}
+
+/* fd_read: up to n bytes of the descriptor into p (short only at its
+ * end); *got the count */
+static int
+fd_read(vx_imp_src *s, unsigned char *p, size_t n, size_t *got, vx_err *e)
+{
+	*got = 0;
+	while (*got < n && !s->eof) {
+		ssize_t r = read(s->fd, p + *got, n - *got);
+
+		if (r < 0) {
+			if (errno == EINTR)
+				continue;
+			return vx_err_set(e, VX_EIO, "read: %s", strerror(errno));
+		}
+		if (r == 0)
+			s->eof = 1;
+		*got += (size_t)r;
+	}
+	return 0;
 }
 
 int
@@ -36,6 +66,7 @@ vx_imp_src_gzip(vx_imp_src *s, vx_imp_src *under, vx_err *e)
 {
 	memset(s, 0, sizeof *s);
 	s->gz = 1;
+	s->fd = -1;
 	s->under = under;
 	/* 15 + 16: a gzip wrapper, not zlib's */
 	if (inflateInit2(&s->zs, 15 + 16) != Z_OK)
@@ -138,7 +169,7 @@ vx_imp_peek(vx_imp_src *s, size_t want, const unsigned char **p, size_t *avail,
 	size_t have, got;
 	int rc;
 
-	if (!s->gz) {
+	if (s->gz == 0) {
 		have = s->n - s->pos;
 		*p = s->mem + s->pos;
 		*avail = want < have ? want : have;
@@ -158,17 +189,24 @@ vx_imp_peek(vx_imp_src *s, size_t want, const unsigned char **p, size_t *avail,
 			while (cap < want)
 				cap = cap > SIZE_MAX / 2 ? want : 2 * cap;
 			if ((b = realloc(s->buf, cap)) == NULL)
-				return vx_err_set(e, VX_ENOMEM, "gzip: out of memory "
-				    "for %zu bytes", cap);
+				return vx_err_set(e, VX_ENOMEM, "%s: out of memory "
+				    "for %zu bytes", s->gz == 1 ? "gzip" : "input",
+				    cap);
 			s->buf = b;
 			s->cap = cap;
 		}
-		if ((rc = gz_inflate(s, s->buf + s->len, want - have, &got, e)))
+		if ((rc = s->gz == 1 ? gz_inflate(s, s->buf + s->len, want - have,
+		    &got, e) : fd_read(s, s->buf + s->len, want - have, &got, e)))
 			return rc;
 		s->len += got;
 		have += got;
 	}
-	*p = s->buf + s->off;
+	{
+		static const unsigned char none[1];
+
+		/* nothing buffered yet (want 0): no null pointer arithmetic */
+		*p = s->buf != NULL ? s->buf + s->off : none;
+	}
 	*avail = want < have ? want : have;
 	return 0;
 }
@@ -176,7 +214,7 @@ vx_imp_peek(vx_imp_src *s, size_t want, const unsigned char **p, size_t *avail,
 int
 vx_imp_skip(vx_imp_src *s, uint64_t k, vx_err *e)
 {
-	if (!s->gz) {
+	if (s->gz == 0) {
 		if (k > s->n - s->pos)
 			return vx_err_set(e, VX_EDATA, "input ends after %llu "
 			    "bytes, %llu needed", (unsigned long long)s->n,
@@ -210,7 +248,7 @@ vx_imp_read(vx_imp_src *s, void *dst, size_t n, size_t *got, vx_err *e)
 	size_t k;
 	int rc;
 
-	if (!s->gz) {
+	if (s->gz == 0) {
 		k = s->n - s->pos;
 		if (k > n)
 			k = n;
@@ -231,7 +269,8 @@ vx_imp_read(vx_imp_src *s, void *dst, size_t n, size_t *got, vx_err *e)
 	if (k < n) {
 		size_t more;
 
-		rc = gz_inflate(s, d + k, n - k, &more, e);
+		rc = s->gz == 1 ? gz_inflate(s, d + k, n - k, &more, e) :
+		    fd_read(s, d + k, n - k, &more, e);
 		*got += more;
 		if (rc != 0)
 			return rc;
@@ -245,9 +284,11 @@ vx_imp_left_max(const vx_imp_src *s)
 {
 	uint64_t in, buffered;
 
-	if (!s->gz)
+	if (s->gz == 0)
 		return s->n - s->pos;
 	buffered = s->len - s->off;
+	if (s->gz == 2)     /* not known before the end is read */
+		return s->eof ? buffered : UINT64_MAX;
 	in = vx_imp_left_max(s->under);
 	if (in > (UINT64_MAX - buffered - GZ_CHUNK) / IMP_GZ_RATIO)
 		return UINT64_MAX;
@@ -256,13 +297,46 @@ vx_imp_left_max(const vx_imp_src *s)
 }
 
 int
-vx_imp_need(const vx_imp_src *s, uint64_t n, const char *what, vx_err *e)
+vx_imp_streamed(const vx_imp_src *s)
+{
+	return s->gz == 2 || (s->gz == 1 && vx_imp_streamed(s->under));
+}
+
+int
+vx_imp_need(vx_imp_src *s, uint64_t n, const char *what, vx_err *e)
 {
 	uint64_t left = vx_imp_left_max(s);
 
+	if (vx_imp_streamed(s)) {
+		/* no size to check: the bytes themselves, read ahead with
+		 * the buffer growing as they arrive (never on the header's
+		 * word alone) */
+		const unsigned char *p;
+		size_t want = GZ_CHUNK, avail;
+		int rc;
+
+		if (n == 0)
+			return 0;
+		if (n > SIZE_MAX / 2)
+			return vx_err_set(e, VX_EDATA, "%s: %llu bytes: too many",
+			    what, (unsigned long long)n);
+		for (;;) {
+			if (want > n)
+				want = (size_t)n;
+			if ((rc = vx_imp_peek(s, want, &p, &avail, e)) != 0)
+				return rc;
+			if (avail >= n)
+				return 0;
+			if (avail < want)
+				return vx_err_set(e, VX_EDATA, "%s: truncated: the "
+				    "input ends after %zu of %llu bytes", what, avail,
+				    (unsigned long long)n);
+			want *= 2;
+		}
+	}
 	if (left >= n)
 		return 0;
-	if (!s->gz)
+	if (s->gz != 1)
 		return vx_err_set(e, VX_EDATA, "%s: truncated: %llu bytes left, "
 		    "%llu needed", what, (unsigned long long)left,
 		    (unsigned long long)n);
@@ -385,6 +459,138 @@ vx_imp_file_free(vx_imp_file *f)
 	else
 		free(f->p);
 	memset(f, 0, sizeof *f);
+}
+
+int
+vx_imp_open(vx_imp_in *in, const char *path, vx_err *e)
+{
+	const unsigned char *p;
+	struct stat st;
+	size_t avail;
+	int rc, fl;
+
+	memset(in, 0, sizeof *in);
+	in->fd = -1;
+	if (strcmp(path, "-") == 0) {
+		if (fstat(STDIN_FILENO, &st) == 0 && S_ISREG(st.st_mode))
+			goto whole;      /* a file on stdin: its size is known */
+		in->fd = STDIN_FILENO;
+		path = "<stdin>";
+	} else {
+		/* no wait for a FIFO's writer (none: an empty input) */
+		if ((in->fd = open(path, O_RDONLY | O_NONBLOCK)) < 0)
+			return vx_err_set(e, VX_ENOINPUT, "%s: %s", path,
+			    strerror(errno));
+		in->own_fd = 1;
+		if (fstat(in->fd, &st) != 0) {
+			rc = vx_err_set(e, VX_EIO, "%s: %s", path, strerror(errno));
+			goto fail;
+		}
+		if (S_ISDIR(st.st_mode)) {
+			rc = vx_err_set(e, VX_ENOINPUT, "%s: is a directory", path);
+			goto fail;
+		}
+		if (S_ISREG(st.st_mode)) {
+			close(in->fd);
+			in->fd = -1;
+			in->own_fd = 0;
+			goto whole;
+		}
+		if ((fl = fcntl(in->fd, F_GETFL)) == -1 ||
+		    fcntl(in->fd, F_SETFL, fl & ~O_NONBLOCK) == -1) {
+			rc = vx_err_set(e, VX_EIO, "%s: %s", path, strerror(errno));
+			goto fail;
+		}
+	}
+	in->stream = 1;
+	vx_imp_src_fd(&in->raw, in->fd);
+	if ((rc = vx_imp_peek(&in->raw, 3, &p, &avail, e)) != 0) {
+		vx_err_push(e, "%s", path);
+		goto fail;
+	}
+	if (avail == 0) {
+		rc = vx_err_set(e, VX_ENOINPUT, "%s: empty %s", path,
+		    in->own_fd ? "file" : "input");
+		goto fail;
+	}
+	in->top = &in->raw;
+	if (vx_imp_is_gzip(p, avail)) {
+		if ((rc = vx_imp_src_gzip(&in->gz, &in->raw, e)) != 0)
+			goto fail;
+		in->top = &in->gz;
+	}
+	return 0;
+whole:
+	if ((rc = vx_imp_file_load(&in->f, path, e)) != 0)
+		return rc;
+	vx_imp_src_mem(&in->raw, in->f.p, in->f.n);
+	in->top = &in->raw;
+	if (vx_imp_is_gzip(in->f.p, in->f.n)) {
+		if ((rc = vx_imp_src_gzip(&in->gz, &in->raw, e)) != 0) {
+			vx_imp_file_free(&in->f);
+			return rc;
+		}
+		in->top = &in->gz;
+	}
+	return 0;
+fail:
+	vx_imp_close(in);
+	return rc;
+}
+
+void
+vx_imp_close(vx_imp_in *in)
+{
+	if (in->top == &in->gz)
+		vx_imp_src_close(&in->gz);
+	vx_imp_src_close(&in->raw);
+	if (in->own_fd && in->fd >= 0)
+		close(in->fd);
+	vx_imp_file_free(&in->f);
+	memset(in, 0, sizeof *in);
+	in->fd = -1;
+}
+
+int
+vx_imp_slurp(vx_imp_src *s, uint64_t max, unsigned char **out, size_t *n,
+    vx_err *e)
+{
+	size_t cap = 0, got;
+	unsigned char *p = NULL, *q;
+	int rc;
+
+	*out = NULL;
+	*n = 0;
+	for (;;) {
+		if (*n == cap) {
+			size_t nc = cap ? 2 * cap : (size_t)1 << 20;
+
+			if (nc > max + 1)
+				nc = (size_t)max + 1;
+			if (nc <= cap) {
+				free(p);
+				return vx_err_set(e, VX_EDATA, "more than %llu bytes "
+				    "(the most read from a pipe or device when the "
+				    "header names no size)", (unsigned long long)max);
+			}
+			if ((q = realloc(p, nc)) == NULL) {
+				free(p);
+				return vx_err_set(e, VX_ENOMEM, "out of memory after "
+				    "%zu bytes", *n);
+			}
+			p = q;
+			cap = nc;
+		}
+		if ((rc = vx_imp_read(s, p + *n, cap - *n, &got, e)) != 0) {
+			free(p);
+			return rc;
+		}
+		*n += got;
+		if (got == 0)
+			break;
+	}
+	*out = p;
+	return 0;
 }
 
 void

@@ -195,6 +195,27 @@ vtk_read(vx_grid *g, vx_imp_src *s, vx_err *e)
 }
 
 int
+vx_imp_read_vtk(vx_grid *g, vx_imp_src *s, vx_err *e)
+{
+	int rc;
+
+	vx_grid_init(g);
+	rc = vtk_read(g, s, e);
+	if (rc == 0) {
+		int more;
+
+		/* a gzip stream ending within the slack gets its CRC checked
+		 * (what follows further is not read) */
+		rc = vx_imp_trailing(s, IMP_SLACK, &more, e);
+		if (rc != 0)
+			vx_err_push(e, "vtk");
+	}
+	if (rc != 0)
+		vx_grid_free(g);
+	return rc;
+}
+
+int
 vx_import_vtk_mem(vx_grid *g, const void *buf, size_t n, vx_err *e)
 {
 	vx_imp_src s;
@@ -203,17 +224,7 @@ vx_import_vtk_mem(vx_grid *g, const void *buf, size_t n, vx_err *e)
 	vx_grid_init(g);
 	if ((rc = vx_imp_src_auto(&s, buf, n, e)) != 0)
 		return rc;
-	rc = vtk_read(g, &s, e);
-	if (rc == 0) {
-		int more;
-
-		/* a gzip stream ending within the slack gets its CRC checked */
-		rc = vx_imp_trailing(&s, IMP_SLACK, &more, e);
-		if (rc != 0)
-			vx_err_push(e, "vtk");
-	}
+	rc = vx_imp_read_vtk(g, &s, e);
 	vx_imp_src_close(&s);
-	if (rc != 0)
-		vx_grid_free(g);
 	return rc;
 }

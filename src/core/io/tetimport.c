@@ -110,15 +110,24 @@ int
 vx_tetmesh_import(vx_tetmesh *m, const char *path,
     const vx_tetimport_opt *opt, vx_tetimport_info *info, vx_err *e)
 {
-	vx_imp_file f;
+	unsigned char *buf = NULL;
 	char name[VX_TETMESH_NAME];
+	vx_imp_in in;
+	size_t n;
 	int rc;
 
 	vx_tetmesh_init(m);
-	if ((rc = vx_imp_file_load(&f, path, e)) != 0)
+	if ((rc = vx_imp_open(&in, path, e)) != 0)
 		return rc;
-	rc = vx_tetmesh_import_mem(m, f.p, f.n, opt, info, e);
-	vx_imp_file_free(&f);
+	/* a mapped file as it is; a pipe or device up to VX_IMP_TEXT_MAX
+	 * (a mesh's header names no size), raw: the importer gunzips */
+	if (in.stream)
+		rc = vx_imp_slurp(&in.raw, VX_IMP_TEXT_MAX, &buf, &n, e);
+	if (rc == 0)
+		rc = vx_tetmesh_import_mem(m, in.stream ? buf : in.f.p,
+		    in.stream ? n : in.f.n, opt, info, e);
+	free(buf);
+	vx_imp_close(&in);
 	if (rc != 0)
 		return vx_err_push(e, "%s", path);
 	vx_imp_stem(strcmp(path, "-") == 0 ? "stdin" : path, name, sizeof name);
