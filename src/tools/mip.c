@@ -183,10 +183,6 @@ main(int argc, char **argv)
 			    "", o.name ? "'" : "");
 		tool_fail_err(&e);
 	}
-	for (int a = 0; a < 3; a++)
-		if (g.dims[a] < 2)
-			tool_fail(VX_EDATA, "volume '%s': needs at least 2 samples "
-			    "per axis", g.name);
 	nthr = tool_threads(o.threads);
 	tool_macro_load(&m, &st, &g, gi, nthr, o.dry);
 	if (o.explain)

@@ -191,12 +191,14 @@ print_stats(const vx_raycast_stats *st, const vx_macro *m, int w, int h,
 	else
 		fprintf(stderr, "raycast: cells visited %llu (%.1f per ray), "
 		    "roots solved %llu (%llu ruled out by the cubic's sign "
-		    "bound, %llu of them without the face values), hits %llu, "
-		    "shaded %llu, non-finite cells %llu\n",
+		    "bound, %llu of them without the face values), %llu signs "
+		    "decided exactly, hits %llu, shaded %llu, non-finite "
+		    "cells %llu\n",
 		    (unsigned long long)st->cells, (double)st->cells / rays,
 		    (unsigned long long)st->roots,
 		    (unsigned long long)st->bounded,
 		    (unsigned long long)st->certified,
+		    (unsigned long long)st->exact,
 		    (unsigned long long)st->hits, (unsigned long long)st->shaded,
 		    (unsigned long long)st->nonfinite);
 	if (st->paths > 0)
@@ -428,12 +430,6 @@ main(int argc, char **argv)
 			tool_fail(VX_EDATA, "mesh '%s' has no tets", mesh.name);
 	} else if (vx_grid_view_stream(&g, &st, want, &gi, &e) != 0)
 		tool_fail_err(&e);
-	for (int a = 0; a < 3 && !is_mesh; a++)
-		if (g.dims[a] < 2)
-			tool_fail(VX_EDATA, "volume '%s': dims %lld %lld %lld: "
-			    "needs at least 2 samples per axis", g.name,
-			    (long long)g.dims[0], (long long)g.dims[1],
-			    (long long)g.dims[2]);
 	vx_scene_plan_isosurface(&s, &plan);
 	nthr = tool_threads(o.threads);
 	if (o.explain) {

@@ -93,6 +93,9 @@ typedef struct vx_raycast_stats {
 	                                    cubic's sign bound, and of them
 	                                    those settled without the face
 	                                    values (vx_iso_stats) */
+	uint64_t exact;                  /* signs the cell kernel's filter
+	                                    left undecided, evaluated exactly
+	                                    (vx_iso_stats) */
 	uint64_t leaves, entries;        /* meshes: leaf lists searched, and
 	                                    their entries scanned */
 	int mesh;                        /* 1: the source was a mesh */
