@@ -36,9 +36,7 @@ parse_args(opts *o, int argc, char **argv)
 	int ch;
 
 	memset(o, 0, sizeof *o);
-	o->in = "-";
 	o->out = "-";
-	opterr = 0;
 	while ((ch = getopt_long(argc, argv, ":vo:", lo, NULL)) != -1) {
 		switch (ch) {
 		case 'b':
@@ -57,23 +55,14 @@ parse_args(opts *o, int argc, char **argv)
 		case 'o':
 			o->out = optarg;
 			break;
-		case 'h':
-			printf("usage: %s\n", usage);
-			exit(tool_finish());
-		case ':':
-			tool_usage_fail(usage, "%s needs a value", argv[optind - 1]);
 		default:
-			tool_usage_fail(usage, "unknown option '%s'",
-			    argv[optind - 1]);
+			tool_opt_other(ch, usage, argv);
 		}
 	}
 	if (o->linear && o->bricks)
 		tool_usage_fail(usage, "--bricks and --linear exclude each "
 		    "other");
-	if (argc - optind > 1)
-		tool_usage_fail(usage, "at most one input");
-	if (argc - optind == 1)
-		o->in = argv[optind];
+	o->in = tool_input(argc, argv, usage);
 }
 
 /* bricks_spec: "--bricks AxBxC,DxExF" as the layout string "bricked AxBxC

@@ -73,12 +73,10 @@ parse(opts *o, int argc, char **argv)
 	size_t len;
 
 	memset(o, 0, sizeof *o);
-	o->in = "-";
 	o->bits = 8;
 	o->peak = 1;
 	o->diff_map = VX_DIFF_ABS;
 	vx_tonemap_defaults(&o->tm);
-	opterr = 0;
 	while ((c = getopt_long(argc, argv, ":o:h", lo, NULL)) != -1) {
 		switch (c) {
 		case 'o': o->out = optarg; break;
@@ -142,20 +140,11 @@ parse(opts *o, int argc, char **argv)
 			o->peak = tool_parse_double("--peak", optarg, 1e-30, 1e30);
 			break;
 		case O_JSON: o->json = 1; break;
-		case 'h': case O_HELP:
-			printf("usage: %s\n", usage);
-			exit(tool_finish());
-		case ':':
-			tool_usage_fail(usage, "%s needs a value", argv[optind - 1]);
 		default:
-			tool_usage_fail(usage, "unknown option '%s'",
-			    argv[optind - 1]);
+			tool_opt_other(c == O_HELP ? 'h' : c, usage, argv);
 		}
 	}
-	if (optind < argc)
-		o->in = argv[optind++];
-	if (optind < argc)
-		tool_usage_fail(usage, "one input at most ('%s')", argv[optind]);
+	o->in = tool_input(argc, argv, usage);
 	if (ntf > 1)
 		tool_fail(VX_EUSAGE, "--srgb, --gamma and --linear exclude "
 		    "each other");

@@ -75,8 +75,7 @@ parse_args(opts *o, int argc, char **argv)
 
 	memset(o, 0, sizeof *o);
 	o->bins = 16;
-	o->in = "-";
-	while ((ch = getopt_long(argc, argv, "", lo, NULL)) != -1) {
+	while ((ch = getopt_long(argc, argv, ":", lo, NULL)) != -1) {
 		switch (ch) {
 		case 'j':
 			o->json = 1;
@@ -88,18 +87,11 @@ parse_args(opts *o, int argc, char **argv)
 		case 'c':
 			o->chunks_only = 1;
 			break;
-		case 'h':
-			printf("usage: %s\n", usage);
-			exit(tool_finish());
 		default:
-			tool_usage_fail(usage, "option '%s' is unknown or lacks its value",
-			    argv[optind - 1]);
+			tool_opt_other(ch, usage, argv);
 		}
 	}
-	if (argc - optind > 1)
-		tool_usage_fail(usage, "at most one input");
-	if (argc - optind == 1)
-		o->in = argv[optind];
+	o->in = tool_input(argc, argv, usage);
 }
 
 /* ---- text output helpers ---- */

@@ -111,7 +111,6 @@ parse_args(opts *o, int argc, char **argv)
 	memset(o, 0, sizeof *o);
 	o->out = "-";
 	vx_import_opts_init(&o->imp);
-	opterr = 0;
 	while ((c = getopt_long(argc, argv, ":o:z:h", lo, NULL)) != -1) {
 		switch (c) {
 		case 'o':
@@ -191,26 +190,12 @@ parse_args(opts *o, int argc, char **argv)
 			parse_dims("--size", optarg, o->size, 1);
 			o->have_size = 1;
 			break;
-		case 'h':
-			printf("usage: %s\n", usage);
-			exit(tool_finish());
-		case ':':
-			if (optopt > 0 && optopt < 256)
-				tool_fail(VX_EUSAGE, "-%c: missing value", optopt);
-			tool_fail(VX_EUSAGE, "%s: missing value",
-			    argv[optind - 1]);
 		default:
-			if (optopt > 0 && optopt < 256)
-				tool_fail(VX_EUSAGE, "unknown option '-%c'",
-				    optopt);
-			tool_fail(VX_EUSAGE, "unknown option '%s'",
-			    argv[optind - 1]);
+			tool_opt_other(c, usage, argv);
 		}
 	}
-	if (optind < argc)
-		o->in = argv[optind++];
-	if (optind < argc)
-		tool_fail(VX_EUSAGE, "too many arguments ('%s')", argv[optind]);
+	if (optind < argc)     /* none named: NULL (--synth reads none) */
+		o->in = tool_input(argc, argv, usage);
 	if ((o->have_type || o->have_endian || o->have_skip) && !o->raw)
 		tool_fail(VX_EUSAGE, "--type, --endian and --skip go with "
 		    "--raw");

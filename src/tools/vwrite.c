@@ -37,8 +37,7 @@ parse_args(opts *o, int argc, char **argv)
 	memset(o, 0, sizeof *o);
 	o->out = "-";
 	o->chunk = VX_CHUNK_VOLUME;
-	o->in = "-";
-	while ((ch = getopt_long(argc, argv, "o:", lo, NULL)) != -1) {
+	while ((ch = getopt_long(argc, argv, ":o:", lo, NULL)) != -1) {
 		switch (ch) {
 		case 'o':
 			o->out = optarg;
@@ -52,18 +51,11 @@ parse_args(opts *o, int argc, char **argv)
 		case 'c':
 			o->chunk = optarg;
 			break;
-		case 'h':
-			printf("usage: %s\n", usage);
-			exit(tool_finish());
 		default:
-			tool_usage_fail(usage, "option '%s' is unknown or lacks its value",
-			    argv[optind - 1]);
+			tool_opt_other(ch, usage, argv);
 		}
 	}
-	if (argc - optind > 1)
-		tool_usage_fail(usage, "at most one input");
-	if (argc - optind == 1)
-		o->in = argv[optind];
+	o->in = tool_input(argc, argv, usage);
 	/* Which chunk kinds can be exported.  The irradiance and SH volumes
 	 * will be added here as their modules land. */
 	if (strlen(o->chunk) != 4 || !vx_chunk_type_valid(o->chunk))

@@ -41,8 +41,8 @@ expect_fail "--format raw without dims" 64 "--format raw needs" vread --format r
 expect_fail "--raw against --format" 64 "contradicts" vread --format nrrd --raw 2,2,2 --type u8 x
 expect_fail "zero spacing" 64 "must be positive" vread --spacing 1,0,1 --synth sphere
 expect_fail "bad name" 64 "--name" vread --name 'a b' --synth sphere
-expect_fail "two inputs" 64 "too many arguments" vread a b
-expect_fail "missing value" 64 "missing value" vread --synth
+expect_fail "two inputs" 64 "at most one input" vread a b
+expect_fail "missing value" 64 "needs a value" vread --synth
 
 printf 'hello' >"$T/mystery.dat"
 expect_fail "unknown format" 65 "unknown format" vread "$T/mystery.dat"

@@ -331,6 +331,60 @@ tool_threads(long j)
 #endif
 }
 
+_Noreturn void
+tool_opt_other(int c, const char *usage, char **argv)
+{
+	const char *name = argv[optind - 1];
+	char sh[3] = { '-', (char)optopt, '\0' };
+
+	if (c == 'h') {
+		printf("usage: %s\n", usage);
+		exit(tool_finish());
+	}
+	/* a short option by its letter (it may be one of a bundle, -vx) */
+	if (strncmp(name, "--", 2) != 0 && optopt > 0 && optopt < 256)
+		name = sh;
+	if (c == ':')
+		tool_usage_fail(usage, "%s needs a value", name);
+	tool_usage_fail(usage, "unknown option '%s'", name);
+}
+
+const char *
+tool_input(int argc, char **argv, const char *usage)
+{
+	if (argc - optind > 1)
+		tool_usage_fail(usage, "at most one input");
+	return argc - optind == 1 ? argv[optind] : "-";
+}
+
+int
+tool_scene_opt(tool_scene_opts *so, int c, const char *val,
+    const char *usage)
+{
+	static const char *const names[] = { "set", "iso", "size", "view",
+	    "fov", "light", "lights", "effects", "background" };
+
+	if (c == TOOL_O_SCENE) {
+		so->file = val;
+		return 1;
+	}
+	if (c < TOOL_O_SET || c > TOOL_O_BG)
+		return 0;
+	if (so->n == TOOL_SCENE_MAXSET)
+		tool_usage_fail(usage, "more than %d scene options",
+		    TOOL_SCENE_MAXSET);
+	so->name[so->n] = names[c - TOOL_O_SET];
+	so->val[so->n++] = val;
+	return 1;
+}
+
+void
+tool_scene_opts_load(vx_scene *s, const tool_scene_opts *so,
+    const vx_stream *st)
+{
+	tool_scene_load(s, so->file, st, so->n, so->name, so->val);
+}
+
 void
 tool_scene_load(vx_scene *s, const char *file, const vx_stream *st, int n,
     const char *const *names, const char *const *vals)
