@@ -2,7 +2,8 @@
 #
 #   make              build/libvoxlux.a and every program into bin/
 #   make test         unit tests (cmocka) and command-line tests
-#   make SANITIZE=1 test   the same under ASan+UBSan (separate build dir)
+#   make SANITIZE=1 test   the same under ASan+UBSan, float-cast-overflow
+#                          included (separate build dir)
 #   make deps         install the Debian packages the build and tests need
 #   make install PREFIX=/usr/local [DESTDIR=...]
 #   make fuzz         libFuzzer targets (clang) over the committed corpus
@@ -10,7 +11,8 @@
 #   make demo         the README's first command
 #
 # New modules, programs and tests are picked up by wildcard: a file in a
-# layer folder of src/core/ (LAYERS, in order) joins the library,
+# layer folder of src/core/ (LAYERS, in order) joins the library (.c, and
+# .cc for the C++ of a library that has no C API: OpenEXR's),
 # src/tools/NAME.c becomes bin/NAME,
 # tests/unit/test_NAME.c becomes a unit test, tests/cli/test_*.sh a CLI test.
 
@@ -22,12 +24,16 @@ OPT ?= -O2
 ifeq ($(SANITIZE),1)
 BUILD := build/san
 BINDIR := build/san/bin
-SANFLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+SANFLAGS := -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer \
+	-fno-sanitize-recover=undefined,float-cast-overflow
+# C++: no vptr checks (their runtime is the C++ driver's, and we link with CC)
+SANFLAGS_CXX := $(SANFLAGS) -fno-sanitize=vptr
 OPT := -O1 -g
 else
 BUILD := build
 BINDIR := bin
 SANFLAGS :=
+SANFLAGS_CXX :=
 endif
 
 # OpenMP: gcc always has it; clang needs libomp-dev.
@@ -43,12 +49,24 @@ CFLAGS ?= $(OPT) -g
 override CFLAGS += -std=c11 $(WARN) $(OPENMP) $(SANFLAGS) -MMD -MP
 PNG_CFLAGS := $(shell pkg-config --cflags libpng 2>/dev/null)
 PNG_LIBS := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
-LDLIBS := $(PNG_LIBS) -lz -lm
+# OpenEXR (libopenexr-dev): its headers as system headers (no warnings of
+# theirs), its C++ libraries and the C++ runtime for every program.
+EXR_CFLAGS := $(patsubst -I%,-isystem %,$(shell pkg-config --cflags OpenEXR 2>/dev/null))
+EXR_LIBS := $(shell pkg-config --libs OpenEXR 2>/dev/null || echo -lOpenEXR-3_1 -lIex-3_1 -lImath-3_1)
+LDLIBS := $(PNG_LIBS) $(EXR_LIBS) -lstdc++ -lz -lm
 override LDFLAGS += $(OPENMP) $(SANFLAGS)
 override CPPFLAGS += $(PNG_CFLAGS)
+# C++ (src/core/*/*.cc): the C compiler's family, the same warnings, and
+# -Werror when CFLAGS has it.
+ifeq ($(origin CXX),default)
+CXX := $(if $(findstring clang,$(CC)),clang++,c++)
+endif
+CXXFLAGS ?= $(OPT) -g
+override CXXFLAGS += -std=c++14 $(WARN) $(filter -Werror,$(CFLAGS)) $(SANFLAGS_CXX) $(EXR_CFLAGS) -MMD -MP
 
 CORE_SRC := $(sort $(wildcard $(LAYERS:%=src/core/%/*.c)))
-CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/%.o)
+CORE_CXX := $(sort $(wildcard $(LAYERS:%=src/core/%/*.cc)))
+CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/%.o) $(CORE_CXX:%.cc=$(BUILD)/%.o)
 LIB := $(BUILD)/libvoxlux.a
 COMMON_SRC := $(sort $(wildcard src/tools/common/*.c))
 COMMON_OBJ := $(COMMON_SRC:%.c=$(BUILD)/%.o)
@@ -75,6 +93,10 @@ all: $(LIB) $(TOOLS)
 $(BUILD)/%.o: %.c Makefile
 	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<
+
+$(BUILD)/%.o: %.cc Makefile
+	@mkdir -p $(@D)
+	$(CXX) $(CPPFLAGS) $(CXXFLAGS) -c -o $@ $<
 
 # The isosurface kernels (the hierarchy, its walks and cell masks, cells,
 # the render loop, the camera's rays) at -O3, after any CFLAGS: 8% fewer instructions a frame, the same
@@ -124,8 +146,8 @@ print-core-inc:
 	@echo $(CORE_INC)
 
 # ---- dependencies (Debian) ----
-DEB_BUILD := build-essential pkg-config libpng-dev zlib1g-dev libcmocka-dev
-DEB_TEST := mricron-data python3 strace
+DEB_BUILD := build-essential pkg-config libpng-dev zlib1g-dev libcmocka-dev libopenexr-dev
+DEB_TEST := mricron-data python3 strace gnuplot-nox blender-data
 DEB_FUZZ := clang libclang-rt-14-dev libomp-dev
 deps:
 	@missing=""; for p in $(DEB_BUILD) $(DEB_TEST) $(DEB_FUZZ) $(DEB_EXTRA); do \
@@ -163,19 +185,24 @@ uninstall:
 # each tests/fuzz/fuzz_NAME.c links against it.  OpenMP as in the normal
 # build (clang needs libomp-dev); run.sh sets OMP_NUM_THREADS=1.  UBSan
 # findings abort, so libFuzzer keeps them as crashes.
-FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=undefined
+FUZZ_SAN := -fsanitize=address,undefined,float-cast-overflow \
+	-fno-sanitize-recover=undefined,float-cast-overflow
 FUZZ_CFLAGS := -g -O1 -fno-omit-frame-pointer $(FUZZ_SAN) $(OPENMP) $(CORE_INC) -D_GNU_SOURCE $(PNG_CFLAGS)
-FUZZ_OBJ := $(CORE_SRC:src/core/%.c=build/fuzz/obj/%.o)
+FUZZ_OBJ := $(CORE_SRC:src/core/%.c=build/fuzz/obj/%.o) $(CORE_CXX:src/core/%.cc=build/fuzz/obj/%.o)
 FUZZ_LIB := build/fuzz/libvoxlux-fuzz.a
 build/fuzz/obj/%.o: src/core/%.c
 	@mkdir -p $(@D)
 	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link -MMD -MP -c -o $@ $<
 
+build/fuzz/obj/%.o: src/core/%.cc
+	@mkdir -p $(@D)
+	clang++ -std=c++14 $(FUZZ_CFLAGS) -fno-sanitize=vptr,function $(EXR_CFLAGS) -fsanitize=fuzzer-no-link -MMD -MP -c -o $@ $<
+
 $(FUZZ_LIB): $(FUZZ_OBJ)
 	rm -f $@
 	ar rcs $@ $^
 
-build/fuzz/%: tests/fuzz/%.c tests/fuzz/fuzz.h $(FUZZ_LIB)
+build/fuzz/%: tests/fuzz/%.c tests/fuzz/fuzz.h tests/fuzz/fuzz_env.h $(FUZZ_LIB)
 	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $< $(FUZZ_LIB) $(LDLIBS)
 
 fuzz-build: $(FUZZ)

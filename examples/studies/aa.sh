@@ -13,5 +13,5 @@ for n in 1 2 3 4; do
 	    "$(metric results/aa-ref.vx results/aa-$n.vx color rmse)" \
 	    "$(metric results/aa-ref.vx results/aa-$n.vx color max_abs)" >> results/aa.tsv
 done
-python3 plot.py results/aa.tsv seconds color_rmse "samples per pixel: color RMSE against time (ch2 head, $SIZE)" > results/aa.svg
+plot aa
 cat results/aa.tsv

@@ -5,6 +5,7 @@ set -eu
 PATH="$BIN:$PATH"
 mkdir -p results
 [ -r "$HEAD" ] || { echo "studies: $HEAD: missing (make deps)" >&2; exit 66; }
+command -v gnuplot >/dev/null || { echo "studies: gnuplot: missing (make deps)" >&2; exit 69; }
 [ -s results/head.vx ] || vread "$HEAD" | brick | macrocell > results/head.vx
 
 # median_time CMD...: run CMD (a raycast with --stats) RUNS times, print the
@@ -17,6 +18,13 @@ median_time() {
 		i=$((i + 1))
 	done
 	sort -n results/.times | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'
+}
+
+# plot NAME: results/NAME.png and results/NAME.svg from the gnuplot script
+# NAME.gp, which reads results/NAME.tsv.
+plot() {
+	gnuplot -e "size='$SIZE'; set terminal pngcairo size 800,500 font ',10'; set output 'results/$1.png'" "$1.gp"
+	gnuplot -e "size='$SIZE'; set terminal svg size 800,500 font ',10' background '#ffffff'; set output 'results/$1.svg'" "$1.gp"
 }
 
 # metric REF IMG NAME KEY: one value of tonemap --compare.

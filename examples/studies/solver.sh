@@ -17,5 +17,5 @@ for s in exact neubauer linear; do
 	    "$(metric results/solver-exact.vx results/solver-$s.vx color rmse)" \
 	    "$(metric results/solver-exact.vx results/solver-$s.vx color max_abs)" >> results/solver.tsv
 done
-python3 plot.py results/solver.tsv seconds depth_rmse "root solver: depth RMSE against time (ch2 head, $SIZE)" > results/solver.svg
+plot solver
 cat results/solver.tsv

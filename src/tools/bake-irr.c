@@ -28,6 +28,12 @@ static const char usage[] =
     "    [--merge STREAM] [--fresh] [--lazy] [--half|--final] [--fixed BITS]\n"
     "    [-z LEVEL] [-j N] [--stats] [--explain] [-n] [-o OUT] [IN|-]";
 
+/* --side: which side of the isosurface is lit (opts.high) */
+static const vx_enum_name side_names[] = {
+	{ "low", 0 }, { "high", 1 }, { NULL, -1 }
+};
+static const vx_enum sides = { "side", side_names, "?", 0 };
+
 typedef struct opts {
 	const char *in, *out, *name, *merge;
 	int stats, explain, dry, fresh, all, zlevel, fixed, lazy;
@@ -132,13 +138,7 @@ parse(opts *o, int argc, char **argv)
 			break;
 		case O_ALL: o->all = 1; break;
 		case O_SIDE:
-			if (strcmp(optarg, "low") == 0)
-				o->high = 0;
-			else if (strcmp(optarg, "high") == 0)
-				o->high = 1;
-			else
-				tool_usage_fail(usage, "--side: 'low' or 'high', "
-				    "not '%s'", optarg);
+			o->high = tool_parse_enum("--side", &sides, optarg);
 			break;
 		case O_MERGE: o->merge = optarg; break;
 		case O_FRESH: o->fresh = 1; break;

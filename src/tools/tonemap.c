@@ -1,5 +1,6 @@
-/* tonemap.c: float image (stream IMAG chunk or PFM) to PNG or PFM, and
- * image comparison metrics for studies.  See tonemap(1). */
+/* tonemap.c: float image (stream IMAG chunk, PFM, Radiance HDR or
+ * OpenEXR) to PNG or PFM, and image comparison metrics for studies.  See
+ * tonemap(1). */
 #include <errno.h>
 #include <getopt.h>
 #include <math.h>
@@ -92,9 +93,8 @@ parse(opts *o, int argc, char **argv)
 			    -100, 100);
 			break;
 		case O_OP:
-			if ((o->tm.op = vx_tonemap_op_parse(optarg)) == VX_TM_UNKNOWN)
-				tool_fail(VX_EUSAGE, "--op: '%s': expected clamp, "
-				    "reinhard or aces", optarg);
+			o->tm.op = tool_parse_enum("--op", &vx_tonemap_op_enum,
+			    optarg);
 			o->png_only = 1;
 			break;
 		case O_WHITE:
@@ -124,13 +124,8 @@ parse(opts *o, int argc, char **argv)
 		case O_CMP: o->ref = optarg; break;
 		case O_DIFF: o->diff = optarg; break;
 		case O_DMAP:
-			if (strcmp(optarg, "abs") == 0)
-				o->diff_map = VX_DIFF_ABS;
-			else if (strcmp(optarg, "signed") == 0)
-				o->diff_map = VX_DIFF_SIGNED;
-			else
-				tool_fail(VX_EUSAGE, "--diff-map: '%s': expected "
-				    "abs or signed", optarg);
+			o->diff_map = tool_parse_enum("--diff-map", &vx_diff_map_enum,
+			    optarg);
 			break;
 		case O_DSCALE:
 			o->diff_scale = tool_parse_double("--diff-scale", optarg,
@@ -200,14 +195,15 @@ peeked_read(void *ctx, void *buf, size_t n)
 }
 
 /* load: read path ("-": stdin) as a stream (image `name`, or the first),
- * a PFM, or (when allow_png) a PNG; exits on error. */
+ * a PFM, Radiance HDR or OpenEXR file, or (when allow_png) a PNG; exits
+ * on error. */
 static void
 load(input *in, const char *path, const char *name, int allow_png)
 {
 	const char *shown = strcmp(path, "-") ? path : "<stdin>";
 	struct peeked p;
 	vx_err e = { 0, "" };
-	int rc = 0;
+	int rc = 0, linear;
 
 	memset(in, 0, sizeof *in);
 	memset(&p, 0, sizeof p);
@@ -215,7 +211,7 @@ load(input *in, const char *path, const char *name, int allow_png)
 	if (strcmp(path, "-") == 0) {
 		if (isatty(STDIN_FILENO))
 			tool_fail(VX_EUSAGE, "standard input is a terminal: pipe "
-			    "a voxlux stream or a PFM in");
+			    "a voxlux stream or an image file in");
 		p.f = stdin;
 	} else if ((p.f = fopen(path, "rb")) == NULL)
 		tool_fail(VX_ENOINPUT, "%s: %s", path, strerror(errno));
@@ -225,6 +221,8 @@ load(input *in, const char *path, const char *name, int allow_png)
 	if (p.nhead == 0)
 		tool_fail(VX_ENOINPUT, "%s: empty input", shown);
 	in->fmt = vx_image_sniff(p.head, p.nhead);
+	linear = in->fmt == VX_IMGFMT_PFM || in->fmt == VX_IMGFMT_HDR ||
+	    in->fmt == VX_IMGFMT_EXR;
 	if (in->fmt == VX_IMGFMT_STREAM) {
 		vx_stream s;
 		const char *h;
@@ -240,14 +238,13 @@ load(input *in, const char *path, const char *name, int allow_png)
 			in->history[hl] = '\0';
 		}
 		vx_stream_free(&s);
-	} else if (in->fmt == VX_IMGFMT_PFM || (allow_png &&
-	    in->fmt == VX_IMGFMT_PNG)) {
+	} else if (linear || (allow_png && in->fmt == VX_IMGFMT_PNG)) {
 		unsigned char *buf, *all;
 		size_t n;
 
-		if (name != NULL && in->fmt == VX_IMGFMT_PFM && !allow_png)
-			tool_fail(VX_EUSAGE, "%s: --name: a PFM file holds one "
-			    "unnamed image", shown);
+		if (name != NULL && linear && !allow_png)
+			tool_fail(VX_EUSAGE, "%s: --name: a %s file holds one "
+			    "unnamed image", shown, vx_image_format_name(in->fmt));
 		if ((rc = vx_file_read_all(p.f, MAX_FILE, &buf, &n, &e)) == 0) {
 			if ((all = malloc(n + p.nhead)) == NULL)
 				tool_fail(VX_ENOMEM, "out of memory");
@@ -256,8 +253,9 @@ load(input *in, const char *path, const char *name, int allow_png)
 				memcpy(all + p.nhead, buf, n);
 			free(buf);
 			n += p.nhead;
-			if (in->fmt == VX_IMGFMT_PFM)
-				rc = vx_pfm_read_mem(&in->img, all, n, &e);
+			if (linear)
+				rc = vx_image_read_linear_mem(&in->img, all, n,
+				    NULL, &e);
 			else
 				rc = vx_image_png_read_mem(&in->img, all, n,
 				    &in->bits, &e);
@@ -265,10 +263,11 @@ load(input *in, const char *path, const char *name, int allow_png)
 		}
 	} else if (in->fmt == VX_IMGFMT_PNG)
 		tool_fail(VX_EDATA, "%s: a PNG holds display values; tonemap "
-		    "reads linear images (voxlux stream or PFM)", shown);
+		    "reads linear images (voxlux stream, PFM, Radiance HDR or "
+		    "OpenEXR)", shown);
 	else
-		tool_fail(VX_EDATA, "%s: not a voxlux stream%s file", shown,
-		    allow_png ? ", PFM or PNG" : " or PFM");
+		tool_fail(VX_EDATA, "%s: not a voxlux stream, PFM, Radiance HDR%s "
+		    "file", shown, allow_png ? ", OpenEXR or PNG" : " or OpenEXR");
 	if (p.f != stdin)
 		fclose(p.f);
 	if (rc != 0) {
@@ -503,6 +502,7 @@ main(int argc, char **argv)
 
 	tool_init("tonemap", argc, argv);
 	parse(&o, argc, argv);
+	(void)tool_threads(0);   /* the parallel loops' threads, made safely */
 	load(&in, o.in, o.name, 0);
 	if (o.ref != NULL)
 		compare(&res, &o, &in);

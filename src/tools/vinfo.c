@@ -10,6 +10,7 @@
 #include "tool.h"
 #include "vx_grid.h"
 #include "vx_image.h"
+#include "vx_irrvol.h"
 #include "vx_macroio.h"
 #include "vx_stats.h"
 #include "vx_stream.h"
@@ -528,6 +529,277 @@ json_tlef(const tlef_info *ti)
 	putchar('}');
 }
 
+/* What vinfo learned about an irradiance volume: the lattice, the volume
+ * it belongs to (for the lattice's world spacing) and counts over the
+ * texels of its stored bricks. */
+typedef struct irrv_info {
+	vx_irrvol v;
+	const char *status;     /* "matches", "stale" or "no such volume" */
+	int has_world;          /* the volume is in the stream */
+	double spacing[3];      /* world distance between texels per axis */
+	double origin[3];       /* world position of texel (0,0,0) */
+	uint64_t lattice;       /* texels of the lattice */
+	uint64_t bricks;        /* bricks of the lattice, stored or not */
+	uint64_t stored;        /* texels inside the lattice in stored bricks */
+	uint64_t wanted, baked, usable, flat, nan, overflow, border;
+	uint64_t smin, smax;    /* samples per baked texel (accum) */
+	double samples;         /* samples over all texels (accum) */
+	double emin[3], emax[3], emean[3];   /* over usable texels */
+} irrv_info;
+
+/* irrv_usable: texel s is wanted, holds an irradiance and is neither flat
+ * nor NaN (a final store keeps no count: wanted is the test there). */
+static int
+irrv_usable(const vx_irrvol *v, int64_t s)
+{
+	return (v->flags[s] & VX_TEXEL_WANTED) && vx_irr_usable(v, s);
+}
+
+static void
+irrv_count(irrv_info *ii)
+{
+	const vx_irrvol *v = &ii->v;
+	double sum[3] = { 0, 0, 0 };
+	uint64_t b;
+	int64_t i, j, k;
+	int c;
+
+	ii->lattice = (uint64_t)v->dims[0] * (uint64_t)v->dims[1] *
+	    (uint64_t)v->dims[2];
+	ii->bricks = (uint64_t)v->bdims[0] * (uint64_t)v->bdims[1] *
+	    (uint64_t)v->bdims[2];
+	for (c = 0; c < 3; c++) {
+		ii->emin[c] = INFINITY;
+		ii->emax[c] = -INFINITY;
+	}
+	ii->smin = UINT64_MAX;
+	/* stored bricks only: a sparse bake of a huge lattice is quick */
+	for (b = 0; b < ii->bricks; b++) {
+		int64_t b0[3];
+
+		if (v->slot[b] == 0)
+			continue;
+		b0[0] = (int64_t)(b % (uint64_t)v->bdims[0]) * VX_IRR_BRICK;
+		b0[1] = (int64_t)(b / (uint64_t)v->bdims[0] %
+		    (uint64_t)v->bdims[1]) * VX_IRR_BRICK;
+		b0[2] = (int64_t)(b / (uint64_t)v->bdims[0] /
+		    (uint64_t)v->bdims[1]) * VX_IRR_BRICK;
+		for (k = b0[2]; k < b0[2] + VX_IRR_BRICK; k++)
+		    for (j = b0[1]; j < b0[1] + VX_IRR_BRICK; j++)
+			for (i = b0[0]; i < b0[0] + VX_IRR_BRICK; i++) {
+				int64_t s = vx_irr_texel(v, i, j, k);
+				uint32_t f;
+				double e[3];
+
+				if (s < 0)     /* past the lattice's edge */
+					continue;
+				f = v->flags[s];
+				ii->stored++;
+				ii->wanted += (f & VX_TEXEL_WANTED) != 0;
+				ii->flat += (f & VX_TEXEL_FLAT) != 0;
+				ii->nan += (f & VX_TEXEL_NAN) != 0;
+				ii->overflow += (f & VX_TEXEL_OVERFLOW) != 0;
+				ii->border += (f & VX_TEXEL_BORDER) != 0;
+				if (v->store == VX_IRR_ACCUM) {
+					uint32_t n = v->acc[s].count;
+
+					if (n > 0) {
+						ii->baked++;
+						ii->samples += n;
+						if (n < ii->smin)
+							ii->smin = n;
+						if (n > ii->smax)
+							ii->smax = n;
+					}
+				} else if ((f & VX_TEXEL_WANTED) &&
+				    !(f & (VX_TEXEL_FLAT | VX_TEXEL_NAN)))
+					ii->baked++;
+				if (!irrv_usable(v, s))
+					continue;
+				ii->usable++;
+				if (v->store == VX_IRR_ACCUM)
+					vx_irr_acc_mean(&v->acc[s], v->fixed, e);
+				else
+					for (c = 0; c < 3; c++)
+						e[c] = v->mean[3 * s + c];
+				for (c = 0; c < 3; c++) {
+					sum[c] += e[c];
+					if (e[c] < ii->emin[c])
+						ii->emin[c] = e[c];
+					if (e[c] > ii->emax[c])
+						ii->emax[c] = e[c];
+				}
+			}
+	}
+	for (c = 0; c < 3; c++)
+		if (ii->usable > 0)
+			ii->emean[c] = sum[c] / (double)ii->usable;
+		else
+			ii->emin[c] = ii->emax[c] = ii->emean[c] = NAN;
+	if (ii->baked == 0 || v->store != VX_IRR_ACCUM)
+		ii->smin = 0;
+}
+
+static int
+decode_irrv(const vx_stream *s, const vx_chunk *c, irrv_info *ii, vx_err *e)
+{
+	vx_grid g;
+	vx_err ge = { 0, "" };
+	int rc, a;
+
+	memset(ii, 0, sizeof *ii);
+	if ((rc = vx_irr_from_chunk(&ii->v, c, e)) != 0)
+		return rc;
+	irrv_count(ii);
+	if (vx_grid_view_stream(&g, s, ii->v.volume, NULL, &ge) != 0) {
+		ii->status = "no such volume";
+		return 0;
+	}
+	ii->status = g.dims[0] == ii->v.vdims[0] &&
+	    g.dims[1] == ii->v.vdims[1] && g.dims[2] == ii->v.vdims[2] &&
+	    vx_macro_grid_crc(&g) == ii->v.vcrc ? "matches" : "stale";
+	ii->has_world = 1;
+	for (a = 0; a < 3; a++) {
+		ii->spacing[a] = ii->v.step[a] * g.spacing[a];
+		ii->origin[a] = g.origin[a];
+	}
+	vx_grid_free(&g);
+	return 0;
+}
+
+static double
+pct(uint64_t a, uint64_t b)
+{
+	return b ? 100.0 * (double)a / (double)b : 0;
+}
+
+static void
+text_irrv(const irrv_info *ii)
+{
+	const vx_irrvol *v = &ii->v;
+	static const char rgb[] = "RGB";
+	int c;
+
+	printf("  irradiance volume: of ");
+	put_str(v->volume);
+	printf(" (%s)\n", ii->status);
+	printf("    lattice: %lld x %lld x %lld texels (%llu) at scale %.9g, "
+	    "%.9g %.9g %.9g samples apart\n", (long long)v->dims[0],
+	    (long long)v->dims[1], (long long)v->dims[2],
+	    (unsigned long long)ii->lattice, v->scale, v->step[0], v->step[1],
+	    v->step[2]);
+	if (ii->has_world)
+		printf("    world spacing: %.17g %.17g %.17g, origin %.17g %.17g "
+		    "%.17g\n", ii->spacing[0], ii->spacing[1], ii->spacing[2],
+		    ii->origin[0], ii->origin[1], ii->origin[2]);
+	else
+		printf("    world spacing: unknown (the volume is not in the "
+		    "stream)\n");
+	printf("    store: %s, %zu bytes a texel", vx_irr_store_name(v->store),
+	    vx_irr_texel_bytes(v->store));
+	if (v->store == VX_IRR_ACCUM)
+		printf(", %d fraction bits\n", v->fixed);
+	else
+		printf(" (final: no counts, not resumable)\n");
+	printf("    bricks: %zu of %llu stored (%.1f%%), %llu texels of the "
+	    "lattice in them\n", v->nslot, (unsigned long long)ii->bricks,
+	    pct(v->nslot, ii->bricks), (unsigned long long)ii->stored);
+	printf("    texels: %llu wanted, %llu baked, %llu usable, %llu flat, "
+	    "%llu NaN, %llu overflow, %llu at the border\n",
+	    (unsigned long long)ii->wanted, (unsigned long long)ii->baked,
+	    (unsigned long long)ii->usable, (unsigned long long)ii->flat,
+	    (unsigned long long)ii->nan, (unsigned long long)ii->overflow,
+	    (unsigned long long)ii->border);
+	if (v->store == VX_IRR_ACCUM)
+		printf("    samples per baked texel: %llu to %llu, %.17g in all "
+		    "(from sample %u; the bake asked %u)\n",
+		    (unsigned long long)ii->smin,
+		    (unsigned long long)ii->smax, ii->samples, v->first,
+		    v->samples);
+	else
+		printf("    samples per texel: not kept (the bake asked %u)\n",
+		    v->samples);
+	if (ii->usable > 0) {
+		printf("    irradiance over the %llu usable texels:\n",
+		    (unsigned long long)ii->usable);
+		for (c = 0; c < 3; c++)
+			printf("      %c: min %.9g max %.9g mean %.9g\n", rgb[c],
+			    ii->emin[c], ii->emax[c], ii->emean[c]);
+	} else
+		printf("    irradiance: no usable texel\n");
+	printf("    memory: %zu bytes\n", vx_irr_bytes(v));
+	printf("    bake: key %s, offset %.9g voxels, seed %llu, lit side "
+	    "%s\n", v->key, v->offset, (unsigned long long)v->seed,
+	    v->high ? "high" : "low");
+	printf("    settings: ");
+	put_str(v->settings);
+	putchar('\n');
+}
+
+static void
+json_irrv(const irrv_info *ii)
+{
+	const vx_irrvol *v = &ii->v;
+
+	printf(",\"irradiance\":{\"volume\":");
+	json_str(v->volume);
+	printf(",\"status\":");
+	json_str(ii->status);
+	printf(",\"lattice_dims\":[%lld,%lld,%lld],\"scale\":",
+	    (long long)v->dims[0], (long long)v->dims[1],
+	    (long long)v->dims[2]);
+	json_num(v->scale);
+	printf(",\"step\":");
+	json_nums(v->step, 3);
+	printf(",\"spacing\":");
+	if (ii->has_world)
+		json_nums(ii->spacing, 3);
+	else
+		fputs("null", stdout);
+	printf(",\"origin\":");
+	if (ii->has_world)
+		json_nums(ii->origin, 3);
+	else
+		fputs("null", stdout);
+	printf(",\"store\":\"%s\",\"texel_bytes\":%zu,\"fixed\":",
+	    vx_irr_store_name(v->store), vx_irr_texel_bytes(v->store));
+	if (v->store == VX_IRR_ACCUM)
+		printf("%d", v->fixed);
+	else
+		fputs("null", stdout);
+	printf(",\"bricks\":%zu,\"bricks_total\":%llu,\"texels\":%llu,"
+	    "\"stored\":%llu,\"wanted\":%llu,\"baked\":%llu,\"usable\":%llu,"
+	    "\"flat\":%llu,\"nan\":%llu,\"overflow\":%llu,\"border\":%llu",
+	    v->nslot, (unsigned long long)ii->bricks,
+	    (unsigned long long)ii->lattice, (unsigned long long)ii->stored,
+	    (unsigned long long)ii->wanted, (unsigned long long)ii->baked,
+	    (unsigned long long)ii->usable, (unsigned long long)ii->flat,
+	    (unsigned long long)ii->nan, (unsigned long long)ii->overflow,
+	    (unsigned long long)ii->border);
+	if (v->store == VX_IRR_ACCUM)
+		printf(",\"samples_min\":%llu,\"samples_max\":%llu,"
+		    "\"samples_total\":%.17g", (unsigned long long)ii->smin,
+		    (unsigned long long)ii->smax, ii->samples);
+	else
+		printf(",\"samples_min\":null,\"samples_max\":null,"
+		    "\"samples_total\":null");
+	printf(",\"first_sample\":%u,\"samples_asked\":%u,\"e_min\":",
+	    v->first, v->samples);
+	json_nums(ii->emin, 3);
+	printf(",\"e_max\":");
+	json_nums(ii->emax, 3);
+	printf(",\"e_mean\":");
+	json_nums(ii->emean, 3);
+	printf(",\"bytes\":%zu,\"key\":", vx_irr_bytes(v));
+	json_str(v->key);
+	printf(",\"offset\":");
+	json_num(v->offset);
+	printf(",\"seed\":%llu,\"side\":\"%s\",\"settings\":",
+	    (unsigned long long)v->seed, v->high ? "high" : "low");
+	json_str(v->settings);
+	putchar('}');
+}
+
 /* ---- text report ---- */
 
 static void
@@ -739,6 +1011,15 @@ text_chunk(const vx_stream *s, size_t idx, const vx_chunk *c, const opts *o)
 		} else
 			text_tlef(&ti);
 		vx_tetleaf_free(&ti.lg);
+	} else if (memcmp(c->type, VX_CHUNK_IRRAD, 4) == 0) {
+		irrv_info ii;
+
+		if ((rc = decode_irrv(s, c, &ii, &e)) != 0) {
+			printf("  error: %s\n", e.msg);
+			chunk_error(c, &e);
+		} else
+			text_irrv(&ii);
+		vx_irr_free(&ii.v);
 	}
 }
 
@@ -943,6 +1224,14 @@ json_chunk(const vx_stream *s, size_t idx, const vx_chunk *c, const opts *o)
 		else
 			json_tlef(&ti);
 		vx_tetleaf_free(&ti.lg);
+	} else if (memcmp(c->type, VX_CHUNK_IRRAD, 4) == 0) {
+		irrv_info ii;
+
+		if (decode_irrv(s, c, &ii, &e) != 0)
+			json_error(c, &e);
+		else
+			json_irrv(&ii);
+		vx_irr_free(&ii.v);
 	}
 done:
 	putchar('}');

@@ -132,31 +132,21 @@ parse_args(opts *o, int argc, char **argv)
 			o->mesh.skip_volume_cells = 1;
 			break;
 		case O_FORMAT:
-			o->imp.format = vx_format_parse(optarg);
-			if (o->imp.format == VX_FORMAT_UNKNOWN)
-				tool_fail(VX_EUSAGE, "--format: '%s' is not raw, "
-				    "nrrd, nifti or vtk", optarg);
+			o->imp.format = (vx_format)tool_parse_enum("--format",
+			    &vx_format_enum, optarg);
 			break;
 		case O_RAW:
 			parse_dims("--raw", optarg, r->dims, 0);
 			o->raw = 1;
 			break;
 		case O_TYPE:
-			if ((r->type = vx_scalar_parse(optarg)) ==
-			    VX_SCALAR_UNKNOWN)
-				tool_fail(VX_EUSAGE, "--type: '%s' is not one of "
-				    "u8 i8 u16 i16 u32 i32 u64 i64 f32 f64",
-				    optarg);
+			r->type = (vx_scalar)tool_parse_enum("--type",
+			    &vx_scalar_enum, optarg);
 			o->have_type = 1;
 			break;
 		case O_ENDIAN:
-			if (strcmp(optarg, "little") == 0)
-				r->big_endian = 0;
-			else if (strcmp(optarg, "big") == 0)
-				r->big_endian = 1;
-			else
-				tool_fail(VX_EUSAGE, "--endian: '%s' is not "
-				    "little or big", optarg);
+			r->big_endian = tool_parse_enum("--endian",
+			    &vx_endian_enum, optarg);
 			o->have_endian = 1;
 			break;
 		case O_SKIP:
@@ -181,10 +171,8 @@ parse_args(opts *o, int argc, char **argv)
 			o->name = optarg;
 			break;
 		case O_SYNTH:
-			if ((o->synth = vx_synth_parse(optarg)) ==
-			    VX_SYNTH_UNKNOWN)
-				tool_fail(VX_EUSAGE, "--synth: '%s' is not one "
-				    "of sphere torus linear ml saddle", optarg);
+			o->synth = (vx_synth_kind)tool_parse_enum("--synth",
+			    &vx_synth_enum, optarg);
 			break;
 		case O_SIZE:
 			parse_dims("--size", optarg, o->size, 1);
@@ -204,7 +192,7 @@ parse_args(opts *o, int argc, char **argv)
 	if (o->raw && o->imp.format != VX_FORMAT_UNKNOWN &&
 	    o->imp.format != VX_FORMAT_RAW)
 		tool_fail(VX_EUSAGE, "--raw contradicts --format %s",
-		    vx_format_name(o->imp.format));
+		    vx_enum_str(&vx_format_enum, o->imp.format));
 	if (o->imp.format == VX_FORMAT_RAW && !o->raw)
 		tool_fail(VX_EUSAGE, "--format raw needs --raw NX,NY,NZ and "
 		    "--type T");
@@ -293,9 +281,8 @@ main(int argc, char **argv)
 			tool_fail(VX_EUSAGE, "--spacing and --origin apply to "
 			    "volumes; %s is a tet mesh", o.in);
 		if (info.nskip_volume > 0)
-			fprintf(stderr, "vread: note: %s: skipped %zu volume "
-			    "cells that are not linear tetrahedra\n", o.in,
-			    info.nskip_volume);
+			tool_note("%s: skipped %zu volume cells that are not "
+			    "linear tetrahedra", o.in, info.nskip_volume);
 		if (o.name != NULL)
 			vx_tetmesh_set_name(&m, o.name);
 	} else {
@@ -310,6 +297,8 @@ main(int argc, char **argv)
 			if (o.have_origin)
 				g.origin[a] = o.origin[a];
 		}
+		if (vx_grid_check_box(&g, &e) != 0)
+			tool_fail_err(&e);
 		if (o.split) {
 			/* the volume's tet split: vertices at the samples */
 			if (vx_tetsynth_from_grid(&m, &g, o.split, &e) != 0) {

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "tool.h"
+#include "vx_env.h"
 #include "vx_scene.h"
 
 static const char usage[] =
@@ -62,6 +63,9 @@ main(int argc, char **argv)
 	}
 	/* the base: the file, else the stream's scene, else the defaults */
 	tool_scene_opts_load(&s, &so, &st);
+	/* environment maps: read, their content hashes recorded or checked */
+	if (vx_env_scene_resolve(&s, &e) != 0)
+		tool_fail_err(&e);
 	if (print) {
 		char *text;
 		size_t n;

@@ -58,6 +58,8 @@ expect_fail "merge: ranges that do not join" 65 "do not join" \
     L --merge "$T/b.vx" "$T/one.vx"
 expect_fail "resume: other settings" 65 "other settings" \
     bake-irr --light sky --iso 0.5 --side high --bounces 3 "$T/one.vx"
+expect_fail "--side: a word of its table" 64 \
+    "--side: unknown side 'mid' (one of: low, high)" bake-irr --side mid
 expect_fail "no light to bake (only the default headlight)" 64 "no light to bake" \
     bake-irr --iso 0.5 "$T/s.vx"
 

@@ -289,7 +289,8 @@ expect_fail "oversized PFM header" 65 "needs" tonemap -o "$T/x.png" "$T/huge.pfm
 check_eq "no output or temporary left" "$(ls "$T" | grep -c '^x\.png')" 0
 expect_fail "PNG as input" 65 "PNG holds display" tonemap -o "$T/x.pfm" "$T/a.png"
 expect_fail "--bits 12" 64 "bits" tonemap --bits 12 "$T/a.pfm"
-expect_fail "--op hable" 64 "hable" tonemap --op hable "$T/a.pfm"
+expect_fail "--op hable" 64 "--op: unknown operator 'hable' (one of: clamp, reinhard, aces)" tonemap --op hable "$T/a.pfm"
+expect_fail "--diff-map bad" 64 "--diff-map: unknown map 'log' (one of: abs, signed)" tonemap --diff-map log "$T/a.pfm"
 expect_fail "--white without reinhard" 64 "reinhard" tonemap --white 4 "$T/a.pfm"
 expect_fail "PNG options with PFM output" 64 "PFM output" tonemap --op aces -o "$T/x.pfm" "$T/a.pfm"
 expect_fail "--json without --compare" 64 "compare" tonemap --json "$T/a.pfm"

@@ -31,12 +31,13 @@ expect_fail "unknown option" 64 "unknown option" vread --bogus x
 expect_fail "--type without --raw" 64 "go with --raw" vread --type u8 x
 expect_fail "--raw without --type" 64 "needs --type" vread --raw 2,2,2 x
 expect_fail "bad --raw dims" 64 "sizes must be integers" vread --raw 2,0,2 --type u8 x
-expect_fail "bad --type" 64 "--type: 'u12'" vread --raw 2,2,2 --type u12 x
-expect_fail "bad --endian" 64 "--endian: 'middle'" vread --raw 2,2,2 --type u16 --endian middle x
+expect_fail "bad --type" 64 "--type: unknown type 'u12' (one of: u8, i8, u16, i16, u32, i32, u64, i64, f32, f64)" vread --raw 2,2,2 --type u12 x
+expect_fail "bad --endian" 64 "--endian: unknown byte order 'middle' (one of: little, big)" vread --raw 2,2,2 --type u16 --endian middle x
 expect_fail "bad -z" 64 "out of range" vread -z 12 --synth sphere
-expect_fail "bad --synth" 64 "--synth: 'cube'" vread --synth cube
+expect_fail "bad --synth" 64 "--synth: unknown field 'cube' (one of: sphere, torus, linear, ml, saddle)" vread --synth cube
 expect_fail "--synth with a file" 64 "reads no input" vread --synth sphere x
 expect_fail "--size without --synth" 64 "goes with --synth" vread --size 8 x
+expect_fail "bad --format" 64 "--format: unknown format 'dicom' (one of: raw, nrrd, nifti, vtk)" vread --format dicom x
 expect_fail "--format raw without dims" 64 "--format raw needs" vread --format raw x
 expect_fail "--raw against --format" 64 "contradicts" vread --format nrrd --raw 2,2,2 --type u8 x
 expect_fail "zero spacing" 64 "must be positive" vread --spacing 1,0,1 --synth sphere

@@ -215,3 +215,73 @@ put("gmsh", "v4", b"\0" + GMSH4.encode())
 put("gmsh", "v4-truncated", b"\0" + GMSH4[:300].encode())
 put("gmsh", "v2-bad-node", b"\0" + GMSH2.replace("20 30 40 50",
     "20 30 40 99").encode())
+
+
+# ---- Radiance RGBE (.hdr): flat, new and old run-length, orientations ----
+HDRHEAD = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n"
+
+
+def rle_scanline(px):
+    """Radiance's new run-length scanline of 4-byte pixels: all literals."""
+    w = len(px)
+    out = bytes([2, 2, w >> 8, w & 0xff])
+    for c in range(4):
+        plane = bytes(p[c] for p in px)
+        for i in range(0, w, 128):
+            chunk = plane[i:i + 128]
+            out += bytes([len(chunk)]) + chunk
+    return out
+
+
+put("hdr", "flat.hdr", HDRHEAD + b"-Y 2 +X 3\n" + bytes(
+    [128, 64, 32, 129, 255, 0, 1, 136, 0, 0, 0, 0,
+     1, 2, 3, 140, 9, 9, 9, 130, 200, 100, 50, 120]))
+put("hdr", "rle.hdr", HDRHEAD + b"-Y 2 +X 8\n" +
+    bytes([2, 2, 0, 8, 136, 100, 8]) + bytes(range(8)) +
+    bytes([132, 5, 4, 1, 2, 3, 4, 136, 130]) +
+    rle_scanline([(k, 2 * k, 3 * k, 128 + k) for k in range(8)]))
+put("hdr", "old-rle.hdr", b"#?RGBE\nEXPOSURE=2\nCOLORCORR=1 2 0.5\n\n"
+    b"+X 3 +Y 4\n" + bytes([7, 8, 9, 136, 1, 1, 1, 3,
+                            1, 2, 3, 136, 1, 1, 1, 1, 4, 4, 4, 136, 5, 5, 5, 5,
+                            6, 6, 6, 136, 1, 1, 1, 2, 7, 7, 7, 136]))
+put("hdr", "truncated.hdr", HDRHEAD + b"-Y 4 +X 16\n" + bytes([2, 2, 0, 16, 140]))
+
+
+# ---- OpenEXR: uncompressed scanline files from the OpenEXR layout ----
+def exr(chans, w, h, ptype=2, vals=None, dw=None, dp=None):
+    def attr(name, typ, val):
+        return (name.encode() + b"\0" + typ.encode() + b"\0" +
+                struct.pack("<i", len(val)) + val)
+    dw = dw or (0, 0, w - 1, h - 1)
+    dp = dp or dw
+    cl = b"".join(c.encode() + b"\0" + struct.pack("<iB3xii", ptype, 0, 1, 1)
+                  for c in chans) + b"\0"
+    head = (b"\x76\x2f\x31\x01" + struct.pack("<i", 2) +
+            attr("channels", "chlist", cl) +
+            attr("compression", "compression", b"\0") +
+            attr("dataWindow", "box2i", struct.pack("<4i", *dw)) +
+            attr("displayWindow", "box2i", struct.pack("<4i", *dp)) +
+            attr("lineOrder", "lineOrder", b"\0") +
+            attr("pixelAspectRatio", "float", struct.pack("<f", 1)) +
+            attr("screenWindowCenter", "v2f", struct.pack("<2f", 0, 0)) +
+            attr("screenWindowWidth", "float", struct.pack("<f", 1)) + b"\0")
+    fmt = "<e" if ptype == 1 else "<f"
+    size = len(chans) * w * struct.calcsize(fmt)
+    first = len(head) + 8 * h
+    out = head + b"".join(struct.pack("<Q", first + y * (8 + size))
+                          for y in range(h))
+    for y in range(h):
+        out += struct.pack("<ii", dw[1] + y, size)
+        for c in range(len(chans)):
+            for x in range(w):
+                v = vals(c, x, y) if vals else 0.5 * c + 0.25 * x + y
+                out += struct.pack(fmt, v)
+    return out
+
+
+put("exr", "rgb-float.exr", exr("BGR", 4, 3))
+put("exr", "rgba-half.exr", exr("ABGR", 3, 2, ptype=1))
+put("exr", "y-float.exr", exr("Y", 2, 2))
+put("exr", "windows.exr", exr("BGR", 2, 2, dw=(1, 1, 2, 2), dp=(0, 0, 3, 3)))
+put("exr", "nan.exr", exr("BGR", 2, 1, vals=lambda c, x, y:
+                          float("nan") if x == 1 else -0.5))

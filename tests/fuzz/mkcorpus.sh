@@ -9,7 +9,7 @@ out=tests/fuzz/corpus
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT INT TERM
 rm -rf "$out"; mkdir -p "$out/stream" "$out/nrrd" "$out/pfm" "$out/png"
 cc $(make -s print-core-inc) -D_GNU_SOURCE -fopenmp -o "$tmp/mkseed" tests/fuzz/mkseed.c \
-    build/libvoxlux.a -lpng -lz -lm
+    build/libvoxlux.a -lpng $(pkg-config --libs OpenEXR) -lstdc++ -lz -lm
 "$tmp/mkseed" "$out/stream"
 bin/vread --synth sphere --size 3 -z 6 -o "$out/stream/synth-zlib.vxs"
 python3 tests/cli/mkstream.py volume "$out/stream/f32-bricked.vxs" --type f32 \

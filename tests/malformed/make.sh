@@ -199,6 +199,12 @@ case("volm-spacing-negative.vxs", W, 65, "spacing", "spacing -1",
      stream(volm(spacing="1 1 -1")))
 case("volm-origin-inf.vxs", W, 65, "origin", "origin 1e400",
      stream(volm(origin="0 1e400 0")))
+case("volm-extent-overflow.vxs", W, 65, "extent overflows",
+     "dims 3 2 2, spacing 1e308: the far corner is beyond the double range",
+     stream(volm(dims="3 2 2", spacing="1e308 1 1", body=bytes(12))))
+case("volm-extent-diagonal.vxs", W, 65, "extent overflows",
+     "sides 1.5e308 on two axes: the diagonal is beyond the double range",
+     stream(volm(spacing="1.5e308 1.5e308 1")))
 case("volm-type.vxs", W, 65, "type", "type u32 (not a voxlux type)",
      stream(volm(type="u32")))
 case("volm-encoding.vxs", W, 65, "encoding", "encoding gzip",
@@ -311,6 +317,23 @@ case("nrrd-ascii-word.nrrd", R, 65, "", "ascii data with a word in it",
      nrrd("encoding: ascii", body=b"0 1 2 x 4 5 6 7\n"))
 case("nrrd-hex-odd.nrrd", R, 65, "", "hex data with an odd digit count",
      nrrd("encoding: hex", body=b"000102030405060\n"))
+case("nrrd-extent-overflow.nrrd", R, 65, "extent overflows",
+     "sizes 3 2 2, spacings 1e308 1 1", nrrd("sizes: 3 2 2",
+                                               "spacings: 1e308 1 1",
+                                               body=bytes(12)))
+case("nrrd-ascii-overflow.nrrd", R, 65, "beyond the double range",
+     "ascii double data holding 1e999", nrrd("type: double",
+                                             "encoding: ascii",
+                                             body=b"0 1 2 1e999 4 5 6 7\n"))
+case("nrrd-ascii-overflow-float.nrrd", R, 65, "beyond the double range",
+     "ascii float data holding -1e999", nrrd("type: float", "encoding: ascii",
+                                             body=b"0 1 2 -1e999 4 5 6 7\n"))
+case("nrrd-ascii-overflow-u8.nrrd", R, 65, "beyond the double range",
+     "ascii uchar data holding 1e400", nrrd("encoding: ascii",
+                                            body=b"0 1 2 3 1e400 5 6 7\n"))
+case("nrrd-ascii-float-range.nrrd", R, 65, "beyond the float range",
+     "ascii float data holding 1e39 (finite, beyond float)",
+     nrrd("type: float", "encoding: ascii", body=b"0 1 2 3 4 5 6 1e39\n"))
 case("nrrd-detached-missing.nhdr", R, 66, "No such file",
      "detached data file that does not exist",
      nrrd("data file: no-such-file.raw", body=b""))
@@ -368,6 +391,15 @@ case("vtk-spacing-zero.vtk", R, 65, "SPACING", "SPACING 0 1 1",
      vtk(ASC8, SPACING="SPACING 0 1 1"))
 case("vtk-point-data.vtk", R, 65, "POINT_DATA", "POINT_DATA 9 for 8 points",
      vtk(ASC8, POINT_DATA="POINT_DATA 9"))
+case("vtk-extent-overflow.vtk", R, 65, "extent overflows",
+     "DIMENSIONS 3 2 2, SPACING 1e308 1 1",
+     vtk(b"0 1 2 3 4 5 6 7 8 9 10 11\n", DIMENSIONS="DIMENSIONS 3 2 2",
+         SPACING="SPACING 1e308 1 1", POINT_DATA="POINT_DATA 12"))
+case("vtk-ascii-overflow.vtk", R, 65, "beyond the double range",
+     "ascii double data holding -1e999", vtk(b"0 1 2 3 -1e999 5 6 7\n",
+                                             t="double"))
+case("vtk-ascii-overflow-float.vtk", R, 65, "beyond the double range",
+     "ascii float data holding 1e999", vtk(b"0 1 2 3 4 5 6 1e999\n"))
 case("vtk-header.vtk", R, 65, "", "first line not a VTK header",
      b"hello vtk\n" + vtk(ASC8)[27:])
 
@@ -376,6 +408,32 @@ case("raw-short.raw", "vread --raw 2,2,2 --type u16 -o OUT FILE", 65,
      "truncated", "8 bytes for 2x2x2 u16", bytes(8))
 case("raw-long.raw", "vread --raw 2,2,2 --type u8 -o OUT FILE", 65, "",
      "9 bytes for 2x2x2 u8", bytes(9))
+
+case("raw-extent-x.raw", "vread --raw 3,2,2 --type u8 --spacing 1e308,1,1 "
+     "-o OUT FILE", 65, "extent overflows", "3 samples 1e308 apart along x",
+     bytes(12))
+
+# ---- tet meshes: ASCII numbers beyond the double range (vread) ----
+TV = ("# vtk DataFile Version 3.0", "catalog", "ASCII",
+      "DATASET UNSTRUCTURED_GRID", "POINTS 4 double",
+      "0 0 0 1 0 0 0 1 0 0 0 {z}", "CELLS 1 5", "4 0 1 2 3", "CELL_TYPES 1",
+      "10", "POINT_DATA 4", "SCALARS d double 1", "LOOKUP_TABLE default",
+      "0.5 1.5 2.5 {v}")
+
+
+def tetvtk(z="1", v="3.5"):
+    return ("\n".join(TV) + "\n").format(z=z, v=v).encode()
+
+
+case("tetvtk-point-overflow.vtk", R, 65, "POINTS",
+     "a tet mesh point coordinate 1e999", tetvtk(z="1e999"))
+case("tetvtk-scalar-overflow.vtk", R, 65, "SCALARS",
+     "a tet mesh scalar -1e999", tetvtk(v="-1e999"))
+case("gmsh-node-overflow.msh", R, 65, "$Nodes",
+     "a gmsh node coordinate 1e999",
+     b"$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n"
+     b"2 1 0 0\n3 0 1 0\n4 0 0 1e999\n$EndNodes\n$Elements\n1\n"
+     b"1 4 2 0 0 1 2 3 4\n$EndElements\n")
 
 # ---- PFM (tonemap) ----
 P = "tonemap -o OUT FILE"
@@ -594,6 +652,100 @@ for name, phrase, what, data in TL:
     case(name, "raycast --iso 1 --size 8x8 -o OUT FILE", 65, phrase,
          "(as above)", None)
 
+# ---- HDR images (tonemap reads them) and environment maps (vscene) ----
+HDRH = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n"
+
+
+def exr(chans, w, h, vals, dw=None, dp=None, cut=0):
+    """An uncompressed float OpenEXR file, from the OpenEXR file layout."""
+    def attr(name, typ, val):
+        return (name.encode() + b"\0" + typ.encode() + b"\0" +
+                struct.pack("<i", len(val)) + val)
+    dw = dw or (0, 0, w - 1, h - 1)
+    dp = dp or dw
+    cl = b"".join(c.encode() + b"\0" + struct.pack("<iB3xii", 2, 0, 1, 1)
+                  for c in chans) + b"\0"
+    head = (b"\x76\x2f\x31\x01" + struct.pack("<i", 2) +
+            attr("channels", "chlist", cl) +
+            attr("compression", "compression", b"\0") +
+            attr("dataWindow", "box2i", struct.pack("<4i", *dw)) +
+            attr("displayWindow", "box2i", struct.pack("<4i", *dp)) +
+            attr("lineOrder", "lineOrder", b"\0") +
+            attr("pixelAspectRatio", "float", struct.pack("<f", 1)) +
+            attr("screenWindowCenter", "v2f", struct.pack("<2f", 0, 0)) +
+            attr("screenWindowWidth", "float", struct.pack("<f", 1)) + b"\0")
+    size = 4 * len(chans) * w
+    first = len(head) + 8 * h
+    out = head + b"".join(struct.pack("<Q", first + y * (8 + size))
+                          for y in range(h))
+    for y in range(h):
+        out += struct.pack("<ii", dw[1] + y, size)
+        for c in chans:
+            out += b"".join(struct.pack("<f", vals(c, x, y)) for x in range(w))
+    return out[:len(out) - cut]
+
+
+def pfm3(w, h, vals):
+    return ("PF\n%d %d\n-1.0\n" % (w, h)).encode() + struct.pack(
+        "<%df" % (3 * w * h), *vals)
+
+
+def gray(c, x, y):
+    return 0.5 + x + 0.25 * y
+
+
+T = "tonemap -o OUT FILE"
+case("hdr-rle-cut.hdr", T, 65, "truncated",
+     "run-length scanline cut short",
+     HDRH + b"-Y 2 +X 8\n" + bytes([2, 2, 0, 8, 136, 100, 8, 1, 2]))
+case("hdr-run-long.hdr", T, 65, "passes the scanline's end",
+     "a run of 9 in an 8-pixel scanline",
+     HDRH + b"-Y 1 +X 8\n" + bytes([2, 2, 0, 8, 137, 100]))
+case("hdr-rle-width.hdr", T, 65, "gives 9 pixels",
+     "run-length start for 9 pixels in an 8-pixel image",
+     HDRH + b"-Y 1 +X 8\n" + bytes([2, 2, 0, 9, 137, 100]))
+case("hdr-width-huge.hdr", T, 65, "beyond the limits", "-Y 1 +X 70000 (a huge width)",
+     HDRH + b"-Y 1 +X 70000\n" + bytes(16))
+case("hdr-pixels-huge.hdr", T, 65, "beyond the limits", "65536 x 65536 (over the limit)",
+     HDRH + b"-Y 65536 +X 65536\n" + bytes(16))
+case("hdr-header.hdr", T, 65, "header", "a header without its empty line",
+     b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n-Y 1 +X 1\n" + bytes(4))
+case("hdr-xyze.hdr", T, 65, "XYZE", "FORMAT=32-bit_rle_xyze",
+     b"#?RADIANCE\nFORMAT=32-bit_rle_xyze\n\n-Y 1 +X 1\n" + bytes(4))
+case("hdr-exposure.hdr", T, 65, "EXPOSURE", "EXPOSURE=0",
+     b"#?RADIANCE\nEXPOSURE=0\n\n-Y 1 +X 1\n" + bytes(4))
+case("hdr-resolution.hdr", T, 65, "resolution line", "-Y 1 +Y 1",
+     HDRH + b"-Y 1 +Y 1\n" + bytes(4))
+case("exr-cut.exr", T, 65, "exr", "uncompressed pixels cut short",
+     exr("BGR", 4, 2, gray, cut=20))
+case("exr-no-rgb.exr", T, 65, "no channel R", "channels A and Z only",
+     exr("AZ", 2, 2, gray))
+case("exr-width-huge.exr", T, 65, "beyond the limits",
+     "display window 70000 wide (a huge width)",
+     exr("BGR", 1, 1, gray, dp=(0, 0, 69999, 0)))
+case("exr-garbage.exr", T, 65, "exr", "the magic, then garbage",
+     b"\x76\x2f\x31\x01\x02\0\0\0garbage and more garbage")
+V_ = "vscene --scene FILE -o OUT GOOD"
+case("env-nan.scn", V_, 65, "is NaN", "an environment (PFM) with a NaN pixel",
+     "light environment file env-nan.pfm\n")
+case("env-inf.scn", V_, 65, "is infinite",
+     "an environment (OpenEXR) with an infinite pixel",
+     "light environment file env-inf.exr\n")
+case("env-hash.scn", V_, 65, "content hash",
+     "an environment whose hash is not the scene's",
+     "light environment file env-good.hdr hash 0123456789abcdef\n")
+case("env-angular.scn", V_, 65, "square", "an angular map of 4 x 2",
+     "light environment file env-good.hdr layout angular\n")
+case("env-missing.scn", V_, 66, "No such file",
+     "an environment file that does not exist",
+     "light environment file env-no-such-file.hdr\n")
+case("env-format.scn", V_, 65, "not a PFM, Radiance HDR or OpenEXR",
+     "an environment file that is a voxlux stream",
+     "light environment file good.vxs\n")
+case("env-hash-word.scn", V_, 65, "line 1",
+     "hash with 15 digits", "light environment file env-good.hdr "
+     "hash 0123456789abcde\n")
+
 # ---- no input, usage ----
 case("missing.vxs", "vinfo NOFILE", 66, "No such file",
      "input file does not exist", None)
@@ -621,6 +773,13 @@ with open("good-tlef.vxs", "wb") as f:  # the TLEF cases' valid original
     f.write(GOOD_TLEF)
 with open("stale-tlef.vxs", "wb") as f:  # valid, but not its mesh's (CRC)
     f.write(mesh_tlef(mesh_crc32="00000000"))
+# the env-*.scn cases' maps (beside the scenes)
+with open("env-nan.pfm", "wb") as f:
+    f.write(pfm3(2, 1, [1, 2, 3, float("nan"), 0, 0]))
+with open("env-inf.exr", "wb") as f:
+    f.write(exr("BGR", 2, 1, lambda c, x, y: float("inf") if x else 1.0))
+with open("env-good.hdr", "wb") as f:   # 4 x 2, flat, valid
+    f.write(HDRH + b"-Y 2 +X 4\n" + bytes([128, 64, 32, 129] * 8))
 names = set()
 with open("cases", "w") as cf:
     cf.write("# generated by make.sh: file<TAB>command<TAB>code<TAB>phrase\n")

@@ -347,6 +347,74 @@ determinism(void **state)
 	vx_grid_free(&g);
 }
 
+/* Texel rules: a NaN sample flags every texel whose support holds it (at
+ * scale 1 the 3x3x3 samples around the texel: the fourth weight is 0) (VX_TEXEL_NAN, no samples, never drawn); a constant region has no
+ * gradient (VX_TEXEL_FLAT); texels at the volume's edge are baked with the
+ * edge samples repeated (VX_TEXEL_BORDER); no mean is NaN. */
+static double
+ramp_z(double x, double y, double z)
+{
+	(void)x;
+	(void)y;
+	return z < 10 ? z : 10;        /* flat above z = 10 */
+}
+
+static void
+texel_rules(void **state)
+{
+	const char *lines[] = { "light sky", NULL };
+	vx_grid g;
+	vx_macro m;
+	vx_scene s;
+	vx_gi gi;
+	vx_irrvol v;
+	vx_bake_opts o;
+	vx_err e = { 0, "" };
+	int64_t q;
+
+	(void)state;
+	make(&g, &m, 16, ramp_z);
+	vx_grid_set(&g, 8, 8, 4, NAN);
+	vx_grid_range(&g);
+	vx_macro_free(&m);
+	vx_macro_init(&m);
+	{
+		int sizes[4][3], nlev = vx_macro_default_sizes(VX_F32, 2, sizes);
+
+		assert_int_equal(vx_macro_build(&m, &g, nlev,
+		    (const int (*)[3])sizes, 1, &e), 0);
+	}
+	scene_with(&s, lines);
+	assert_int_equal(vx_gi_setup(&gi, &s, &g, &m, &e), 0);
+	vx_bake_opts_init(&o);
+	o.samples = 2;
+	bake_all(&v, &g, &gi, &o);
+	/* the NaN's neighbours within the support (|d| <= 1 on each axis) */
+	for (int dz = -1; dz <= 1; dz++)
+		for (int dx = -1; dx <= 1; dx++) {
+			q = vx_irr_texel(&v, 8 + dx, 8, 4 + dz);
+			assert_true(v.flags[q] & VX_TEXEL_NAN);
+			assert_false(vx_irr_usable(&v, q));
+			assert_int_equal(v.acc[q].count, 0);
+		}
+	q = vx_irr_texel(&v, 10, 8, 4);         /* 2 away: baked */
+	assert_false(v.flags[q] & VX_TEXEL_NAN);
+	assert_int_equal(v.acc[q].count, 2);
+	q = vx_irr_texel(&v, 8, 8, 8);          /* 4 away: baked */
+	assert_false(v.flags[q] & VX_TEXEL_NAN);
+	assert_int_equal(v.acc[q].count, 2);
+	q = vx_irr_texel(&v, 4, 4, 14);         /* constant region */
+	assert_true(v.flags[q] & VX_TEXEL_FLAT);
+	q = vx_irr_texel(&v, 0, 5, 5);          /* the x = 0 face */
+	assert_true(v.flags[q] & VX_TEXEL_BORDER);
+	assert_true(vx_irr_usable(&v, q));
+	for (size_t t = 0; t < 3 * v.nslot * VX_IRR_BRICK3; t++)
+		assert_false(isnan(v.mean[t]));
+	vx_irr_free(&v);
+	vx_macro_free(&m);
+	vx_grid_free(&g);
+}
+
 int
 main(void)
 {
@@ -355,6 +423,7 @@ main(void)
 		cmocka_unit_test(plane_shadow),
 		cmocka_unit_test(bowl_cap),
 		cmocka_unit_test(determinism),
+		cmocka_unit_test(texel_rules),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

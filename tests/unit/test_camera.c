@@ -511,19 +511,6 @@ grid_transforms(void **state)
 	vx_grid_free(&g);
 }
 
-static void
-names(void **state)
-{
-	int v;
-
-	(void)state;
-	for (v = VX_VIEW_UNKNOWN + 1; v < VX_VIEW_LAST; v++)
-		assert_int_equal(vx_view_parse(vx_view_name((vx_view)v)), v);
-	assert_int_equal(vx_view_parse("sideways"), VX_VIEW_UNKNOWN);
-	assert_int_equal(vx_projection_parse("orthographic"), VX_ORTHOGRAPHIC);
-	assert_int_equal(vx_projection_parse("fisheye"), VX_PROJECTION_UNKNOWN);
-}
-
 int
 main(void)
 {
@@ -538,7 +525,6 @@ main(void)
 		cmocka_unit_test(project_inverts_ray),
 		cmocka_unit_test(resolve_errors),
 		cmocka_unit_test(grid_transforms),
-		cmocka_unit_test(names),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -871,6 +871,11 @@ sniff_formats(void **state)
 		{ "Pf 1", 4, VX_IMGFMT_PFM },
 		{ "P6\n1", 4, VX_IMGFMT_UNKNOWN },
 		{ "PF", 2, VX_IMGFMT_UNKNOWN },
+		{ "#?RADIANCE\n", 11, VX_IMGFMT_HDR },
+		{ "#?", 2, VX_IMGFMT_HDR },
+		{ "#!", 2, VX_IMGFMT_UNKNOWN },
+		{ "\x76\x2f\x31\x01\x02", 5, VX_IMGFMT_EXR },
+		{ "\x76\x2f\x31", 3, VX_IMGFMT_UNKNOWN },
 		{ "", 0, VX_IMGFMT_UNKNOWN },
 	};
 

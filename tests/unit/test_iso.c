@@ -88,7 +88,7 @@ collect_hit(void *ctx, const vx_iso_hit *h)
 
 static void
 trace_all(const vx_iso_tracer *tr, const double o[3], const double d[3],
-    const float *iso, int niso, collect *c)
+    const double *iso, int niso, collect *c)
 {
 	memset(c, 0, sizeof *c);
 	vx_iso_trace(tr, o, d, 0, INFINITY, iso, niso, collect_hit, c, NULL);
@@ -108,7 +108,7 @@ sphere_no_holes(void **state)
 	vx_macro m;
 	vx_err e = { 0, "" };
 	int sizes[VX_MACRO_MAXLEV][3];
-	float iso = 9.3f;
+	double iso = 9.3f;
 	int n = 24, bad = 0, tested = 0;
 	double c = (n - 1) / 2.0;
 
@@ -185,7 +185,7 @@ static void
 sphere_face_crossings(void **state)
 {
 	vx_grid g;
-	float iso = 7.37f;
+	double iso = 7.37f;
 	int n = 20, bad = 0, tested = 0;
 
 	(void)state;
@@ -281,7 +281,8 @@ hierarchy_flat_bricked_identical(void **state)
 		vx_iso_tracer th = { &g, &m, 0, VX_CELL_EXACT, NULL, 0 };
 		vx_iso_tracer tf = { &g, &m, 1, VX_CELL_EXACT, NULL, 0 };
 		vx_iso_tracer tb = { &b, &mb, 0, VX_CELL_EXACT, NULL, 0 };
-		float iso[3] = { 0.2f, 0.5f, 0.93f };
+		float iso[3] = { 0.2f, 0.5f, 0.93f };   /* the masks' */
+		double isod[3] = { iso[0], iso[1], iso[2] };
 		/* cell masks (lazy, bricked) for the three isovalue lists */
 		vx_cellmask mk[3];
 		for (int q = 0; q < 3; q++) {
@@ -300,12 +301,12 @@ hierarchy_flat_bricked_identical(void **state)
 			if (k % 7 == 0)
 				d[k % 3] = 0;
 			int ni = 1 + k % 3;
-			trace_all(&th, o, d, iso, ni, &ch);
-			trace_all(&tf, o, d, iso, ni, &cf);
-			trace_all(&tb, o, d, iso, ni, &cb);
+			trace_all(&th, o, d, isod, ni, &ch);
+			trace_all(&tf, o, d, isod, ni, &cf);
+			trace_all(&tb, o, d, isod, ni, &cb);
 			vx_iso_tracer tm = tb;
 			tm.mask = &mk[ni - 1];
-			trace_all(&tm, o, d, iso, ni, &cm);
+			trace_all(&tm, o, d, isod, ni, &cm);
 			if (!same_hits(&ch, &cf) || !same_hits(&ch, &cb) ||
 			    !same_hits(&ch, &cm))
 				fail_msg("seed %llu ray %d: %d hierarchical, %d flat, "
@@ -342,7 +343,7 @@ double_root_volume(void **state)
 	vx_grid_set(&g, 1, 1, 1, 27);
 	vx_grid_range(&g);
 	vx_iso_tracer tr = { &g, NULL, 1, VX_CELL_EXACT, NULL, 0 };
-	float iso4 = 4, iso1 = 1, iso5 = 5;
+	double iso4 = 4, iso1 = 1, iso5 = 5;
 	trace_all(&tr, o, d, &iso4, 1, &c);
 	assert_int_equal(c.n, 1);
 	assert_true(fabs(c.t[0] - 2.0 / 3.0) < 1e-7);
@@ -362,7 +363,7 @@ static void
 nonfinite_voxels(void **state)
 {
 	vx_grid g;
-	float iso = 6.5f;
+	double iso = 6.5f;
 	int hits = 0;
 
 	(void)state;
@@ -410,7 +411,7 @@ scale_invariance(void **state)
 		vx_grid_range(&s);
 		vx_iso_tracer t1 = { &g, NULL, 1, VX_CELL_EXACT, NULL, 0 };
 		vx_iso_tracer t2 = { &s, NULL, 1, VX_CELL_EXACT, NULL, 0 };
-		float i1 = 0.5f, i2 = (float)(0.5 * f);
+		double i1 = 0.5, i2 = 0.5 * f;
 		for (int k = 0; k < 200; k++) {
 			double o[3], d[3];
 			collect a, b;
@@ -624,6 +625,7 @@ first_hit_oracle_random(void **state)
 		vx_macro m;
 		vx_cellmask mk;
 		float iso = 0.5f;
+		double isod = iso;
 
 		make_random(&g, 10, seed, NULL);
 		assert_int_equal(vx_macro_build(&m, &g, 2,
@@ -661,7 +663,7 @@ first_hit_oracle_random(void **state)
 			    1e-3);
 			for (int w = 0; w < 3; w++) {
 				vx_iso_hit h;
-				int got = vx_iso_first(&tr[w], o, d, t0, t1, &iso,
+				int got = vx_iso_first(&tr[w], o, d, t0, t1, &isod,
 				    1, &h, NULL);
 
 				n++;
@@ -695,7 +697,7 @@ first_hit_oracle_random(void **state)
  * certificate's counts added to *cert, the bound's to *bounded. */
 static int
 cert_same(const vx_iso_tracer *tr, const double o[3], const double d[3],
-    const float *iso, int niso, uint64_t *bounded, uint64_t *cert)
+    const double *iso, int niso, uint64_t *bounded, uint64_t *cert)
 {
 	vx_iso_tracer off = *tr;
 	vx_iso_stats s0, s1;
@@ -740,7 +742,7 @@ ends_certificate(void **state)
 	for (int k2 = -20; k2 <= 40; k2 += 30) {
 		vx_grid g;
 		vx_macro m;
-		float iso[2] = { ldexpf(0.5f, k2), ldexpf(0.3125f, k2) };
+		double iso[2] = { ldexp(0.5, k2), ldexp(0.3125, k2) };
 
 		make_random(&g, 10, 31, NULL);
 		for (int z = 0; z < 12; z++)
@@ -782,7 +784,7 @@ ends_certificate(void **state)
 	{
 		vx_grid g;
 		int64_t dims[3] = { 9, 9, 4 };
-		float iso = 500.3f;
+		double iso = 500.3f;
 		uint64_t b2 = 0, c2 = 0;
 
 		assert_int_equal(vx_grid_alloc(&g, dims, VX_F32, NULL, &e), 0);
@@ -815,6 +817,97 @@ ends_certificate(void **state)
 	assert_int_equal(bad, 0);
 }
 
+/* Isovalues are doubles, drawn as given: a volume whose samples are at
+ * most P (one peak sample P, the rest 0) has no hit for any isovalue
+ * above P, however close (P + its double ulp, halfway to the next float,
+ * beyond the float range), and hits for one just below P, on every walk
+ * (flat, hierarchical, masked: the walk's float-rounded isovalue brackets
+ * a superset).  Oracle: the trilinear field never exceeds the samples'
+ * maximum, and reaches P at the peak sample (rays through it). */
+static void
+iso_between_floats(void **state)
+{
+	static const struct { vx_type type; double peak; } vols[] = {
+		{ VX_F32, 1.0 }, { VX_F32, 0x1.fffffep127 }, { VX_F32, -0x1p-140 },
+		{ VX_U8, 100 }, { VX_U16, 65535 }, { VX_I16, -7 },
+	};
+	int sizes[2][3] = { { 2, 2, 2 }, { 2, 2, 2 } };
+	vx_err e = { 0, "" };
+
+	(void)state;
+	for (size_t vi = 0; vi < sizeof vols / sizeof vols[0]; vi++) {
+		int64_t dims[3] = { 7, 6, 5 };
+		double P = vols[vi].peak, below = vols[vi].type == VX_F32 &&
+		    P < 0 ? 2 * P : P == 0x1.fffffep127 ? 0x1.fffffcp127 : P - 1;
+		vx_grid g;
+		vx_macro m;
+
+		assert_int_equal(vx_grid_alloc(&g, dims, vols[vi].type, NULL,
+		    &e), 0);
+		for (int z = 0; z < 5; z++)
+			for (int y = 0; y < 6; y++)
+				for (int x = 0; x < 7; x++)
+					vx_grid_set(&g, x, y, z, x == 3 && y == 2 &&
+					    z == 2 ? P : below);
+		vx_grid_range(&g);
+		assert_int_equal(vx_macro_build(&m, &g, 2,
+		    (const int (*)[3])sizes, 1, &e), 0);
+		double above[] = { P + fabs(P) * 0x1p-52 + 0x1p-1074,
+		    P + fabs(P) * 0x1p-25, 1e300, INFINITY };
+		double under[] = { P - fabs(P) * 0x1p-52, P - fabs(P) * 0x1p-26 };
+		for (int q = 0; q < 6; q++) {
+			double iso[2];
+			int want = q >= 4, ni = q == 3 || q == 5 ? 2 : 1;
+			float fiso[2];
+			vx_cellmask mk;
+
+			iso[0] = q < 4 ? above[q] : under[q - 4];
+			iso[1] = q == 3 ? above[0] : q == 5 ? above[1] : 0;
+			if (q == 3 && !isfinite(iso[0]))
+				continue;
+			for (int j = 0; j < ni; j++)
+				fiso[j] = (float)iso[j];
+			assert_true(iso[0] != P);
+			assert_int_equal(vx_cellmask_build(&mk, &m, &g, fiso, ni, 1,
+			    1, &e), 0);
+			vx_iso_tracer tr[3] = { { &g, NULL, 1, VX_CELL_EXACT, NULL, 0 },
+			    { &g, &m, 0, VX_CELL_EXACT, NULL, 0 },
+			    { &g, &m, 0, VX_CELL_EXACT, &mk, 0 } };
+			for (int k = 0; k < 60; k++) {
+				/* rays through the peak sample or near it */
+				double o[3], d[3], aim[3] = { 3, 2, 2 };
+				collect c;
+
+				if (k % 2)
+					for (int a = 0; a < 3; a++)
+						aim[a] += 0.3 * (hash01(7, 3 * k + a) - 0.5);
+				/* dyadic: o + 9 d is aim exactly */
+				for (int a = 0; a < 3; a++) {
+					d[a] = (double)(int)(9 * hash01(8, 3 * k + a) -
+					    4.5) / 8;
+					o[a] = aim[a] - 9 * d[a];
+				}
+				if (d[0] == 0 && d[1] == 0 && d[2] == 0)
+					d[k % 3] = 0.125;
+				for (int w = 0; w < 3; w++) {
+					trace_all(&tr[w], o, d, iso, ni, &c);
+					if (!want && c.n != 0)
+						fail_msg("volume %zu iso %.17g: %d hits "
+						    "(walk %d ray %d), want none", vi,
+						    iso[0], c.n, w, k);
+					if (want && k % 2 == 0 && c.n == 0)
+						fail_msg("volume %zu iso %.17g: no hit "
+						    "through the peak (walk %d ray %d)",
+						    vi, iso[0], w, k);
+				}
+			}
+			vx_cellmask_free(&mk);
+		}
+		vx_macro_free(&m);
+		vx_grid_free(&g);
+	}
+}
+
 int
 main(void)
 {
@@ -828,6 +921,7 @@ main(void)
 		cmocka_unit_test(iso_normal_table),
 		cmocka_unit_test(first_hit_oracle_random),
 		cmocka_unit_test(ends_certificate),
+		cmocka_unit_test(iso_between_floats),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -219,6 +219,28 @@ nonfinite(void **state)
 		if (k % 3 == 0)
 			assert_int_equal(hit, 0);
 	}
+	/* far eyes (a camera at 1e308): the last-t sample's point is NaN or
+	 * beyond int64; no NaN result, and no conversion of either to an
+	 * integer (UBSan's float-cast-overflow in SANITIZE=1 builds) */
+	for (int k = 0; k < 24; k++) {
+		double o[3], d[3], len = 0;
+
+		for (int a = 0; a < 3; a++) {
+			o[a] = (k >> a & 1 ? -1 : 1) * (k < 8 ? 1e308 : k < 16 ?
+			    1.7e308 : 1e300);
+			d[a] = 4 - o[a];
+			len = fabs(d[a]) > len ? fabs(d[a]) : len;
+		}
+		for (int a = 0; a < 3; a++)
+			d[a] /= len;
+		if (k % 4 == 3)         /* what an overflowing |eye| gives */
+			d[k % 3] = NAN;
+		for (int lt = 0; lt < 2; lt++) {
+			vx_mip_ray(&g, &m, &w, o, d, 0, INFINITY, lt, &v, &t, NULL);
+			assert_false(isnan(v));
+			assert_false(isnan(t));
+		}
+	}
 	vx_mip_work_free(&w);
 	vx_macro_free(&m);
 	vx_grid_free(&g);

@@ -117,6 +117,27 @@ nonfinite(void **state)
 	/* a single value: everything equal to it in bin 0 */
 	assert_int_equal(vx_grid_histogram(&g, 2, 2, 5, h, &e), 0);
 	assert_true(h[0] == 1 && h[1] + h[2] + h[3] + h[4] == 0);
+	/* extreme widths (oracle: the bin formula in exact arithmetic): a
+	 * subnormal one, whose scale nbins / (hi - lo) overflows, and one
+	 * beyond the double range */
+	vx_grid_set(&g, 0, 1, 0, 0);       /* lo itself: bin 0 */
+	vx_grid_set(&g, 1, 1, 0, 0x1p-149);   /* both beyond hi */
+	vx_grid_set(&g, 2, 1, 0, 1);
+	assert_int_equal(vx_grid_histogram(&g, 0, 0x1p-1073, 4, h, &e), 0);
+	assert_true(h[0] == 1 && h[1] == 0 && h[2] == 0 && h[3] == 0);
+	assert_int_equal(vx_grid_histogram(&g, -0x1p-1074, 0x1p-1074, 2, h,
+	    &e), 0);
+	assert_true(h[0] == 0 && h[1] == 1);
+	vx_grid_set(&g, 0, 1, 0, -3e38);   /* all at the middle, to within */
+	vx_grid_set(&g, 1, 1, 0, 0);       /* 2^-900 of the width */
+	vx_grid_set(&g, 2, 1, 0, 3e38);
+	assert_int_equal(vx_grid_histogram(&g, -1.7e308, 1.7e308, 4, h, &e), 0);
+	assert_true(h[0] == 0 && h[1] == 0 && h[2] == 3 && h[3] == 0);
+	assert_int_equal(vx_grid_histogram(&g, -1.7e308, 0, 2, h, &e), 0);
+	assert_true(h[0] == 0 && h[1] == 2);
+	vx_grid_set(&g, 0, 1, 0, -1);
+	vx_grid_set(&g, 1, 1, 0, 2);
+	vx_grid_set(&g, 2, 1, 0, 5);
 	assert_int_equal(vx_grid_histogram(&g, 2, 1, 5, h, &e), VX_EUSAGE);
 	assert_int_equal(vx_grid_histogram(&g, 0, INFINITY, 5, h, &e),
 	    VX_EUSAGE);

@@ -1456,6 +1456,12 @@ vtk_import_bad(void **state)
 		{ "bad number", NULL, 0, "'1x' is not a number" },
 		{ "point data count", NULL, 0, "POINT_DATA has a count" },
 		{ "huge cells", NULL, 0, "truncated: CELLS" },
+		/* vx_scan.h's grammar: overflow is not an infinity (issue
+		 * 19.7), hexadecimal is not a number */
+		{ "overflowing value", NULL, 0, "'1e999' is not a number" },
+		{ "hexadecimal value", NULL, 0, "'0x3' is not a number" },
+		{ "overflowing integer", NULL, 0,
+		  "'99999999999999999999' is not an integer" },
 	};
 	vx_tetimport_opt opt = { NULL, 0 };
 
@@ -1475,6 +1481,10 @@ vtk_import_bad(void **state)
 	t[12].text = edit(vtk_ascii, "0 1 0\n", "0 1x 0\n");
 	t[13].text = edit(vtk_ascii, "POINT_DATA 5", "POINT_DATA 4");
 	t[14].text = edit(vtk_ascii, "CELLS 3 14", "CELLS 3 1400000");
+	t[15].text = edit(vtk_ascii, "-2 3e2 4.25", "-2 1e999 4.25");
+	t[16].text = edit(vtk_ascii, "-2 3e2 4.25", "-2 0x3 4.25");
+	t[17].text = edit(vtk_ascii, "4 1 2 3 4",
+	    "4 1 2 3 99999999999999999999");
 	for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
 		vx_tetmesh m;
 		vx_err e = { 0, "" };
@@ -1595,6 +1605,10 @@ gmsh_import_bad(void **state)
 		{ "unterminated section", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
 		    "$Comments\nhello\n", 0, "has no end" },
 		{ "NaN coordinate", NULL, 0, "point 1 has a NaN coordinate" },
+		/* overflow is not an infinity (issue 19.7) */
+		{ "overflowing value", NULL, 0,
+		  "$NodeData: expected a number" },
+		{ "overflowing tag", NULL, 0, "$Nodes: expected an integer" },
 	};
 
 	(void)state;
@@ -1614,6 +1628,8 @@ gmsh_import_bad(void **state)
 	t[9].text = edit(gmsh2, "30 0 1 0", "20 0 1 0");
 	t[10].text = edit(gmsh4, "3 1 4 2\n", "3 1 4 3\n");
 	t[12].text = edit(gmsh2, "20 1 0 0", "20 nan 0 0");
+	t[13].text = edit(gmsh2, "40 300\n", "40 -1e999\n");
+	t[14].text = edit(gmsh2, "20 1 0 0", "9223372036854775807 1 0 0");
 	for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
 		vx_tetmesh m;
 		vx_err e = { 0, "" };

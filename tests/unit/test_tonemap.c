@@ -78,7 +78,8 @@ operators_gray(void **state)
 		o.white = t[i].white;
 		o.transfer = VX_TF_LINEAR;
 		vx_tonemap_pixel(&o, &t[i].x, 1, &out, NULL);
-		close_to(out, t[i].want, vx_tonemap_op_name(t[i].op), (int)i);
+		close_to(out, t[i].want, vx_enum_str(&vx_tonemap_op_enum,
+		    t[i].op), (int)i);
 	}
 	/* the curve itself, below the final clamp (reinhard above white) */
 	close_to(vx_tonemap_curve(VX_TM_REINHARD, 4, 2), 4 * 2.0 / 5, "curve",
@@ -261,8 +262,6 @@ image_stats(void **state)
 	o.op = 17;
 	assert_int_equal(vx_tonemap_image(&dst, &src, &o, NULL, &e), VX_EUSAGE);
 	vx_image_free(&src);
-	assert_int_equal(vx_tonemap_op_parse("aces"), VX_TM_ACES);
-	assert_int_equal(vx_tonemap_op_parse("hable"), VX_TM_UNKNOWN);
 }
 
 /* Dither: a flat field at code k + 0.25 quantizes to k everywhere without

@@ -11,7 +11,7 @@
  * order of texels, and a lazily baked texel equals the full bake's.
  *
  * Texels without a usable surface get a flag and no samples:
- *   VX_TEXEL_NAN   the texel's value or a sample of its 4x4x4 support is
+ *   VX_TEXEL_NAN   the texel's value or a sample of its support (vx_smooth.h) is
  *                  not finite;
  *   VX_TEXEL_FLAT  the smoothed gradient's length is at most 2^-30 times
  *                  the volume's value range (or 0): no direction to

@@ -8,9 +8,20 @@
 
 #define DEG (3.14159265358979323846 / 180.0)
 
-static const char *const view_names[VX_VIEW_LAST] = {
-	NULL, "front", "back", "left", "right", "top", "bottom", "angles"
+static const vx_enum_name view_names[] = {
+	{ "front", VX_VIEW_FRONT }, { "back", VX_VIEW_BACK },
+	{ "left", VX_VIEW_LEFT }, { "right", VX_VIEW_RIGHT },
+	{ "top", VX_VIEW_TOP }, { "bottom", VX_VIEW_BOTTOM },
+	{ "angles", VX_VIEW_ANGLES }, { NULL, VX_VIEW_UNKNOWN }
 };
+const vx_enum vx_view_enum = { "view", view_names, "unknown", 0 };
+
+static const vx_enum_name projection_names[] = {
+	{ "perspective", VX_PERSPECTIVE }, { "orthographic", VX_ORTHOGRAPHIC },
+	{ NULL, VX_PROJECTION_UNKNOWN }
+};
+const vx_enum vx_projection_enum = { "projection", projection_names,
+    "unknown", 0 };
 
 void
 vx_camera_init(vx_camera *c)
@@ -24,43 +35,6 @@ vx_camera_init(vx_camera *c)
 	c->fov = 30;
 	c->w = 512;
 	c->h = 512;
-}
-
-const char *
-vx_view_name(vx_view v)
-{
-	return v > VX_VIEW_UNKNOWN && v < VX_VIEW_LAST ? view_names[v] : "unknown";
-}
-
-vx_view
-vx_view_parse(const char *s)
-{
-	int v;
-
-	for (v = VX_VIEW_UNKNOWN + 1; v < VX_VIEW_LAST; v++)
-		if (strcmp(s, view_names[v]) == 0)
-			return (vx_view)v;
-	return VX_VIEW_UNKNOWN;
-}
-
-const char *
-vx_projection_name(vx_projection p)
-{
-	switch (p) {
-	case VX_PERSPECTIVE: return "perspective";
-	case VX_ORTHOGRAPHIC: return "orthographic";
-	default: return "unknown";
-	}
-}
-
-vx_projection
-vx_projection_parse(const char *s)
-{
-	if (strcmp(s, "perspective") == 0)
-		return VX_PERSPECTIVE;
-	if (strcmp(s, "orthographic") == 0)
-		return VX_ORTHOGRAPHIC;
-	return VX_PROJECTION_UNKNOWN;
 }
 
 /* Named views as (azimuth, elevation); the table keeps them exact (cos 90

@@ -18,27 +18,22 @@ vx_type_size(vx_type t)
 	}
 }
 
+static const vx_enum_name type_names[] = {
+	{ "u8", VX_U8 }, { "u16", VX_U16 }, { "i16", VX_I16 },
+	{ "f32", VX_F32 }, { NULL, VX_TYPE_UNKNOWN }
+};
+const vx_enum vx_type_enum = { "type", type_names, "unknown", 0 };
+
 const char *
 vx_type_name(vx_type t)
 {
-	switch (t) {
-	case VX_U8: return "u8";
-	case VX_U16: return "u16";
-	case VX_I16: return "i16";
-	case VX_F32: return "f32";
-	default: return "unknown";
-	}
+	return vx_enum_str(&vx_type_enum, t);
 }
 
 vx_type
 vx_type_parse(const char *s)
 {
-	int t;
-
-	for (t = VX_TYPE_UNKNOWN + 1; t < VX_TYPE_LAST; t++)
-		if (strcmp(s, vx_type_name((vx_type)t)) == 0)
-			return (vx_type)t;
-	return VX_TYPE_UNKNOWN;
+	return (vx_type)vx_enum_val(&vx_type_enum, s);
 }
 
 /* ---- layouts ---- */
@@ -596,7 +591,7 @@ from_chunk(vx_grid *g, const vx_chunk *c, int view, vx_err *e)
 	vx_type type;
 	const char *v, *lay_spec, *enc;
 	vx_hdr h;
-	int rc, found, a;
+	int rc, found;
 
 	vx_grid_init(g);
 	vx_hdr_init(&h);
@@ -646,13 +641,8 @@ from_chunk(vx_grid *g, const vx_chunk *c, int view, vx_err *e)
 	    (rc = vx_hdr_get_f64_opt(&h, "origin", g->origin, 3, &found,
 	    e)) != 0)
 		goto out;
-	for (a = 0; a < 3; a++)
-		if (!(g->spacing[a] > 0) || !isfinite(g->spacing[a]) ||
-		    !isfinite(g->origin[a])) {
-			rc = vx_err_set(e, VX_EDATA, "spacing must be finite and "
-			    "positive, origin finite");
-			goto out;
-		}
+	if ((rc = vx_grid_check_box(g, e)) != 0)
+		goto out;
 	if ((rc = vx_hdr_get_f64_opt(&h, "range", r, 2, &found, e)) != 0)
 		goto out;
 	if (found && !(isfinite(r[0]) && isfinite(r[1]) && r[0] <= r[1])) {
@@ -753,6 +743,37 @@ vx_grid_box(const vx_grid *g, double lo[3], double hi[3])
 		lo[k] = g->origin[k];
 		hi[k] = g->origin[k] + (double)(g->dims[k] - 1) * g->spacing[k];
 	}
+}
+
+int
+vx_grid_check_box(const vx_grid *g, vx_err *e)
+{
+	double lo[3], hi[3], m = 0, r = 0;
+	int k;
+
+	for (k = 0; k < 3; k++)
+		if (!(g->spacing[k] > 0) || !isfinite(g->spacing[k]) ||
+		    !isfinite(g->origin[k]))
+			return vx_err_set(e, VX_EDATA, "spacing must be finite "
+			    "and positive, origin finite");
+	vx_grid_box(g, lo, hi);
+	for (k = 0; k < 3; k++) {
+		double s = hi[k] - lo[k];
+
+		if (!isfinite(hi[k]) || !isfinite(s))
+			return vx_err_set(e, VX_EDATA, "extent overflows on axis "
+			    "%d: origin %.17g + (%lld - 1) x spacing %.17g", k,
+			    g->origin[k], (long long)g->dims[k], g->spacing[k]);
+		m = s > m ? s : m;
+	}
+	/* the diagonal, scaled by the longest side (no overflow in the
+	 * squares): finite unless it exceeds the double range itself */
+	for (k = 0; k < 3 && m > 0; k++)
+		r += ((hi[k] - lo[k]) / m) * ((hi[k] - lo[k]) / m);
+	if (!isfinite(m * sqrt(r)))
+		return vx_err_set(e, VX_EDATA, "extent overflows: the box's "
+		    "diagonal is beyond the double range");
+	return 0;
 }
 
 void

@@ -9,23 +9,23 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const store_names[VX_IRR_STORE_LAST] = {
-	"accum", "f32", "f16"
+static const vx_enum_name store_names[] = {
+	{ "accum", VX_IRR_ACCUM }, { "f32", VX_IRR_F32 }, { "f16", VX_IRR_F16 },
+	{ NULL, -1 }
 };
-static const char *const interp_names[VX_IRR_INTERP_LAST] = {
-	"trilinear", "nearest", "nearest-iso", "tricubic"
+const vx_enum vx_irr_store_enum = { "store", store_names, "?", 0 };
+
+static const vx_enum_name interp_names[] = {
+	{ "trilinear", VX_IRR_TRILINEAR }, { "nearest", VX_IRR_NEAREST },
+	{ "nearest-iso", VX_IRR_NEAREST_ISO }, { "tricubic", VX_IRR_TRICUBIC },
+	{ NULL, -1 }
 };
+const vx_enum vx_irr_interp_enum = { "interpolation", interp_names, "?", 0 };
 
 const char *
 vx_irr_store_name(vx_irr_store s)
 {
-	return (unsigned)s < VX_IRR_STORE_LAST ? store_names[s] : "?";
-}
-
-const char *
-vx_irr_interp_name(vx_irr_interp m)
-{
-	return (unsigned)m < VX_IRR_INTERP_LAST ? interp_names[m] : "?";
+	return vx_enum_str(&vx_irr_store_enum, s);
 }
 
 void
@@ -879,10 +879,7 @@ from_chunk(vx_irrvol *v, const vx_chunk *c, vx_err *e)
 		goto out;
 	}
 	s = vx_hdr_get(&h, "store");
-	for (int k = 0; k < VX_IRR_STORE_LAST; k++)
-		if (s != NULL && strcmp(s, store_names[k]) == 0)
-			st = k;
-	if (st < 0) {
+	if (s == NULL || (st = vx_enum_val(&vx_irr_store_enum, s)) < 0) {
 		rc = vx_err_set(e, VX_EDATA, "store '%s': not accum, f32 or f16",
 		    s ? s : "");
 		goto out;

@@ -6,15 +6,11 @@
 #include <stdio.h>
 #include <string.h>
 
-static const char *const state_names[VX_PLAN_LAST] = {
-	"?", "on", "off", "unsupported"
+static const vx_enum_name state_names[] = {
+	{ "on", VX_PLAN_ON }, { "off", VX_PLAN_OFF },
+	{ "unsupported", VX_PLAN_UNSUPPORTED }, { NULL, VX_PLAN_UNKNOWN }
 };
-
-const char *
-vx_plan_state_name(vx_plan_state st)
-{
-	return st > 0 && st < VX_PLAN_LAST ? state_names[st] : "?";
-}
+const vx_enum vx_plan_state_enum = { "plan state", state_names, "?", 0 };
 
 void
 vx_plan_init(vx_plan *p, const char *renderer)
@@ -80,7 +76,8 @@ vx_plan_format(const vx_plan *p, char *buf, size_t n)
 		if (it->rays > 0)
 			snprintf(rays, sizeof rays, "%.2f", it->rays);
 		out(buf, n, &k, "  %-11s %-24s %6s  %s\n",
-		    vx_plan_state_name(it->state), it->name, rays, it->reason);
+		    vx_enum_str(&vx_plan_state_enum, it->state), it->name,
+		    rays, it->reason);
 	}
 	if (p->dropped > 0)
 		out(buf, n, &k, "  (%d more items not listed)\n", p->dropped);
@@ -113,7 +110,7 @@ camera_text(const vx_camera *c, char *b, size_t n)
 		    c->w, c->h);
 	else if (c->is_auto)
 		snprintf(b, n, "auto, %s view, %s, %dx%d, framed at render time",
-		    vx_view_name(c->view), proj, c->w, c->h);
+		    vx_enum_str(&vx_view_enum, c->view), proj, c->w, c->h);
 	else
 		snprintf(b, n, "eye %g %g %g, look %g %g %g, %s, %dx%d",
 		    c->eye[0], c->eye[1], c->eye[2], c->look[0], c->look[1],
@@ -199,7 +196,7 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 		const vx_light *l = &s->light[k];
 
 		snprintf(name, sizeof name, "light %d %s", k + 1,
-		    vx_light_type_name(l->type));
+		    vx_enum_str(&vx_light_type_enum, l->type));
 		if (p->pathtrace) {
 			vx_plan_add(p, name, l->type == VX_LIGHT_HEADLIGHT ||
 			    l->type == VX_LIGHT_ENVIRONMENT ? VX_PLAN_OFF :
@@ -218,10 +215,25 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 			    "irradiance volume");
 			continue;
 		}
-		if (l->type == VX_LIGHT_ENVIRONMENT || l->type == VX_LIGHT_SKY) {
-			vx_plan_add(p, name, VX_PLAN_UNSUPPORTED, 0, "%s light: "
-			    "not supported by raycast yet, skipped",
-			    vx_light_type_name(l->type));
+		if (l->type == VX_LIGHT_ENVIRONMENT) {
+			char hash[24];
+
+			if (l->has_hash)
+				snprintf(hash, sizeof hash, "hash %016llx",
+				    (unsigned long long)l->hash);
+			else
+				snprintf(hash, sizeof hash, "no hash yet");
+			vx_plan_add(p, name, VX_PLAN_UNSUPPORTED, 0, "%.60s (%s, "
+			    "%s): not shaded by raycast yet, skipped", l->file,
+			    vx_enum_str(&vx_env_layout_enum, l->layout), hash);
+			continue;
+		}
+		if (l->type == VX_LIGHT_SKY) {
+			vx_plan_add(p, name, VX_PLAN_UNSUPPORTED, 0, "radiance %g "
+			    "%g %g: not in local shading (illumination "
+			    "irradiance or pathtrace use it), skipped",
+			    l->color[0] * l->intensity, l->color[1] * l->intensity,
+			    l->color[2] * l->intensity);
 			continue;
 		}
 		if (light_black(l)) {
@@ -304,7 +316,8 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 				    s->surface[k].iso);
 				vx_plan_add(p, name, VX_PLAN_ON, 0, "volume '%s' "
 				    "through %s", s->surface[k].m.texture,
-				    vx_colormap_name(s->surface[k].m.colormap));
+				    vx_enum_str(&vx_colormap_enum,
+				    s->surface[k].m.colormap));
 			}
 	} else {
 		int asked = 0;
@@ -354,7 +367,7 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 		vx_plan_add(p, "illumination", VX_PLAN_ON, 0, "irradiance: "
 		    "albedo E / pi, E interpolated (%s) from the irradiance "
 		    "volume; no rays beyond the primary ones",
-		    vx_interp_name(s->interp));
+		    vx_enum_str(&vx_interp_enum, s->interp));
 	else if (s->has_illumination && s->illumination == VX_ILLUM_SH)
 		vx_plan_add(p, "illumination", VX_PLAN_UNSUPPORTED, 0,
 		    "SH lookup (order %d) not supported by raycast yet: lights "

@@ -2,7 +2,7 @@
  * overrides, equality, the SCNE chunk, and color maps.  The text form is in
  * scene_parse.c and scene_format.c; formats/scene.md is the spec. */
 #include "vx_scene.h"
-#include "scene_text.h"
+#include "vx_scan.h"
 
 #include <errno.h>
 #include <math.h>
@@ -21,6 +21,7 @@ vx_light_init(vx_light *l, vx_light_type type)
 	l->intensity = 1;
 	l->falloff = VX_FALLOFF_NONE;
 	l->shadows = type == VX_LIGHT_POINT || type == VX_LIGHT_DIRECTIONAL;
+	l->layout = VX_ENV_LATLONG;
 }
 
 void
@@ -162,7 +163,7 @@ numbers_list(const char *v, double *out, int max, int *n)
 	*n = 0;
 	for (p = strtok_r(b, ", \t", &save); p != NULL;
 	    p = strtok_r(NULL, ", \t", &save)) {
-		if (*n == max || vx_scn_number(p, &out[*n]) != 0)
+		if (*n == max || vx_num_f64(p, strlen(p), 0, &out[*n]) != 0)
 			return -1;
 		(*n)++;
 	}
@@ -189,31 +190,22 @@ vx_scene_option(vx_scene *s, const char *name, const char *value,
 		else
 			rc = vx_scene_set_iso(s, v, n, e);
 	} else if (strcmp(name, "size") == 0) {
-		long w, h;
-		char b[64], *x;
+		const char *x = strchr(value, 'x');
+		int64_t w, h;
 
-		if (strlen(value) >= sizeof b)
-			return vx_err_set(e, VX_EUSAGE, "--size: expected WxH");
-		strcpy(b, value);
-		x = strchr(b, 'x');
-		if (x == NULL)
-			rc = vx_err_set(e, VX_EUSAGE, "expected WxH, got '%s'",
+		if (x == NULL || vx_num_i64(value, (size_t)(x - value), 1,
+		    VX_CAMERA_MAX_PIXELS, &w) != 0 || vx_num_i64(x + 1,
+		    strlen(x + 1), 1, VX_CAMERA_MAX_PIXELS, &h) != 0)
+			rc = vx_err_set(e, VX_EUSAGE, "expected WxH with each "
+			    "in 1..%d, got '%.60s'", VX_CAMERA_MAX_PIXELS,
 			    value);
 		else {
-			*x = '\0';
-			if (vx_scn_int(b, 1, VX_CAMERA_MAX_PIXELS, &w) != 0 ||
-			    vx_scn_int(x + 1, 1, VX_CAMERA_MAX_PIXELS, &h) != 0)
-				rc = vx_err_set(e, VX_EUSAGE, "expected WxH with "
-				    "each in 1..%d, got '%s'",
-				    VX_CAMERA_MAX_PIXELS, value);
-			else {
-				s->camera.w = (int)w;
-				s->camera.h = (int)h;
-				rc = 0;
-			}
+			s->camera.w = (int)w;
+			s->camera.h = (int)h;
+			rc = 0;
 		}
 	} else if (strcmp(name, "view") == 0) {
-		vx_view vw = vx_view_parse(value);
+		vx_view vw = (vx_view)vx_enum_val(&vx_view_enum, value);
 
 		if (vw != VX_VIEW_UNKNOWN && vw != VX_VIEW_ANGLES)
 			rc = vx_scene_set_view(s, vw, 0, 0, e);
@@ -303,8 +295,10 @@ light_equal(const vx_light *a, const vx_light *b)
 	case VX_LIGHT_HEADLIGHT:
 		return a->falloff == b->falloff;
 	case VX_LIGHT_ENVIRONMENT:
-		return strcmp(a->file, b->file) == 0 &&
-		    same(a->rotation, b->rotation, 3);
+		return strcmp(a->file, b->file) == 0 && a->layout == b->layout &&
+		    same(a->rotation, b->rotation, 3) &&
+		    a->has_hash == b->has_hash &&
+		    (!a->has_hash || a->hash == b->hash);
 	default:
 		return 1;
 	}

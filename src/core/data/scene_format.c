@@ -2,6 +2,7 @@
  * so that it reads back exactly, names quoted where the tokenizer needs. */
 #include "vx_scene.h"
 #include "scene_text.h"
+#include "vx_scan.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -18,7 +19,7 @@ fmt_num(char *b, size_t n, double v)
 
 	for (prec = 15; prec <= 17; prec++) {
 		vx_snprintf_c(b, n, "%.*g", prec, v);
-		if (vx_scn_number(b, &back) == 0 &&
+		if (vx_num_f64(b, strlen(b), 0, &back) == 0 &&
 		    memcmp(&back, &v, sizeof v) == 0)
 			return;
 	}
@@ -159,13 +160,13 @@ format_camera(sbuf *b, const vx_camera *c)
 {
 	if (c->is_auto) {
 		sb_put(b, "camera auto projection ");
-		sb_put(b, vx_projection_name(c->projection));
+		sb_put(b, vx_enum_str(&vx_projection_enum, c->projection));
 		if (c->view == VX_VIEW_ANGLES) {
 			sb_key(b, "azimuth", &c->azimuth, 1);
 			sb_key(b, "elevation", &c->elevation, 1);
 		} else {
 			sb_put(b, " view ");
-			sb_put(b, vx_view_name(c->view));
+			sb_put(b, vx_enum_str(&vx_view_enum, c->view));
 		}
 		sb_key(b, "distance", &c->distance, 1);
 		if (c->projection == VX_PERSPECTIVE)
@@ -174,7 +175,7 @@ format_camera(sbuf *b, const vx_camera *c)
 			sb_key(b, "up", c->up, 3);
 	} else {
 		sb_put(b, "camera ");
-		sb_put(b, vx_projection_name(c->projection));
+		sb_put(b, vx_enum_str(&vx_projection_enum, c->projection));
 		sb_key(b, "eye", c->eye, 3);
 		sb_key(b, "look", c->look, 3);
 		sb_key(b, "up", c->up, 3);
@@ -193,7 +194,7 @@ static void
 format_light(sbuf *b, const vx_light *l)
 {
 	sb_put(b, "light ");
-	sb_put(b, vx_light_type_name(l->type));
+	sb_put(b, vx_enum_str(&vx_light_type_enum, l->type));
 	switch (l->type) {
 	case VX_LIGHT_POINT:
 		sb_key(b, "position", l->position, 3);
@@ -203,7 +204,16 @@ format_light(sbuf *b, const vx_light *l)
 		break;
 	case VX_LIGHT_ENVIRONMENT:
 		sb_str(b, "file", l->file);
+		sb_put(b, " layout ");
+		sb_put(b, vx_enum_str(&vx_env_layout_enum, l->layout));
 		sb_key(b, "rotation", l->rotation, 3);
+		if (l->has_hash) {
+			char t[24];
+
+			snprintf(t, sizeof t, " hash %016llx",
+			    (unsigned long long)l->hash);
+			sb_put(b, t);
+		}
 		break;
 	default:
 		break;
@@ -212,7 +222,7 @@ format_light(sbuf *b, const vx_light *l)
 	sb_key(b, "intensity", &l->intensity, 1);
 	if (l->type == VX_LIGHT_POINT || l->type == VX_LIGHT_HEADLIGHT) {
 		sb_put(b, " falloff ");
-		sb_put(b, vx_falloff_name(l->falloff));
+		sb_put(b, vx_enum_str(&vx_falloff_enum, l->falloff));
 	}
 	sb_put(b, l->shadows ? " shadows on\n" : " shadows off\n");
 }
@@ -233,7 +243,7 @@ format_surface(sbuf *b, const vx_surface *sf)
 		sb_str(b, "texture", m->texture);
 	if (m->texture[0] != '\0' || m->colormap != VX_COLORMAP_GRAY) {
 		sb_put(b, " colormap ");
-		sb_put(b, vx_colormap_name(m->colormap));
+		sb_put(b, vx_enum_str(&vx_colormap_enum, m->colormap));
 	}
 	if (m->has_window)
 		sb_key(b, "window", m->window, 2);
@@ -264,10 +274,10 @@ vx_scene_format(const vx_scene *s, char **text, size_t *n, vx_err *e)
 	sb_put(&b, "\neffects");
 	if ((s->effects & VX_FX_ALL) == 0)
 		sb_put(&b, " none");
-	for (k = 0; vx_effect_name(1u << k) != NULL; k++)
+	for (k = 0; vx_enum_str(&vx_effect_enum, 1u << k) != NULL; k++)
 		if (s->effects & 1u << k) {
 			sb_put(&b, " ");
-			sb_put(&b, vx_effect_name(1u << k));
+			sb_put(&b, vx_enum_str(&vx_effect_enum, 1u << k));
 		}
 	sb_put(&b, "\n");
 	if (!s->default_lights) {
@@ -286,14 +296,14 @@ vx_scene_format(const vx_scene *s, char **text, size_t *n, vx_err *e)
 	}
 	if (s->has_illumination) {
 		sb_put(&b, "illumination ");
-		sb_put(&b, vx_illum_name(s->illumination));
+		sb_put(&b, vx_enum_str(&vx_illum_enum, s->illumination));
 		if (s->illumination == VX_ILLUM_SH)
 			sb_int(&b, "order", s->sh_order);
 		if (s->illumination == VX_ILLUM_PATHTRACE)
 			sb_int(&b, "samples", s->pt_samples);
 		else if (s->illumination != VX_ILLUM_LOCAL) {
 			sb_put(&b, " interpolation ");
-			sb_put(&b, vx_interp_name(s->interp));
+			sb_put(&b, vx_enum_str(&vx_interp_enum, s->interp));
 		}
 		sb_put(&b, "\n");
 	}
@@ -317,7 +327,7 @@ vx_scene_format(const vx_scene *s, char **text, size_t *n, vx_err *e)
 	}
 	if (s->has_medium) {
 		sb_put(&b, "medium phase ");
-		sb_put(&b, vx_phase_name(s->phase));
+		sb_put(&b, vx_enum_str(&vx_phase_enum, s->phase));
 		if (s->phase == VX_PHASE_HENYEY_GREENSTEIN)
 			sb_key(&b, "g", &s->phase_g, 1);
 		sb_key(&b, "albedo", s->albedo, 3);

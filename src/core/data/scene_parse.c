@@ -3,8 +3,8 @@
  * directive, vx_scene_parse and vx_scene_apply. */
 #include "vx_scene.h"
 #include "scene_text.h"
+#include "vx_scan.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
@@ -12,158 +12,92 @@
 #include <string.h>
 
 #define MAXTOK 1024        /* words per line */
-#define NUM_MAX 400        /* characters per number */
 
 /* ---- names ---- */
 
-static const char *const light_names[VX_LIGHT_LAST] = {
-	NULL, "point", "directional", "headlight", "environment", "sky"
+static const vx_enum_name light_names[] = {
+	{ "point", VX_LIGHT_POINT }, { "directional", VX_LIGHT_DIRECTIONAL },
+	{ "headlight", VX_LIGHT_HEADLIGHT },
+	{ "environment", VX_LIGHT_ENVIRONMENT }, { "sky", VX_LIGHT_SKY },
+	{ NULL, VX_LIGHT_UNKNOWN }
 };
-static const char *const falloff_names[VX_FALLOFF_LAST] = {
-	NULL, "none", "inverse-square"
+const vx_enum vx_light_type_enum = { "light type", light_names, "unknown",
+    0 };
+
+static const vx_enum_name layout_names[] = {
+	{ "latlong", VX_ENV_LATLONG }, { "angular", VX_ENV_ANGULAR },
+	{ NULL, VX_ENV_LAYOUT_UNKNOWN }
 };
-static const char *const cmap_names[VX_COLORMAP_LAST] = {
-	NULL, "gray", "hot", "coolwarm", "viridis"
+const vx_enum vx_env_layout_enum = { "layout", layout_names, "unknown", 0 };
+
+static const vx_enum_name falloff_names[] = {
+	{ "none", VX_FALLOFF_NONE },
+	{ "inverse-square", VX_FALLOFF_INVERSE_SQUARE },
+	{ NULL, VX_FALLOFF_UNKNOWN }
 };
-static const char *const illum_names[VX_ILLUM_LAST] = {
-	NULL, "local", "irradiance", "sh", "pathtrace"
+const vx_enum vx_falloff_enum = { "falloff", falloff_names, "unknown", 0 };
+
+static const vx_enum_name colormap_names[] = {
+	{ "gray", VX_COLORMAP_GRAY }, { "hot", VX_COLORMAP_HOT },
+	{ "coolwarm", VX_COLORMAP_COOLWARM }, { "viridis", VX_COLORMAP_VIRIDIS },
+	{ NULL, VX_COLORMAP_UNKNOWN }
 };
-static const char *const interp_names[VX_INTERP_LAST] = {
-	NULL, "nearest", "trilinear", "tricubic", "nearest-iso"
+const vx_enum vx_colormap_enum = { "colormap", colormap_names, "unknown",
+    0 };
+
+static const vx_enum_name illum_names[] = {
+	{ "local", VX_ILLUM_LOCAL }, { "irradiance", VX_ILLUM_IRRADIANCE },
+	{ "sh", VX_ILLUM_SH }, { "pathtrace", VX_ILLUM_PATHTRACE },
+	{ NULL, VX_ILLUM_UNKNOWN }
 };
-static const char *const phase_names[VX_PHASE_LAST] = {
-	NULL, "isotropic", "henyey-greenstein"
+const vx_enum vx_illum_enum = { "illumination", illum_names, "unknown", 0 };
+
+static const vx_enum_name interp_names[] = {
+	{ "nearest", VX_INTERP_NEAREST }, { "trilinear", VX_INTERP_TRILINEAR },
+	{ "tricubic", VX_INTERP_TRICUBIC },
+	{ "nearest-iso", VX_INTERP_NEAREST_ISO }, { NULL, VX_INTERP_UNKNOWN }
 };
-/* in bit order: VX_FX_SHADOWS is bit 0 */
-static const char *const effect_names[] = {
-	"shadows", "specular", "transparency", "texture", "interreflection",
-	"volumetric-shadows", "scattering", NULL
+const vx_enum vx_interp_enum = { "interpolation", interp_names, "unknown",
+    0 };
+
+static const vx_enum_name phase_names[] = {
+	{ "isotropic", VX_PHASE_ISOTROPIC },
+	{ "henyey-greenstein", VX_PHASE_HENYEY_GREENSTEIN },
+	{ NULL, VX_PHASE_UNKNOWN }
 };
+const vx_enum vx_phase_enum = { "phase", phase_names, "unknown", 0 };
 
-/* lookup: index of s in names[1..last-1], or 0. */
-static int
-lookup(const char *const *names, int last, const char *s)
-{
-	int i;
-
-	for (i = 1; i < last; i++)
-		if (strcmp(names[i], s) == 0)
-			return i;
-	return 0;
-}
-
-const char *
-vx_light_type_name(vx_light_type t)
-{
-	return t > 0 && t < VX_LIGHT_LAST ? light_names[t] : "unknown";
-}
-
-const char *
-vx_falloff_name(vx_falloff f)
-{
-	return f > 0 && f < VX_FALLOFF_LAST ? falloff_names[f] : "unknown";
-}
-
-const char *
-vx_illum_name(vx_illum m)
-{
-	return m > 0 && m < VX_ILLUM_LAST ? illum_names[m] : "unknown";
-}
-
-const char *
-vx_interp_name(vx_interp m)
-{
-	return m > 0 && m < VX_INTERP_LAST ? interp_names[m] : "unknown";
-}
-
-const char *
-vx_phase_name(vx_phase p)
-{
-	return p > 0 && p < VX_PHASE_LAST ? phase_names[p] : "unknown";
-}
-
-const char *
-vx_colormap_name(vx_colormap m)
-{
-	return m > 0 && m < VX_COLORMAP_LAST ? cmap_names[m] : "unknown";
-}
+static const vx_enum_name effect_names[] = {
+	{ "shadows", VX_FX_SHADOWS }, { "specular", VX_FX_SPECULAR },
+	{ "transparency", VX_FX_TRANSPARENCY }, { "texture", VX_FX_TEXTURE },
+	{ "interreflection", VX_FX_INTERREFLECTION },
+	{ "volumetric-shadows", VX_FX_VOLUMETRIC_SHADOWS },
+	{ "scattering", VX_FX_SCATTERING }, { NULL, 0 }
+};
+const vx_enum vx_effect_enum = { "effect", effect_names, NULL, 0 };
 
 vx_colormap
 vx_colormap_parse(const char *s)
 {
-	return (vx_colormap)lookup(cmap_names, VX_COLORMAP_LAST, s);
+	return (vx_colormap)vx_enum_val(&vx_colormap_enum, s);
 }
 
-const char *
-vx_effect_name(unsigned bit)
-{
-	int i;
+/* ---- numbers (vx_scan.h's grammar, finite) ---- */
 
-	for (i = 0; effect_names[i] != NULL; i++)
-		if (bit == 1u << i)
-			return effect_names[i];
-	return NULL;
+static int
+number(const char *t, double *out)
+{
+	return vx_num_f64(t, strlen(t), 0, out);
 }
 
-/* ---- numbers in the C locale, whatever the process locale ---- */
-
-/* vx_scn_number: a finite double written as [+-]digits[.digits][e[+-]digits]
- * (no hex, inf or nan); 0 on success. */
-int
-vx_scn_number(const char *t, double *out)
+static int
+integer(const char *t, long lo, long hi, long *out)
 {
-	const char *q = t;
-	char *end;
-	size_t len = strlen(t);
-	int digits = 0;
-	double v;
+	int64_t v;
 
-	if (len == 0 || len > NUM_MAX)
+	if (vx_num_i64(t, strlen(t), lo, hi, &v) != 0)
 		return -1;
-	if (*q == '+' || *q == '-')
-		q++;
-	for (; *q >= '0' && *q <= '9'; q++)
-		digits++;
-	if (*q == '.')
-		for (q++; *q >= '0' && *q <= '9'; q++)
-			digits++;
-	if (digits == 0)
-		return -1;
-	if (*q == 'e' || *q == 'E') {
-		q++;
-		if (*q == '+' || *q == '-')
-			q++;
-		if (!(*q >= '0' && *q <= '9'))
-			return -1;
-		while (*q >= '0' && *q <= '9')
-			q++;
-	}
-	if (*q != '\0')
-		return -1;
-	v = vx_strtod(t, &end);    /* the grammar is checked: a '.' only */
-	if (end != t + len || !isfinite(v))
-		return -1;
-	*out = v;
-	return 0;
-}
-
-/* vx_scn_int: decimal integer in [lo, hi]. */
-int
-vx_scn_int(const char *t, long lo, long hi, long *out)
-{
-	const char *q = t;
-	char *end;
-	long v;
-
-	if (*q == '+' || *q == '-')
-		q++;
-	if (!(*q >= '0' && *q <= '9'))
-		return -1;
-	errno = 0;
-	v = strtol(t, &end, 10);
-	if (*end != '\0' || errno == ERANGE || v < lo || v > hi)
-		return -1;
-	*out = v;
+	*out = (long)v;
 	return 0;
 }
 
@@ -324,14 +258,14 @@ parse_keys(pctx *P, const char *dir, int start, const keydef *defs,
 		}
 		for (j = 0; j < want; j++, i++)
 			if (i >= P->ntok || P->quoted[i] ||
-			    vx_scn_number(P->tok[i], &kv[k].v[j]) != 0)
+			    number(P->tok[i], &kv[k].v[j]) != 0)
 				return perr(P, "%s: %s: expected %d number%s, got "
 				    "'%.40s'", dir, key, want, want > 1 ? "s" : "",
 				    i < P->ntok ? P->tok[i] : "");
 		switch (defs[k].kind) {
 		case K_INT:
 			if (i >= P->ntok || P->quoted[i] ||
-			    vx_scn_int(P->tok[i], -1000000000L, 1000000000L,
+			    integer(P->tok[i], -1000000000L, 1000000000L,
 			    &kv[k].i) != 0)
 				return perr(P, "%s: %s: expected an integer, got "
 				    "'%.40s'", dir, key,
@@ -370,7 +304,7 @@ parse_keys(pctx *P, const char *dir, int start, const keydef *defs,
 			}
 			for (j = 0; j < 2; j++, i++)
 				if (i >= P->ntok || P->quoted[i] ||
-				    vx_scn_number(P->tok[i], &kv[k].v[j]) != 0)
+				    number(P->tok[i], &kv[k].v[j]) != 0)
 					return perr(P, "%s: %s: expected auto or 2 "
 					    "numbers, got '%.40s'", dir, key,
 					    i < P->ntok ? P->tok[i] : "");
@@ -415,22 +349,17 @@ need_nonzero(pctx *P, const char *dir, const char *key, const double v[3])
 	return 0;
 }
 
+/* need_word: *out = the value w names in en (whose unknown value is 0). */
 static int
 need_word(pctx *P, const char *dir, const char *key, const char *w,
-    const char *const *names, int last, int *out)
+    const vx_enum *en, int *out)
 {
 	char list[256];
-	size_t m = 0;
-	int i;
 
-	if ((*out = lookup(names, last, w)) != 0)
+	if ((*out = vx_enum_val(en, w)) != 0)
 		return 0;
-	list[0] = '\0';
-	for (i = 1; i < last && m < sizeof list; i++)
-		m += (size_t)snprintf(list + m, sizeof list - m, "%s%s",
-		    i > 1 ? ", " : "", names[i]);
 	return perr(P, "%s: %s: unknown value '%.40s' (one of: %s)", dir, key, w,
-	    list);
+	    vx_enum_list(en, list, sizeof list));
 }
 
 /* copy_name: NUL-terminated copy into a fixed field, whole field written. */
@@ -456,7 +385,7 @@ do_version(pctx *P)
 	if (P->ndirective != 0)
 		return perr(P, "voxlux-scene: only as the first directive");
 	if (P->ntok != 2 || P->quoted[1] ||
-	    vx_scn_int(P->tok[1], 1, 1000000, &v) != 0)
+	    integer(P->tok[1], 1, 1000000, &v) != 0)
 		return perr(P, "voxlux-scene: expected a version number");
 	if (v > VX_SCENE_VERSION)
 		return perr(P, "voxlux-scene: version %ld is newer than this "
@@ -480,7 +409,7 @@ do_camera(pctx *P)
 	static const int explicit_only[] = { C_EYE, C_LOOK, C_WIDTH };
 	vx_camera c = P->s->camera;
 	kval kv[C_N];
-	int start = 1, rc, k;
+	int start = 1, rc, k, proj;
 	const char *kind;
 
 	if (P->ntok < 2)
@@ -489,15 +418,16 @@ do_camera(pctx *P)
 	if (!P->quoted[1] && strcmp(P->tok[1], "auto") == 0) {
 		c.is_auto = 1;
 		start = 2;
-	} else if (!P->quoted[1] &&
-	    vx_projection_parse(P->tok[1]) != VX_PROJECTION_UNKNOWN) {
+	} else if (!P->quoted[1] && (proj = vx_enum_val(&vx_projection_enum,
+	    P->tok[1])) != VX_PROJECTION_UNKNOWN) {
 		c.is_auto = 0;
-		c.projection = vx_projection_parse(P->tok[1]);
+		c.projection = (vx_projection)proj;
 		start = 2;
 	}
 	if ((rc = parse_keys(P, "camera", start, defs, kv)) != 0)
 		return rc;
-	kind = c.is_auto ? "camera auto" : vx_projection_name(c.projection);
+	kind = c.is_auto ? "camera auto" : vx_enum_str(&vx_projection_enum,
+	    c.projection);
 	for (k = 0; k < 5; k++)
 		if (kv[auto_only[k]].seen && !c.is_auto)
 			return perr(P, "camera: key '%s' applies to auto cameras "
@@ -507,16 +437,13 @@ do_camera(pctx *P)
 			return perr(P, "camera: key '%s' does not apply to auto "
 			    "cameras", defs[explicit_only[k]].name);
 	if (kv[C_PROJ].seen) {
-		int p;
-
 		if ((rc = need_word(P, kind, "projection", kv[C_PROJ].w,
-		    (const char *const[]){ NULL, "perspective", "orthographic" },
-		    VX_PROJECTION_LAST, &p)) != 0)
+		    &vx_projection_enum, &proj)) != 0)
 			return rc;
-		c.projection = (vx_projection)p;
+		c.projection = (vx_projection)proj;
 	}
 	if (kv[C_VIEW].seen) {
-		vx_view v = vx_view_parse(kv[C_VIEW].w);
+		vx_view v = (vx_view)vx_enum_val(&vx_view_enum, kv[C_VIEW].w);
 
 		if (v == VX_VIEW_UNKNOWN || v == VX_VIEW_ANGLES)
 			return perr(P, "%s: view: unknown view '%.40s' (front, "
@@ -667,6 +594,7 @@ do_effects(pctx *P)
 {
 	unsigned set = P->s->effects;
 	int i, signless = 0;
+	char list[256];
 
 	if (P->ntok < 2)
 		return perr(P, "effects: expected effect names or none");
@@ -681,21 +609,20 @@ do_effects(pctx *P)
 		set = 0;
 	for (i = 1; i < P->ntok; i++) {
 		const char *w = P->tok[i];
-		int remove = w[0] == '-', k;
+		int remove = w[0] == '-';
+		unsigned bit;
 
 		if (w[0] == '+' || w[0] == '-')
 			w++;
-		for (k = 0; effect_names[k] != NULL; k++)
-			if (strcmp(effect_names[k], w) == 0)
-				break;
-		if (effect_names[k] == NULL || P->quoted[i])
-			return perr(P, "effects: unknown effect '%.40s' (shadows, "
-			    "specular, transparency, texture, interreflection, "
-			    "volumetric-shadows, scattering; or none)", P->tok[i]);
+		bit = (unsigned)vx_enum_val(&vx_effect_enum, w);
+		if (bit == 0 || P->quoted[i])
+			return perr(P, "effects: unknown effect '%.40s' (%s; or "
+			    "none)", P->tok[i], vx_enum_list(&vx_effect_enum,
+			    list, sizeof list));
 		if (remove)
-			set &= ~(1u << k);
+			set &= ~bit;
 		else
-			set |= 1u << k;
+			set |= bit;
 	}
 	P->s->effects = set;
 	return 0;
@@ -720,12 +647,13 @@ static int
 do_light(pctx *P)
 {
 	enum { L_POS, L_DIR, L_COLOR, L_INT, L_FALL, L_SHAD, L_FILE, L_ROT,
-	    L_N };
+	    L_LAYOUT, L_HASH, L_N };
 	static const keydef defs[] = {
 		{ "position", K_NUM3 }, { "direction", K_NUM3 },
 		{ "color", K_NUM3 }, { "intensity", K_NUM1 },
 		{ "falloff", K_WORD }, { "shadows", K_ONOFF },
-		{ "file", K_STR }, { "rotation", K_NUM3 }, { NULL, 0 }
+		{ "file", K_STR }, { "rotation", K_NUM3 }, { "layout", K_WORD },
+		{ "hash", K_WORD }, { NULL, 0 }
 	};
 	/* keys each type accepts (bit per key), and the one it requires */
 	static const unsigned allow[VX_LIGHT_LAST] = {
@@ -734,8 +662,8 @@ do_light(pctx *P)
 		    1u << L_SHAD,
 		1u << L_DIR | 1u << L_COLOR | 1u << L_INT | 1u << L_SHAD,
 		1u << L_COLOR | 1u << L_INT | 1u << L_FALL | 1u << L_SHAD,
-		1u << L_FILE | 1u << L_ROT | 1u << L_COLOR | 1u << L_INT |
-		    1u << L_SHAD,
+		1u << L_FILE | 1u << L_ROT | 1u << L_LAYOUT | 1u << L_HASH |
+		    1u << L_COLOR | 1u << L_INT | 1u << L_SHAD,
 		1u << L_COLOR | 1u << L_INT | 1u << L_SHAD,
 	};
 	static const int require[VX_LIGHT_LAST] = { -1, L_POS, L_DIR, -1, L_FILE,
@@ -744,11 +672,11 @@ do_light(pctx *P)
 	kval kv[L_N];
 	vx_light l;
 	int type, rc, k;
-	char dir[40];
+	char dir[40], list[256];
 
 	if (P->ntok < 2 || P->quoted[1])
-		return perr(P, "light: expected a type (point, directional, "
-		    "headlight, environment, sky) or none");
+		return perr(P, "light: expected a type (%s) or none",
+		    vx_enum_list(&vx_light_type_enum, list, sizeof list));
 	if (strcmp(P->tok[1], "none") == 0) {
 		if (P->ntok != 2)
 			return perr(P, "light none: takes no keys");
@@ -756,10 +684,11 @@ do_light(pctx *P)
 		s->default_lights = 0;
 		return 0;
 	}
-	if ((rc = need_word(P, "light", "type", P->tok[1], light_names,
-	    VX_LIGHT_LAST, &type)) != 0)
+	if ((rc = need_word(P, "light", "type", P->tok[1],
+	    &vx_light_type_enum, &type)) != 0)
 		return rc;
-	snprintf(dir, sizeof dir, "light %s", light_names[type]);
+	snprintf(dir, sizeof dir, "light %s",
+	    vx_enum_str(&vx_light_type_enum, type));
 	if ((rc = parse_keys(P, dir, 2, defs, kv)) != 0)
 		return rc;
 	for (k = 0; k < L_N; k++)
@@ -793,7 +722,7 @@ do_light(pctx *P)
 		int f;
 
 		if ((rc = need_word(P, dir, "falloff", kv[L_FALL].w,
-		    falloff_names, VX_FALLOFF_LAST, &f)) != 0)
+		    &vx_falloff_enum, &f)) != 0)
 			return rc;
 		l.falloff = (vx_falloff)f;
 	}
@@ -808,6 +737,34 @@ do_light(pctx *P)
 	}
 	if (kv[L_ROT].seen)
 		memcpy(l.rotation, kv[L_ROT].v, sizeof l.rotation);
+	if (kv[L_LAYOUT].seen) {
+		int ly;
+
+		if ((rc = need_word(P, dir, "layout", kv[L_LAYOUT].w,
+		    &vx_env_layout_enum, &ly)) != 0)
+			return rc;
+		l.layout = (vx_env_layout)ly;
+	}
+	if (kv[L_HASH].seen) {
+		const char *w = kv[L_HASH].w;
+		uint64_t h = 0;
+		int nd;
+
+		for (nd = 0; w[nd] != '\0' && nd < 16; nd++) {
+			char c = w[nd];
+			int d = c >= '0' && c <= '9' ? c - '0' :
+			    c >= 'a' && c <= 'f' ? c - 'a' + 10 : -1;
+
+			if (d < 0)
+				break;
+			h = h << 4 | (uint64_t)d;
+		}
+		if (nd != 16 || w[nd] != '\0')
+			return perr(P, "%s: hash: expected 16 hexadecimal digits "
+			    "(0-9, a-f), got '%.40s'", dir, w);
+		l.has_hash = 1;
+		l.hash = h;
+	}
 	if (s->default_lights) {
 		s->nlight = 0;
 		s->default_lights = 0;
@@ -841,7 +798,7 @@ do_surface(pctx *P)
 	}
 	if (P->ntok < 3 || P->quoted[1] || strcmp(P->tok[1], "iso") != 0)
 		return perr(P, "surface: expected iso VALUE (or none)");
-	if (P->quoted[2] || vx_scn_number(P->tok[2], &iso) != 0)
+	if (P->quoted[2] || number(P->tok[2], &iso) != 0)
 		return perr(P, "surface: iso: expected a number, got '%.40s'",
 		    P->tok[2]);
 	snprintf(dir, sizeof dir, "surface iso %.20s", P->tok[2]);
@@ -898,8 +855,8 @@ do_surface(pctx *P)
 	if (kv[S_CMAP].seen) {
 		int m;
 
-		if ((rc = need_word(P, dir, "colormap", kv[S_CMAP].w, cmap_names,
-		    VX_COLORMAP_LAST, &m)) != 0)
+		if ((rc = need_word(P, dir, "colormap", kv[S_CMAP].w,
+		    &vx_colormap_enum, &m)) != 0)
 			return rc;
 		sf.m.colormap = (vx_colormap)m;
 	}
@@ -959,12 +916,13 @@ do_illumination(pctx *P)
 	};
 	kval kv[3];
 	int rc, mode, in;
+	char list[256];
 
 	if (P->ntok < 2 || P->quoted[1])
-		return perr(P, "illumination: expected local, irradiance, sh or "
-		    "pathtrace");
-	if ((rc = need_word(P, "illumination", "mode", P->tok[1], illum_names,
-	    VX_ILLUM_LAST, &mode)) != 0)
+		return perr(P, "illumination: expected a mode (%s)",
+		    vx_enum_list(&vx_illum_enum, list, sizeof list));
+	if ((rc = need_word(P, "illumination", "mode", P->tok[1],
+	    &vx_illum_enum, &mode)) != 0)
 		return rc;
 	if ((rc = parse_keys(P, "illumination", 2, defs, kv)) != 0)
 		return rc;
@@ -988,9 +946,9 @@ do_illumination(pctx *P)
 	if (kv[1].seen) {
 		if (mode == VX_ILLUM_LOCAL || mode == VX_ILLUM_PATHTRACE)
 			return perr(P, "illumination: interpolation does not "
-			    "apply to %s", illum_names[mode]);
+			    "apply to %s", vx_enum_str(&vx_illum_enum, mode));
 		if ((rc = need_word(P, "illumination", "interpolation", kv[1].w,
-		    interp_names, VX_INTERP_LAST, &in)) != 0)
+		    &vx_interp_enum, &in)) != 0)
 			return rc;
 		P->s->interp = (vx_interp)in;
 	}
@@ -1025,7 +983,7 @@ do_transfer(pctx *P)
 		for (j = 0; j < per; j++) {
 			int t = 2 + i * per + j;
 
-			if (P->quoted[t] || vx_scn_number(P->tok[t], &pts[i][j]) != 0)
+			if (P->quoted[t] || number(P->tok[t], &pts[i][j]) != 0)
 				return perr(P, "transfer %s: expected a number, got "
 				    "'%.40s'", P->tok[1], P->tok[t]);
 			if (j > 0 && (rc = need_range(P, "transfer",
@@ -1066,8 +1024,8 @@ do_medium(pctx *P)
 	if ((rc = parse_keys(P, "medium", 1, defs, kv)) != 0)
 		return rc;
 	if (kv[0].seen) {
-		if ((rc = need_word(P, "medium", "phase", kv[0].w, phase_names,
-		    VX_PHASE_LAST, &p)) != 0)
+		if ((rc = need_word(P, "medium", "phase", kv[0].w,
+		    &vx_phase_enum, &p)) != 0)
 			return rc;
 		ph = (vx_phase)p;
 	}
@@ -1175,30 +1133,22 @@ dispatch(pctx *P)
 static int
 parse_lines(pctx *P, const char *text, size_t n)
 {
-	size_t i = 0;
+	const char *l;
+	size_t len;
+	vx_scan s;
 	int rc;
 
-	while (i < n) {
-		size_t j = i, len;
-
-		while (j < n && text[j] != '\n') {
-			if (text[j] == '\0') {
-				P->line++;
-				return perr(P, "NUL byte");
-			}
-			j++;
-		}
-		len = j - i;
+	vx_scan_init(&s, text, n);
+	while (vx_scan_line(&s, 1, &l, &len)) {
 		P->line++;
+		if (memchr(l, '\0', len) != NULL)
+			return perr(P, "NUL byte");
 		if (len > VX_SCENE_LINE_MAX)
 			return perr(P, "longer than %d bytes", VX_SCENE_LINE_MAX);
-		if (len > 0 && text[i + len - 1] == '\r')
-			len--;
-		if ((rc = tokenize(P, text + i, len)) != 0)
+		if ((rc = tokenize(P, l, len)) != 0)
 			return rc;
 		if (P->ntok > 0 && (rc = dispatch(P)) != 0)
 			return rc;
-		i = j + 1;
 	}
 	return 0;
 }

@@ -23,6 +23,7 @@
 #ifndef VX_CAMERA_H
 #define VX_CAMERA_H
 
+#include "vx_enum.h"
 #include "vx_err.h"
 #include "vx_grid.h"
 
@@ -111,11 +112,9 @@ int vx_camera_project(const vx_camera *c, const double p[3], double *px,
 void vx_camera_view_dir(vx_view v, double azimuth, double elevation,
     double dir[3], double up[3]);
 
-/* Names: "front" ... "bottom", "angles"; "perspective", "orthographic".
- * The parsers return the UNKNOWN value for unknown names. */
-const char *vx_view_name(vx_view v);
-vx_view vx_view_parse(const char *s);
-const char *vx_projection_name(vx_projection p);
-vx_projection vx_projection_parse(const char *s);
+/* The names (vx_enum.h): views "front" ... "bottom", "angles";
+ * projections "perspective", "orthographic".  An unknown name has the
+ * UNKNOWN value, an unknown value the name "unknown". */
+extern const vx_enum vx_view_enum, vx_projection_enum;
 
 #endif

@@ -14,6 +14,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "vx_enum.h"
 #include "vx_err.h"
 #include "vx_stream.h"
 
@@ -27,8 +28,12 @@ typedef enum vx_type {
 } vx_type;
 
 size_t vx_type_size(vx_type t);
-const char *vx_type_name(vx_type t);   /* "u8", "u16", "i16", "f32" */
-vx_type vx_type_parse(const char *s);  /* VX_TYPE_UNKNOWN if unknown */
+/* The names (vx_enum.h): "u8", "u16", "i16", "f32"; VX_TYPE_UNKNOWN and
+ * "unknown" for the others.  vx_type_name, vx_type_parse: shorthands for
+ * vx_enum_str and vx_enum_val on vx_type_enum. */
+extern const vx_enum vx_type_enum;
+const char *vx_type_name(vx_type t);
+vx_type vx_type_parse(const char *s);
 
 /* Largest volume a grid may hold, in samples (padded).  Protects against
  * header words that claim absurd sizes before anything is allocated. */
@@ -167,6 +172,13 @@ int vx_grid_view_stream(vx_grid *g, const vx_stream *s, const char *name,
 /* vx_grid_box: the world box spanned by the samples: lo = origin,
  * hi = origin + (dims - 1) * spacing. */
 void vx_grid_box(const vx_grid *g, double lo[3], double hi[3]);
+
+/* vx_grid_check_box: 0 when g's geometry is usable: spacing finite and
+ * positive, origin finite, and the box finite: each hi, each side hi - lo
+ * and the diagonal's length (what a camera frames) do not overflow.
+ * Else VX_EDATA, "extent overflows on axis A: origin X + (N - 1) x
+ * spacing S" (or the spacing's or origin's fault). */
+int vx_grid_check_box(const vx_grid *g, vx_err *e);
 void vx_world_to_index(const vx_grid *g, const double w[3], double i[3]);
 void vx_index_to_world(const vx_grid *g, const double i[3], double w[3]);
 void vx_world_to_index_dir(const vx_grid *g, const double w[3], double i[3]);

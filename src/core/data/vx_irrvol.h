@@ -31,6 +31,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "vx_enum.h"
 #include "vx_err.h"
 #include "vx_grid.h"
 #include "vx_stream.h"
@@ -238,7 +239,11 @@ int vx_irr_from_stream(vx_irrvol *v, const vx_stream *s, const char *volume,
 size_t vx_irr_texel_bytes(vx_irr_store s);
 size_t vx_irr_bytes(const vx_irrvol *v);
 
+/* The names (vx_enum.h): stores "accum", "f32", "f16"; interpolations
+ * "trilinear", "nearest", "nearest-iso", "tricubic"; -1 and "?" for the
+ * others.  vx_irr_store_name: shorthand for vx_enum_str on
+ * vx_irr_store_enum. */
+extern const vx_enum vx_irr_store_enum, vx_irr_interp_enum;
 const char *vx_irr_store_name(vx_irr_store s);
-const char *vx_irr_interp_name(vx_irr_interp m);
 
 #endif

@@ -75,8 +75,9 @@ void vx_plan_add(vx_plan *p, const char *name, vx_plan_state state,
  * length the whole text needs (as snprintf), so a caller can size buf. */
 size_t vx_plan_format(const vx_plan *p, char *buf, size_t n);
 
-/* vx_plan_state_name: "on", "off", "unsupported". */
-const char *vx_plan_state_name(vx_plan_state st);
+/* The states' names (vx_enum.h): "on", "off", "unsupported"; "?" for
+ * another value. */
+extern const vx_enum vx_plan_state_enum;
 
 /* vx_scene_plan_isosurface: the plan of the ray-cast isosurface renderer
  * for s.  The rules (formats/scene.md, "Effects and plans"):

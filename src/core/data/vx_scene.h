@@ -14,9 +14,11 @@
 #define VX_SCENE_H
 
 #include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 
 #include "vx_camera.h"
+#include "vx_enum.h"
 #include "vx_err.h"
 #include "vx_stream.h"
 
@@ -54,8 +56,8 @@ typedef enum vx_light_type {
 	VX_LIGHT_DIRECTIONAL,
 	VX_LIGHT_HEADLIGHT,       /* at the camera: a point light at the eye, or
 	                             along forward for orthographic cameras */
-	VX_LIGHT_ENVIRONMENT,     /* reserved: HDR environment map */
-	VX_LIGHT_SKY,             /* reserved: constant sky */
+	VX_LIGHT_ENVIRONMENT,     /* HDR environment map (vx_env.h) */
+	VX_LIGHT_SKY,             /* constant sky (vx_env.h) */
 	VX_LIGHT_LAST
 } vx_light_type;
 
@@ -66,6 +68,14 @@ typedef enum vx_falloff {
 	VX_FALLOFF_LAST
 } vx_falloff;
 
+/* How an environment map's pixels cover the sphere (formats/scene.md). */
+typedef enum vx_env_layout {
+	VX_ENV_LAYOUT_UNKNOWN = 0,
+	VX_ENV_LATLONG,           /* latitude-longitude (equirectangular) */
+	VX_ENV_ANGULAR,           /* Debevec's angular map (light probe) */
+	VX_ENV_LAYOUT_LAST
+} vx_env_layout;
+
 typedef struct vx_light {
 	vx_light_type type;
 	double color[3];          /* linear RGB, >= 0 */
@@ -75,9 +85,14 @@ typedef struct vx_light {
 	                             nonzero, not normalized */
 	vx_falloff falloff;       /* point and headlight */
 	int shadows;              /* 1: casts shadows when the effect is on */
-	char file[VX_SCENE_PATH_MAX];  /* environment: image file (reserved) */
-	double rotation[3];       /* environment: degrees about x, then y, then z
-	                             (reserved) */
+	char file[VX_SCENE_PATH_MAX];  /* environment: image file (PFM, Radiance
+	                             HDR or OpenEXR) */
+	vx_env_layout layout;     /* environment: the map's layout */
+	double rotation[3];       /* environment: degrees about x, then y, then
+	                             z (world axes): R = Rz Ry Rx */
+	int has_hash;             /* environment: 1 when hash is set */
+	uint64_t hash;            /* environment: the pixels' content hash
+	                             (vx_env.h), checked when the file is read */
 } vx_light;
 
 typedef enum vx_colormap {
@@ -246,16 +261,17 @@ int vx_scene_from_stream(vx_scene *s, const vx_stream *st, long *index,
 /* vx_scene_to_stream: replace st's first SCNE chunk by s, or append one. */
 int vx_scene_to_stream(const vx_scene *s, vx_stream *st, vx_err *e);
 
-/* ---- names and helpers ---- */
-const char *vx_light_type_name(vx_light_type t);   /* "point", ... */
-const char *vx_falloff_name(vx_falloff f);         /* "inverse-square" */
-const char *vx_illum_name(vx_illum m);             /* "irradiance" */
-const char *vx_interp_name(vx_interp m);           /* "nearest-iso" */
-const char *vx_phase_name(vx_phase p);             /* "isotropic" */
-const char *vx_colormap_name(vx_colormap m);       /* "gray", ... */
+/* ---- names and helpers ----
+ * The words of the format (vx_enum.h): light types, environment layouts,
+ * falloffs, illumination modes, interpolations, phases, colormaps (an
+ * unknown name has the UNKNOWN value, an unknown value the name
+ * "unknown"); effects, named by their VX_FX_ bit (an unknown bit has no
+ * name, NULL). */
+extern const vx_enum vx_light_type_enum, vx_env_layout_enum, vx_falloff_enum,
+    vx_illum_enum, vx_interp_enum, vx_phase_enum, vx_colormap_enum,
+    vx_effect_enum;
+/* vx_colormap_parse: shorthand for vx_enum_val(&vx_colormap_enum, s). */
 vx_colormap vx_colormap_parse(const char *s);
-/* vx_effect_name: the name of one VX_FX_ bit ("shadows"), or NULL. */
-const char *vx_effect_name(unsigned bit);
 /* vx_colormap_eval: color for t (clamped to [0,1]) under map m; unknown
  * maps give gray.  The maps are piecewise linear (formats/scene.md). */
 void vx_colormap_eval(vx_colormap m, double t, double rgb[3]);

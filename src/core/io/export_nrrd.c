@@ -5,6 +5,7 @@
 #include "vx_export.h"
 
 #include <errno.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <zlib.h>
@@ -144,8 +145,19 @@ put_escaped(FILE *f, const char *s)
 	}
 }
 
+/* What a header describes: a scalar volume, or (rgb) a first axis of 3
+ * colour components before the three space axes. */
+typedef struct nrrd_geom {
+	const char *content;
+	const char *type;
+	int rgb;
+	int64_t dims[3];
+	double spacing[3];
+	double origin[3];
+} nrrd_geom;
+
 static void
-put_header(const vx_grid *g, FILE *f, const vx_nrrd_opts *o)
+put_header(const nrrd_geom *g, FILE *f, const vx_nrrd_opts *o)
 {
 	char line[256];
 	size_t i;
@@ -156,20 +168,23 @@ put_header(const vx_grid *g, FILE *f, const vx_nrrd_opts *o)
 	for (i = 0; i < o->ncomments; i++)
 		put_comment(f, o->comments[i]);
 	fputs("content: ", f);
-	for (i = 0; g->name[i] != '\0'; i++)   /* one line, whatever the name */
-		fputc((unsigned char)g->name[i] < 0x20 ? '?' : g->name[i], f);
-	fprintf(f, "\ntype: %s\n", vx_nrrd_type(g->type));
-	fputs("dimension: 3\n", f);
+	for (i = 0; g->content[i] != '\0'; i++)   /* one line, whatever the name */
+		fputc((unsigned char)g->content[i] < 0x20 ? '?' : g->content[i],
+		    f);
+	fprintf(f, "\ntype: %s\n", g->type);
+	fprintf(f, "dimension: %d\n", g->rgb ? 4 : 3);
 	fputs("space: 3D-right-handed\n", f);
-	fprintf(f, "sizes: %lld %lld %lld\n", (long long)g->dims[0],
-	    (long long)g->dims[1], (long long)g->dims[2]);
+	fprintf(f, "sizes: %s%lld %lld %lld\n", g->rgb ? "3 " : "",
+	    (long long)g->dims[0], (long long)g->dims[1],
+	    (long long)g->dims[2]);
 	/* reals with a '.' whatever LC_NUMERIC says */
-	vx_snprintf_c(line, sizeof line, "space directions: (%.17g,0,0) "
-	    "(0,%.17g,0) (0,0,%.17g)\n", g->spacing[0], g->spacing[1],
-	    g->spacing[2]);
+	vx_snprintf_c(line, sizeof line, "space directions: %s(%.17g,0,0) "
+	    "(0,%.17g,0) (0,0,%.17g)\n", g->rgb ? "none " : "", g->spacing[0],
+	    g->spacing[1], g->spacing[2]);
 	fputs(line, f);
-	fputs("kinds: domain domain domain\n", f);
-	fputs("centerings: node node node\n", f);
+	fprintf(f, "kinds: %sdomain domain domain\n", g->rgb ? "RGB-color " :
+	    "");
+	fprintf(f, "centerings: %snode node node\n", g->rgb ? "??? " : "");
 	fputs("endian: little\n", f);
 	fprintf(f, "encoding: %s\n", o->gzip ? "gzip" : "raw");
 	vx_snprintf_c(line, sizeof line, "space origin: (%.17g,%.17g,%.17g)\n",
@@ -211,6 +226,7 @@ vx_export_nrrd_opts(const vx_grid *g, FILE *f, const vx_nrrd_opts *o,
 {
 	static const vx_nrrd_opts none;
 	unsigned char *row;
+	nrrd_geom geom;
 	int64_t y, z;
 	sink s;
 	int rc = 0;
@@ -222,8 +238,16 @@ vx_export_nrrd_opts(const vx_grid *g, FILE *f, const vx_nrrd_opts *o,
 	if ((row = vx_malloc((size_t)g->dims[0] * vx_type_size(g->type),
 	    e)) == NULL)
 		return VX_ENOMEM;
+	geom.content = g->name;
+	geom.type = vx_nrrd_type(g->type);
+	geom.rgb = 0;
+	for (int a = 0; a < 3; a++) {
+		geom.dims[a] = g->dims[a];
+		geom.spacing[a] = g->spacing[a];
+		geom.origin[a] = g->origin[a];
+	}
 	errno = 0;
-	put_header(g, f, o);
+	put_header(&geom, f, o);
 	if (ferror(f)) {
 		free(row);
 		return vx_err_set(e, VX_EIO, "write: %s",
@@ -253,4 +277,119 @@ vx_export_nrrd(const vx_grid *g, FILE *f, int gzip, vx_err *e)
 	memset(&o, 0, sizeof o);
 	o.gzip = gzip;
 	return vx_export_nrrd_opts(g, f, &o, e);
+}
+
+/* ---- irradiance volumes ---- */
+
+/* irr_row_le: texels (0..n0-1, j, k) of v as little-endian bytes into buf:
+ * the mean RGB as binary32 (0 where not usable) or the flags as `bytes`
+ * (1 or 4) each (0 where absent). */
+static size_t
+irr_row_le(const vx_irrvol *v, int flags, int bytes, int64_t j, int64_t k,
+    unsigned char *buf)
+{
+	size_t n = 0;
+
+	for (int64_t i = 0; i < v->dims[0]; i++) {
+		int64_t s = vx_irr_texel(v, i, j, k);
+
+		if (flags) {
+			uint32_t x = s >= 0 ? v->flags[s] : 0;
+
+			for (int b = 0; b < bytes; b++)
+				buf[n++] = (unsigned char)(x >> (8 * b));
+			continue;
+		}
+		for (int c = 0; c < 3; c++) {
+			float m = s >= 0 && vx_irr_usable(v, s) ?
+			    v->mean[3 * s + c] : 0.0f;
+			uint32_t u;
+
+			memcpy(&u, &m, 4);
+			for (int b = 0; b < 4; b++)
+				buf[n++] = (unsigned char)(u >> (8 * b));
+		}
+	}
+	return n;
+}
+
+static int
+irr_export(const vx_irrvol *v, const vx_grid *g, int flags, int bytes,
+    FILE *f, const vx_nrrd_opts *o, vx_err *e)
+{
+	static const vx_nrrd_opts none;
+	unsigned char *row;
+	nrrd_geom geom;
+	size_t per = flags ? (size_t)bytes : 12;
+	sink s;
+	int rc = 0;
+
+	if (o == NULL)
+		o = &none;
+	for (int a = 0; a < 3; a++)
+		if (g->dims[a] != v->vdims[a])
+			return vx_err_set(e, VX_EDATA, "the volume '%s' has dims "
+			    "%lld %lld %lld, its irradiance volume was laid over "
+			    "%lld %lld %lld", g->name, (long long)g->dims[0],
+			    (long long)g->dims[1], (long long)g->dims[2],
+			    (long long)v->vdims[0], (long long)v->vdims[1],
+			    (long long)v->vdims[2]);
+	if (flags) {
+		uint32_t lim = bytes == 1 ? 0xffu : 0xffffffffu;
+		size_t n = v->nslot * VX_IRR_BRICK3;
+
+		for (size_t t = 0; t < n; t++)
+			if (v->flags[t] > lim)
+				return vx_err_set(e, VX_EDATA, "flags 0x%x do not "
+				    "fit in 8 bits", (unsigned)v->flags[t]);
+	}
+	geom.content = v->volume;
+	geom.type = !flags ? "float" : bytes == 1 ? "uint8" : "uint32";
+	geom.rgb = !flags;
+	for (int a = 0; a < 3; a++) {
+		geom.dims[a] = v->dims[a];
+		geom.spacing[a] = v->step[a] * g->spacing[a];
+		geom.origin[a] = g->origin[a];
+	}
+	if ((row = vx_malloc((size_t)v->dims[0] * per, e)) == NULL)
+		return VX_ENOMEM;
+	errno = 0;
+	put_header(&geom, f, o);
+	if (ferror(f)) {
+		free(row);
+		return vx_err_set(e, VX_EIO, "write: %s",
+		    errno ? strerror(errno) : "stream error");
+	}
+	if ((rc = sink_open(&s, f, o->gzip, o->level, e)) != 0) {
+		free(row);
+		return rc;
+	}
+	for (int64_t k = 0; k < v->dims[2] && rc == 0; k++)
+		for (int64_t j = 0; j < v->dims[1] && rc == 0; j++)
+			rc = sink_write(&s, row, irr_row_le(v, flags, bytes, j,
+			    k, row), e);
+	if (sink_close(&s, rc == 0, e) != 0 && rc == 0)
+		rc = e ? e->code : VX_EIO;
+	free(row);
+	if (rc == 0 && (fflush(f) != 0 || ferror(f)))
+		rc = vx_err_set(e, VX_EIO, "write: %s",
+		    errno ? strerror(errno) : "stream error");
+	return rc;
+}
+
+int
+vx_export_nrrd_irr(const vx_irrvol *v, const vx_grid *g, FILE *f,
+    const vx_nrrd_opts *o, vx_err *e)
+{
+	return irr_export(v, g, 0, 0, f, o, e);
+}
+
+int
+vx_export_nrrd_irr_flags(const vx_irrvol *v, const vx_grid *g, int bytes,
+    FILE *f, const vx_nrrd_opts *o, vx_err *e)
+{
+	if (bytes != 1 && bytes != 4)
+		return vx_err_set(e, VX_EUSAGE, "flags: 1 or 4 bytes a texel, "
+		    "not %d", bytes);
+	return irr_export(v, g, 1, bytes, f, o, e);
 }

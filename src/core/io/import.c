@@ -1,33 +1,24 @@
 /* import.c: format names, detection from magic bytes and names, and the
  * file and any-format entry points of the importers. */
 #include "import_priv.h"
+#include "vx_scan.h"
 
 #include <libgen.h>
 #include <unistd.h>
 #include <stdlib.h>
 #include <string.h>
 
-static const char *format_names[VX_FORMAT_LAST] = {
-	"unknown", "raw", "nrrd", "nifti", "vtk"
+static const vx_enum_name format_names[] = {
+	{ "raw", VX_FORMAT_RAW }, { "nrrd", VX_FORMAT_NRRD },
+	{ "nifti", VX_FORMAT_NIFTI }, { "vtk", VX_FORMAT_VTK },
+	{ NULL, VX_FORMAT_UNKNOWN }
 };
+const vx_enum vx_format_enum = { "format", format_names, "unknown", 0 };
 
-const char *
-vx_format_name(vx_format f)
-{
-	return f > VX_FORMAT_UNKNOWN && f < VX_FORMAT_LAST ? format_names[f] :
-	    "unknown";
-}
-
-vx_format
-vx_format_parse(const char *s)
-{
-	int f;
-
-	for (f = VX_FORMAT_UNKNOWN + 1; f < VX_FORMAT_LAST; f++)
-		if (strcmp(s, format_names[f]) == 0)
-			return (vx_format)f;
-	return VX_FORMAT_UNKNOWN;
-}
+static const vx_enum_name endian_names[] = {
+	{ "little", 0 }, { "big", 1 }, { NULL, -1 }
+};
+const vx_enum vx_endian_enum = { "byte order", endian_names, "unknown", 1 };
 
 void
 vx_import_opts_init(vx_import_opts *o)
@@ -42,7 +33,7 @@ ends(const char *name, size_t n, const char *suffix)
 {
 	size_t k = strlen(suffix);
 
-	return n >= k && vx_imp_word_eq(name + n - k, k, suffix);
+	return n >= k && vx_word_eq(name + n - k, k, suffix, 1);
 }
 
 static vx_format

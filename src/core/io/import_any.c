@@ -2,37 +2,19 @@
  * mesh (vread(1)): the file is read once and its content decides. */
 #include "vx_tetimport.h"
 #include "import_priv.h"
+#include "vx_scan.h"
 
 #include <string.h>
 #include <strings.h>
-
-/* token: the next blank-separated word of p[*i..n) into w (cut to cap-1);
- * 0 at the end. */
-static int
-token(const unsigned char *p, size_t n, size_t *i, char *w, size_t cap)
-{
-	size_t k = 0;
-
-	while (*i < n && (p[*i] == ' ' || p[*i] == '\t' || p[*i] == '\r' ||
-	    p[*i] == '\n'))
-		(*i)++;
-	while (*i < n && !(p[*i] == ' ' || p[*i] == '\t' || p[*i] == '\r' ||
-	    p[*i] == '\n')) {
-		if (k + 1 < cap)
-			w[k++] = (char)p[*i];
-		(*i)++;
-	}
-	w[k] = '\0';
-	return k > 0;
-}
 
 int
 vx_tetmesh_detect(const void *buf, size_t n)
 {
 	const unsigned char *p;
-	size_t avail, i = 0, line;
-	char w[32];
+	const char *w;
+	size_t avail, wn;
 	vx_imp_src s;
+	vx_scan k;
 	int mesh = 0;
 
 	if (vx_imp_src_auto(&s, buf, n, NULL) != 0)
@@ -40,29 +22,27 @@ vx_tetmesh_detect(const void *buf, size_t n)
 	/* the VTK title line may take 256 bytes */
 	if (vx_imp_peek(&s, 1024, &p, &avail, NULL) != 0)
 		goto out;
-	while (i < avail && (p[i] == ' ' || p[i] == '\t' || p[i] == '\r' ||
-	    p[i] == '\n'))
-		i++;
-	if (avail - i >= 11 && memcmp(p + i, "$MeshFormat", 11) == 0) {
+	vx_scan_init(&k, p, avail);
+	vx_scan_skip_blank(&k);
+	if (vx_scan_left(&k) >= 11 && memcmp(k.p, "$MeshFormat", 11) == 0) {
 		mesh = 1;
 		goto out;
 	}
-	if (avail - i < 22 || strncasecmp((const char *)p + i,
+	if (vx_scan_left(&k) < 22 || strncasecmp((const char *)k.p,
 	    "# vtk DataFile Version", 22) != 0)
 		goto out;
-	/* skip the version and title lines: then ASCII|BINARY, DATASET,
-	 * the dataset's type */
-	for (line = 0; line < 2; line++) {
-		while (i < avail && p[i] != '\n')
-			i++;
-		if (i < avail)
-			i++;
-	}
-	if (token(p, avail, &i, w, sizeof w) &&
-	    (strcasecmp(w, "ASCII") == 0 || strcasecmp(w, "BINARY") == 0) &&
-	    token(p, avail, &i, w, sizeof w) && strcasecmp(w, "DATASET") == 0 &&
-	    token(p, avail, &i, w, sizeof w))
-		mesh = strcasecmp(w, "UNSTRUCTURED_GRID") == 0;
+	/* past the version and title lines: ASCII|BINARY, DATASET, the
+	 * dataset's type */
+	vx_scan_next_line(&k);
+	vx_scan_next_line(&k);
+	wn = vx_scan_word(&k, &w);
+	if (!vx_word_eq(w, wn, "ascii", 1) && !vx_word_eq(w, wn, "binary", 1))
+		goto out;
+	wn = vx_scan_word(&k, &w);
+	if (!vx_word_eq(w, wn, "dataset", 1))
+		goto out;
+	wn = vx_scan_word(&k, &w);
+	mesh = vx_word_eq(w, wn, "unstructured_grid", 1);
 out:
 	vx_imp_src_close(&s);
 	return mesh;

@@ -3,6 +3,7 @@
  * mirrored axes). */
 #include "import_priv.h"
 
+#include <errno.h>
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
@@ -10,10 +11,13 @@
 
 /* ---- source sample types ---- */
 
-static const char *scalar_names[VX_SCALAR_LAST] = {
-	"unknown", "u8", "i8", "u16", "i16", "u32", "i32", "u64", "i64",
-	"f32", "f64"
+static const vx_enum_name scalar_names[] = {
+	{ "u8", VX_S_U8 }, { "i8", VX_S_I8 }, { "u16", VX_S_U16 },
+	{ "i16", VX_S_I16 }, { "u32", VX_S_U32 }, { "i32", VX_S_I32 },
+	{ "u64", VX_S_U64 }, { "i64", VX_S_I64 }, { "f32", VX_S_F32 },
+	{ "f64", VX_S_F64 }, { NULL, VX_SCALAR_UNKNOWN }
 };
+const vx_enum vx_scalar_enum = { "type", scalar_names, "unknown", 0 };
 
 size_t
 vx_scalar_size(vx_scalar t)
@@ -22,24 +26,6 @@ vx_scalar_size(vx_scalar t)
 	    4, 8 };
 
 	return t > VX_SCALAR_UNKNOWN && t < VX_SCALAR_LAST ? sz[t] : 0;
-}
-
-const char *
-vx_scalar_name(vx_scalar t)
-{
-	return t > VX_SCALAR_UNKNOWN && t < VX_SCALAR_LAST ? scalar_names[t] :
-	    "unknown";
-}
-
-vx_scalar
-vx_scalar_parse(const char *s)
-{
-	int t;
-
-	for (t = VX_SCALAR_UNKNOWN + 1; t < VX_SCALAR_LAST; t++)
-		if (strcmp(s, scalar_names[t]) == 0)
-			return (vx_scalar)t;
-	return VX_SCALAR_UNKNOWN;
 }
 
 vx_type
@@ -394,7 +380,7 @@ ascii_store(const vx_imp_conv *c, double v, unsigned char *q, const char *tok,
 	    (v != floor(v) || v < lo[c->st] || v > hi[c->st]))
 		return vx_err_set(e, VX_EDATA, "value %llu '%s' is not a %s",
 		    (unsigned long long)idx, vx_imp_show(tok, strlen(tok)),
-		    vx_scalar_name(c->st));
+		    vx_enum_str(&vx_scalar_enum, c->st));
 	switch (c->st) {
 	case VX_S_U8: u.u8 = (uint8_t)v; break;
 	case VX_S_I8: u.i8 = (int8_t)v; break;
@@ -480,6 +466,16 @@ vx_imp_conv_ascii(vx_imp_conv *c, vx_imp_src *s, vx_err *e)
 				rc = vx_err_set(e, VX_EDATA, "value %llu '%s' is "
 				    "not a number", (unsigned long long)(c->next +
 				    nb), vx_imp_show(buf, i - t0));
+				goto out;
+			}
+			/* a number beyond the double range is refused as one
+			 * beyond the float range is (ascii_store), whatever
+			 * the type; "inf" written out is taken as it is, and
+			 * underflow rounds */
+			if (errno == ERANGE && isinf(v)) {
+				rc = vx_err_set(e, VX_EDATA, "value %llu '%s' is "
+				    "beyond the double range", (unsigned long long)
+				    (c->next + nb), vx_imp_show(buf, i - t0));
 				goto out;
 			}
 			if ((rc = ascii_store(c, v, c->tmp + nb * c->ss, buf,

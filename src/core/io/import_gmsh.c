@@ -2,13 +2,16 @@
  * meshes: $Nodes, $Elements (type 4, the 4-node tetrahedron) and a
  * $NodeData view for the scalar. */
 #include "vx_tetimport.h"
-#include "tetscan.h"
+#include "import_priv.h"
+#include "vx_scan.h"
 
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#define TOK 256              /* a section name's bytes, with the NUL */
 
 /* gmsh element types: dimension and node count (gmsh reference manual,
  * "MSH file format"); types not listed are refused. */
@@ -56,7 +59,7 @@ typedef struct nodemap {
 } nodemap;
 
 typedef struct gmsh {
-	scan s;
+	vx_scan s;
 	vx_err *e;
 	const vx_tetimport_opt *opt;
 	vx_tetimport_info *info;
@@ -78,19 +81,19 @@ gfail(gmsh *g, const char *fmt, const char *a)
 {
 	char msg[400];
 	snprintf(msg, sizeof msg, fmt, a ? a : "");
-	return vx_err_set(g->e, VX_EDATA, "gmsh: line %zu: %s", scan_line(&g->s),
-	    msg);
+	return vx_err_set(g->e, VX_EDATA, "gmsh: line %zu: %s",
+	    vx_scan_lineno(&g->s), msg);
 }
 
 static int
 gi64(gmsh *g, int64_t *v, const char *what)
 {
-	char t[SCAN_TOK];
-	int k = scan_token(&g->s, t);
+	const char *w;
+	size_t n = vx_scan_word(&g->s, &w);
 
-	if (k == 0)
+	if (n == 0)
 		return gfail(g, "truncated in %s", what);
-	if (k < 0 || !scan_parse_i64(t, v))
+	if (vx_num_i64(w, n, -VX_IMP_INT_MAX, VX_IMP_INT_MAX, v) != 0)
 		return gfail(g, "%s: expected an integer", what);
 	return 0;
 }
@@ -98,12 +101,12 @@ gi64(gmsh *g, int64_t *v, const char *what)
 static int
 gf64(gmsh *g, double *v, const char *what)
 {
-	char t[SCAN_TOK];
-	int k = scan_token(&g->s, t);
+	const char *w;
+	size_t n = vx_scan_word(&g->s, &w);
 
-	if (k == 0)
+	if (n == 0)
 		return gfail(g, "truncated in %s", what);
-	if (k < 0 || !scan_parse_double(t, v))
+	if (vx_num_f64(w, n, VX_NUM_NONFINITE, v) != 0)
 		return gfail(g, "%s: expected a number", what);
 	return 0;
 }
@@ -114,7 +117,7 @@ gcount(gmsh *g, int64_t *v, size_t per, const char *what)
 {
 	int rc = gi64(g, v, what);
 
-	if (rc == 0 && (*v < 0 || (uint64_t)*v > scan_left(&g->s) / per + 1))
+	if (rc == 0 && (*v < 0 || (uint64_t)*v > vx_scan_left(&g->s) / per + 1))
 		return gfail(g, "%s: count out of range for the data present",
 		    what);
 	return rc;
@@ -124,10 +127,13 @@ gcount(gmsh *g, int64_t *v, size_t per, const char *what)
 static int
 gend(gmsh *g, const char *name)
 {
-	char t[SCAN_TOK], want[64];
+	char want[64];
+	const char *w;
+	size_t n;
 
 	snprintf(want, sizeof want, "$End%s", name);
-	if (scan_token(&g->s, t) <= 0 || strcmp(t, want) != 0)
+	n = vx_scan_word(&g->s, &w);
+	if (!vx_word_eq(w, n, want, 0))
 		return gfail(g, "expected %s", want);
 	return 0;
 }
@@ -136,12 +142,13 @@ gend(gmsh *g, const char *name)
 static int
 gskip(gmsh *g, const char *name)
 {
-	char t[SCAN_TOK], want[SCAN_TOK + 8];
-	int k;
+	char want[TOK + 8];
+	const char *w;
+	size_t n;
 
 	snprintf(want, sizeof want, "$End%s", name + 1);
-	while ((k = scan_token(&g->s, t)) != 0)
-		if (k > 0 && strcmp(t, want) == 0)
+	while ((n = vx_scan_word(&g->s, &w)) != 0)
+		if (vx_word_eq(w, n, want, 0))
 			return 0;
 	return gfail(g, "section %s has no end", name);
 }
@@ -300,8 +307,9 @@ add_tet(gmsh *g, const int64_t q[4], int64_t etag)
 		int64_t p = map_find(&g->map, q[k]);
 		if (p < 0)
 			return vx_err_set(g->e, VX_EDATA, "gmsh: line %zu: element "
-			    "%lld refers to undefined node %lld", scan_line(&g->s),
-			    (long long)etag, (long long)q[k]);
+			    "%lld refers to undefined node %lld",
+			    vx_scan_lineno(&g->s), (long long)etag,
+			    (long long)q[k]);
 		t[k] = (uint32_t)p;
 	}
 	g->ntet++;
@@ -316,7 +324,8 @@ classify(gmsh *g, int64_t type, int *nnode, int *keep)
 
 	if (!elem_info(type, &dim, nnode))
 		return vx_err_set(g->e, VX_EDATA, "gmsh: line %zu: unknown "
-		    "element type %lld", scan_line(&g->s), (long long)type);
+		    "element type %lld", vx_scan_lineno(&g->s),
+		    (long long)type);
 	*keep = type == 4;
 	if (*keep)
 		return 0;
@@ -330,7 +339,7 @@ classify(gmsh *g, int64_t type, int *nnode, int *keep)
 	}
 	return vx_err_set(g->e, VX_EDATA, "gmsh: line %zu: element type %lld "
 	    "(%s) is not supported: only 4-node tetrahedra (type 4)",
-	    scan_line(&g->s), (long long)type, elem_name(type));
+	    vx_scan_lineno(&g->s), (long long)type, elem_name(type));
 }
 
 static int
@@ -428,10 +437,10 @@ elements(gmsh *g)
 static void
 string_tag(gmsh *g, char *out, size_t cap)
 {
-	scan *s = &g->s;
+	vx_scan *s = &g->s;
 	size_t k = 0;
 
-	scan_skip_blank(s);
+	vx_scan_skip_blank(s);
 	int quoted = s->p < s->end && *s->p == '"';
 	if (quoted)
 		s->p++;
@@ -441,7 +450,7 @@ string_tag(gmsh *g, char *out, size_t cap)
 		s->p++;
 	}
 	out[k] = '\0';
-	scan_next_line(s);
+	vx_scan_next_line(s);
 }
 
 static int
@@ -456,7 +465,7 @@ node_data(gmsh *g)
 		return rc;
 	if (ns < 0 || ns > 100)
 		return gfail(g, "$NodeData: bad string tag count", NULL);
-	scan_next_line(&g->s);
+	vx_scan_next_line(&g->s);
 	for (i = 0; i < ns; i++) {
 		char t[256];
 		string_tag(g, t, sizeof t);
@@ -484,7 +493,7 @@ node_data(gmsh *g)
 	}
 	int64_t ncomp = tags[1], nent = tags[2];
 	if (ncomp < 1 || ncomp > 9 || nent < 0 ||
-	    (uint64_t)nent > scan_left(&g->s) / 4 + 1)
+	    (uint64_t)nent > vx_scan_left(&g->s) / 4 + 1)
 		return gfail(g, "$NodeData: bad component or entry count", NULL);
 	g->info->narray += ncomp == 1;
 	const char *sel = g->opt ? g->opt->scalar : NULL;
@@ -520,7 +529,7 @@ node_data(gmsh *g)
 		if ((p = map_find(&g->map, tag)) < 0)
 			return vx_err_set(g->e, VX_EDATA, "gmsh: line %zu: "
 			    "$NodeData refers to undefined node %lld",
-			    scan_line(&g->s), (long long)tag);
+			    vx_scan_lineno(&g->s), (long long)tag);
 		g->val[p] = x;
 		g->has[p] = 1;
 	}
@@ -530,13 +539,13 @@ node_data(gmsh *g)
 static int
 parse(gmsh *g)
 {
-	scan *s = &g->s;
-	char t[SCAN_TOK];
+	vx_scan *s = &g->s;
+	char t[TOK];
 	double ver;
 	int64_t ft, ds;
 	int rc, k;
 
-	if (scan_token(s, t) <= 0 || strcmp(t, "$MeshFormat") != 0)
+	if (vx_scan_token(s, t, sizeof t) <= 0 || strcmp(t, "$MeshFormat") != 0)
 		return vx_err_set(g->e, VX_EDATA, "gmsh: not a gmsh file (no "
 		    "$MeshFormat)");
 	if ((rc = gf64(g, &ver, "$MeshFormat")) ||
@@ -558,7 +567,7 @@ parse(gmsh *g)
 	g->info->format = g->v4 ? VX_TETFMT_GMSH4 : VX_TETFMT_GMSH2;
 	if ((rc = gend(g, "MeshFormat")))
 		return rc;
-	while ((k = scan_token(s, t)) != 0) {
+	while ((k = vx_scan_token(s, t, sizeof t)) != 0) {
 		if (k < 0 || t[0] != '$')
 			return gfail(g, "expected a section ($Name)", NULL);
 		if (strcmp(t, "$Nodes") == 0)
@@ -604,7 +613,7 @@ vx_tetmesh_import_gmsh(vx_tetmesh *m, const void *buf, size_t n,
 		info = &dummy;
 	memset(info, 0, sizeof *info);
 	memset(&g, 0, sizeof g);
-	scan_init(&g.s, buf, n);
+	vx_scan_init(&g.s, buf, n);
 	g.e = e;
 	g.opt = opt;
 	g.info = info;

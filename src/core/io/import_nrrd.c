@@ -1,6 +1,7 @@
 /* import_nrrd.c: NRRD files (teem.sourceforge.net/nrrd/format.html):
  * attached and detached headers, raw/gzip/ascii/hex encodings. */
 #include "import_priv.h"
+#include "vx_scan.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -27,7 +28,7 @@ enum {
 	F_LAST
 };
 
-static const struct { const char *name; int f; } fields[] = {
+static const vx_enum_name field_names[] = {
 	{ "dimension", F_DIMENSION }, { "type", F_TYPE },
 	{ "encoding", F_ENCODING }, { "endian", F_ENDIAN },
 	{ "sizes", F_SIZES }, { "spacings", F_SPACINGS },
@@ -51,21 +52,17 @@ static const struct { const char *name; int f; } fields[] = {
 	{ "labels", F_LABELS }, { "units", F_UNITS },
 	{ "space units", F_SPACE_UNITS }, { "spaceunits", F_SPACE_UNITS },
 	{ "measurement frame", F_MEASUREMENT_FRAME },
-	{ "measurementframe", F_MEASUREMENT_FRAME },
+	{ "measurementframe", F_MEASUREMENT_FRAME }, { NULL, -1 }
 };
+static const vx_enum fields = { "field", field_names, "?", 1 };
 
 static const char *
 field_name(int f)
 {
-	size_t i;
-
-	for (i = 0; i < sizeof fields / sizeof fields[0]; i++)
-		if (fields[i].f == f)
-			return fields[i].name;
-	return "?";
+	return vx_enum_str(&fields, f);
 }
 
-enum { ENC_RAW = 1, ENC_GZIP, ENC_ASCII, ENC_HEX };
+enum { ENC_RAW = 1, ENC_GZIP, ENC_ASCII, ENC_HEX, ENC_UNSUPPORTED };
 
 typedef struct nrrd {
 	char *text;                 /* copy of the header; values point in */
@@ -114,17 +111,6 @@ norm(const char *p, size_t n, char *buf, size_t cap)
 }
 
 static int
-find_field(const char *p, size_t n)
-{
-	size_t i;
-
-	for (i = 0; i < sizeof fields / sizeof fields[0]; i++)
-		if (vx_imp_word_eq(p, n, fields[i].name))
-			return fields[i].f;
-	return -1;
-}
-
-static int
 list_add(nrrd *h, const char *p, size_t n, vx_err *e)
 {
 	if ((h->nlist & (h->nlist - 1)) == 0) {   /* 0, 1, 2, 4, ...: grow */
@@ -148,11 +134,13 @@ list_add(nrrd *h, const char *p, size_t n, vx_err *e)
 static int
 nrrd_lines(nrrd *h, const unsigned char *p, size_t n, int at_end, vx_err *e)
 {
-	size_t pos = 0, len;
 	const char *line;
+	size_t len;
 	int lineno = 1, in_list = 0, f;
+	vx_scan s;
 
-	if (!vx_imp_next_line(p, n, &pos, at_end, &line, &len))
+	vx_scan_init(&s, p, n);
+	if (!vx_scan_line(&s, at_end, &line, &len))
 		return vx_err_set(e, VX_EDATA, "nrrd: no magic line");
 	if (len < 4 || memcmp(line, "NRRD", 4) != 0)
 		return vx_err_set(e, VX_EDATA, "nrrd: not a NRRD file (magic "
@@ -161,7 +149,7 @@ nrrd_lines(nrrd *h, const unsigned char *p, size_t n, int at_end, vx_err *e)
 	    line[7] <= '6') || (len == 9 && memcmp(line, "NRRD00.01", 9) == 0)))
 		return vx_err_set(e, VX_EDATA, "nrrd: unsupported version '%s' "
 		    "(NRRD0001..NRRD0006 are read)", vx_imp_show(line, len));
-	while (vx_imp_next_line(p, n, &pos, at_end, &line, &len)) {
+	while (vx_scan_line(&s, at_end, &line, &len)) {
 		const char *colon;
 		size_t k;
 
@@ -191,7 +179,8 @@ nrrd_lines(nrrd *h, const unsigned char *p, size_t n, int at_end, vx_err *e)
 			}
 		if (colon == NULL && len > 0 && line[len - 1] == ':')
 			colon = line + len - 1;       /* "field:" empty desc */
-		f = colon ? find_field(line, (size_t)(colon - line)) : -1;
+		f = colon ? vx_enum_val_n(&fields, line, (size_t)(colon -
+		    line)) : -1;
 		if (f < 0) {
 			for (k = 0; k + 1 < len; k++)
 				if (line[k] == ':' && line[k + 1] == '=')
@@ -219,14 +208,14 @@ nrrd_lines(nrrd *h, const unsigned char *p, size_t n, int at_end, vx_err *e)
 		    h->val[f][4] == '\t'))
 			in_list = 1;    /* the rest of the header lists files */
 	}
-	h->hdr_len = pos;
+	h->hdr_len = (size_t)(s.p - s.base);
 	return 0;
 }
 
 static int
 parse_type(nrrd *h, vx_err *e)
 {
-	static const struct { const char *name; vx_scalar t; } types[] = {
+	static const vx_enum_name type_names[] = {
 		{ "signed char", VX_S_I8 }, { "int8", VX_S_I8 },
 		{ "int8_t", VX_S_I8 },
 		{ "uchar", VX_S_U8 }, { "unsigned char", VX_S_U8 },
@@ -249,19 +238,17 @@ parse_type(nrrd *h, vx_err *e)
 		{ "unsigned long long int", VX_S_U64 }, { "uint64", VX_S_U64 },
 		{ "uint64_t", VX_S_U64 },
 		{ "float", VX_S_F32 }, { "double", VX_S_F64 },
+		{ NULL, VX_SCALAR_UNKNOWN }
 	};
+	static const vx_enum types = { "type", type_names, "?", 0 };
 	char buf[64];
 	const char *t;
-	size_t i;
 
 	if (h->val[F_TYPE] == NULL)
 		return vx_err_set(e, VX_EDATA, "nrrd: type: missing");
 	t = norm(h->val[F_TYPE], h->vlen[F_TYPE], buf, sizeof buf);
-	for (i = 0; i < sizeof types / sizeof types[0]; i++)
-		if (strcmp(t, types[i].name) == 0) {
-			h->type = types[i].t;
-			return 0;
-		}
+	if ((h->type = (vx_scalar)vx_enum_val(&types, t)) != VX_SCALAR_UNKNOWN)
+		return 0;
 	if (strcmp(t, "block") == 0)
 		return vx_err_set(e, VX_EDATA, "nrrd: type: block is not "
 		    "supported (scalar volumes only)");
@@ -272,26 +259,25 @@ parse_type(nrrd *h, vx_err *e)
 static int
 parse_encoding(nrrd *h, vx_err *e)
 {
+	static const vx_enum_name enc_names[] = {
+		{ "raw", ENC_RAW }, { "gzip", ENC_GZIP }, { "gz", ENC_GZIP },
+		{ "ascii", ENC_ASCII }, { "text", ENC_ASCII },
+		{ "txt", ENC_ASCII }, { "hex", ENC_HEX },
+		{ "bzip2", ENC_UNSUPPORTED }, { "bz2", ENC_UNSUPPORTED },
+		{ "zrl", ENC_UNSUPPORTED }, { NULL, 0 }
+	};
+	static const vx_enum encs = { "encoding", enc_names, "?", 0 };
 	char buf[32];
 	const char *s;
 
 	if (h->val[F_ENCODING] == NULL)
 		return vx_err_set(e, VX_EDATA, "nrrd: encoding: missing");
 	s = norm(h->val[F_ENCODING], h->vlen[F_ENCODING], buf, sizeof buf);
-	if (strcmp(s, "raw") == 0)
-		h->enc = ENC_RAW;
-	else if (strcmp(s, "gzip") == 0 || strcmp(s, "gz") == 0)
-		h->enc = ENC_GZIP;
-	else if (strcmp(s, "ascii") == 0 || strcmp(s, "text") == 0 ||
-	    strcmp(s, "txt") == 0)
-		h->enc = ENC_ASCII;
-	else if (strcmp(s, "hex") == 0)
-		h->enc = ENC_HEX;
-	else if (strcmp(s, "bzip2") == 0 || strcmp(s, "bz2") == 0 ||
-	    strcmp(s, "zrl") == 0)
+	h->enc = vx_enum_val(&encs, s);
+	if (h->enc == ENC_UNSUPPORTED)
 		return vx_err_set(e, VX_EDATA, "nrrd: encoding: %s is not "
 		    "supported (raw, gzip, ascii, hex are)", s);
-	else
+	if (h->enc == 0)
 		return vx_err_set(e, VX_EDATA, "nrrd: encoding: unknown "
 		    "encoding '%s'", vx_imp_show(h->val[F_ENCODING],
 		    h->vlen[F_ENCODING]));
@@ -338,7 +324,7 @@ per_axis_f64(const nrrd *h, int f, double v[3], vx_err *e)
 	if (words(h, f, w, wl, e) != 0)
 		return e->code;
 	for (a = 0; a < h->dim; a++)
-		if (vx_imp_parse_f64(w[a], wl[a], &v[a]) != 0)
+		if (vx_num_f64(w[a], wl[a], VX_NUM_NONFINITE, &v[a]) != 0)
 			return vx_err_set(e, VX_EDATA, "nrrd: %s: '%s' is not a "
 			    "number", field_name(f), vx_imp_show(w[a], wl[a]));
 	return 0;
@@ -354,8 +340,8 @@ parse_sizes(nrrd *h, vx_err *e)
 
 	if (h->val[F_DIMENSION] == NULL)
 		return vx_err_set(e, VX_EDATA, "nrrd: dimension: missing");
-	if (vx_imp_parse_i64(h->val[F_DIMENSION], h->vlen[F_DIMENSION], &v) != 0 ||
-	    v < 1)
+	if (vx_num_i64(h->val[F_DIMENSION], h->vlen[F_DIMENSION], 1,
+	    INT64_MAX, &v) != 0)
 		return vx_err_set(e, VX_EDATA, "nrrd: dimension: '%s' is not a "
 		    "positive integer", vx_imp_show(h->val[F_DIMENSION],
 		    h->vlen[F_DIMENSION]));
@@ -372,8 +358,7 @@ parse_sizes(nrrd *h, vx_err *e)
 			h->sizes[a] = 1;
 			continue;
 		}
-		if (vx_imp_parse_i64(w[a], wl[a], &h->sizes[a]) != 0 ||
-		    h->sizes[a] < 1)
+		if (vx_num_i64(w[a], wl[a], 1, INT64_MAX, &h->sizes[a]) != 0)
 			goto bad;
 	}
 	return 0;
@@ -398,7 +383,7 @@ parse_kinds(const nrrd *h, vx_err *e)
 		return e->code;
 	for (a = 0; a < h->dim; a++) {
 		for (i = 0; i < sizeof ok / sizeof ok[0]; i++)
-			if (vx_imp_word_eq(w[a], wl[a], ok[i]))
+			if (vx_word_eq(w[a], wl[a], ok[i], 1))
 				break;
 		if (i == sizeof ok / sizeof ok[0])
 			return vx_err_set(e, VX_EDATA, "nrrd: kinds: axis %d is "
@@ -443,8 +428,8 @@ parse_space(nrrd *h, vx_err *e)
 			    "'%s'", vx_imp_show(h->val[F_SPACE], h->vlen[F_SPACE]));
 		h->space_dim = spaces[i].dim;
 	} else if (h->val[F_SPACE_DIM] != NULL) {
-		if (vx_imp_parse_i64(h->val[F_SPACE_DIM], h->vlen[F_SPACE_DIM],
-		    &v) != 0 || v < 1)
+		if (vx_num_i64(h->val[F_SPACE_DIM], h->vlen[F_SPACE_DIM], 1,
+		    INT64_MAX, &v) != 0)
 			return vx_err_set(e, VX_EDATA, "nrrd: space dimension: "
 			    "'%s' is not a positive integer",
 			    vx_imp_show(h->val[F_SPACE_DIM], h->vlen[F_SPACE_DIM]));
@@ -467,7 +452,7 @@ vector(const nrrd *h, const char **p, const char *end, double v[3])
 
 	while (q < end && (*q == ' ' || *q == '\t'))
 		q++;
-	if (end - q >= 4 && vx_imp_word_eq(q, 4, "none") &&
+	if (end - q >= 4 && vx_word_eq(q, 4, "none", 1) &&
 	    (end - q == 4 || q[4] == ' ' || q[4] == '\t')) {
 		*p = q + 4;
 		return 1;
@@ -544,8 +529,8 @@ nrrd_frame(const nrrd *h, vx_imp_frame *f, vx_err *e)
 		if (words(h, F_CENTERS, w, wl, e) != 0)
 			return e->code;
 		for (a = 0; a < h->dim; a++)
-			center[a] = vx_imp_word_eq(w[a], wl[a], "node") ? 2 :
-			    vx_imp_word_eq(w[a], wl[a], "cell") ? 1 : 0;
+			center[a] = vx_word_eq(w[a], wl[a], "node", 1) ? 2 :
+			    vx_word_eq(w[a], wl[a], "cell", 1) ? 1 : 0;
 	}
 	if (h->val[F_SPACINGS] != NULL) {
 		if ((rc = per_axis_f64(h, F_SPACINGS, sp, e)) != 0)
@@ -589,14 +574,14 @@ static int
 parse_skips(nrrd *h, vx_err *e)
 {
 	if (h->val[F_LINE_SKIP] != NULL &&
-	    (vx_imp_parse_i64(h->val[F_LINE_SKIP], h->vlen[F_LINE_SKIP],
-	    &h->line_skip) != 0 || h->line_skip < 0))
+	    vx_num_i64(h->val[F_LINE_SKIP], h->vlen[F_LINE_SKIP], 0,
+	    INT64_MAX, &h->line_skip) != 0)
 		return vx_err_set(e, VX_EDATA, "nrrd: line skip: '%s' is not a "
 		    "non-negative integer", vx_imp_show(h->val[F_LINE_SKIP],
 		    h->vlen[F_LINE_SKIP]));
 	if (h->val[F_BYTE_SKIP] != NULL &&
-	    (vx_imp_parse_i64(h->val[F_BYTE_SKIP], h->vlen[F_BYTE_SKIP],
-	    &h->byte_skip) != 0 || h->byte_skip < -1))
+	    vx_num_i64(h->val[F_BYTE_SKIP], h->vlen[F_BYTE_SKIP], -1,
+	    INT64_MAX, &h->byte_skip) != 0)
 		return vx_err_set(e, VX_EDATA, "nrrd: byte skip: '%s' is not an "
 		    "integer >= -1", vx_imp_show(h->val[F_BYTE_SKIP],
 		    h->vlen[F_BYTE_SKIP]));
@@ -894,9 +879,12 @@ files_plan(const nrrd *h, files *fl, vx_err *e)
 
 	memset(fl, 0, sizeof *fl);
 	if (n >= 4 && memcmp(v, "LIST", 4) == 0) {
+		const char *d = v + 4;
+		size_t dn = n - 4;
 		int64_t sd = h->dim - 1;
 
-		if (n > 4 && (vx_imp_parse_i64(v + 4, n - 4, &sd) != 0))
+		vx_imp_trim(&d, &dn);
+		if (dn > 0 && vx_num_i64(d, dn, INT64_MIN, INT64_MAX, &sd) != 0)
 			return vx_err_set(e, VX_EDATA, "data file: LIST: '%s' is "
 			    "not a piece dimension", vx_imp_show(v + 4, n - 4));
 		fl->mode = 1;
@@ -1052,20 +1040,18 @@ nrrd_header(nrrd *h, vx_imp_src *s, vx_imp_frame *f, vx_err *e)
 	    (rc = parse_space(h, e)) != 0 || (rc = parse_skips(h, e)) != 0)
 		return rc;
 	if (h->val[F_ENDIAN] != NULL) {
-		if (vx_imp_word_eq(h->val[F_ENDIAN], h->vlen[F_ENDIAN], "little"))
-			h->big = 0;
-		else if (vx_imp_word_eq(h->val[F_ENDIAN], h->vlen[F_ENDIAN], "big"))
-			h->big = 1;
-		else
+		h->big = vx_enum_val_n(&vx_endian_enum, h->val[F_ENDIAN],
+		    h->vlen[F_ENDIAN]);
+		if (h->big < 0)
 			return vx_err_set(e, VX_EDATA, "nrrd: endian: '%s' is not "
 			    "little or big", vx_imp_show(h->val[F_ENDIAN],
 			    h->vlen[F_ENDIAN]));
 	} else if (vx_scalar_size(h->type) > 1 && (h->enc == ENC_RAW ||
 	    h->enc == ENC_GZIP || h->enc == ENC_HEX))
 		return vx_err_set(e, VX_EDATA, "nrrd: endian: missing (needed "
-		    "for type %s with %s encoding)", vx_scalar_name(h->type),
-		    h->enc == ENC_HEX ? "hex" : h->enc == ENC_GZIP ? "gzip" :
-		    "raw");
+		    "for type %s with %s encoding)",
+		    vx_enum_str(&vx_scalar_enum, h->type), h->enc == ENC_HEX ?
+		    "hex" : h->enc == ENC_GZIP ? "gzip" : "raw");
 	if ((rc = nrrd_frame(h, f, e)) != 0)
 		return rc;
 	if (h->val[F_DATA_FILE] == NULL)

@@ -147,23 +147,21 @@ void vx_imp_conv_abort(vx_imp_conv *c);
 int vx_imp_total(const int64_t dims[3], size_t size, uint64_t *total,
     uint64_t *bytes, const char *what, vx_err *e);
 
+/* VX_IMP_INT_MAX: the largest magnitude of an integer in a mesh file
+ * (tags, counts, indices): sums and differences of two stay in int64_t. */
+#define VX_IMP_INT_MAX ((int64_t)1 << 62)
+
+/* vx_imp_vtk_types: the data type names of VTK legacy files (any ASCII
+ * case), as source sample types. */
+extern const vx_enum vx_imp_vtk_types;
+
 /* ---- text (import_text.c) ---- */
 
-/* vx_imp_word_eq: case-insensitive comparison of p[0..n) with a word. */
-int vx_imp_word_eq(const char *p, size_t n, const char *word);
 /* vx_imp_trim: strip leading and trailing blanks (space, tab, CR) of [*p, *p+*n). */
 void vx_imp_trim(const char **p, size_t *n);
-/* vx_imp_next_line: the line starting at *pos in p[0..n): *line, *len without
- * "\n" or "\r\n"; *pos moves past it.  Returns 0 when no complete line is
- * left (a last line without newline counts when at_end). */
-int vx_imp_next_line(const unsigned char *p, size_t n, size_t *pos, int at_end,
-    const char **line, size_t *len);
-/* vx_imp_parse_i64 / vx_imp_parse_f64: one number filling all of [p, p+n)
- * (after trimming).  Return 0 on success. */
-int vx_imp_parse_i64(const char *p, size_t n, int64_t *v);
-int vx_imp_parse_f64(const char *p, size_t n, double *v);
 /* vx_imp_numbers: up to max numbers separated by blanks or commas in
- * [p, p+n); *count gets how many; -1 if a token is not a number. */
+ * [p, p+n); *count gets how many; -1 if a word is not a number (vx_scan.h's
+ * grammar, nan and inf allowed). */
 int vx_imp_numbers(const char *p, size_t n, double *v, int max, int *count);
 /* vx_imp_show: a printable excerpt of [p, p+n) for messages (static buffer,
  * at most 40 characters). */

@@ -52,7 +52,8 @@ vx_import_raw_mem(vx_grid *g, const void *buf, size_t n,
 		vx_imp_conv_abort(&c);
 		vx_err_push(e, "raw: %lld x %lld x %lld %s",
 		    (long long)r->dims[0], (long long)r->dims[1],
-		    (long long)r->dims[2], vx_scalar_name(r->type));
+		    (long long)r->dims[2],
+		    vx_enum_str(&vx_scalar_enum, r->type));
 		goto out;
 	}
 	/* the input must end here: extra bytes mean wrong dims or type */
@@ -64,7 +65,8 @@ vx_import_raw_mem(vx_grid *g, const void *buf, size_t n,
 		rc = vx_err_set(e, VX_EDATA, "raw: input is longer than skip + "
 		    "%lld x %lld x %lld %s samples (%llu bytes): check the dims "
 		    "and type", (long long)r->dims[0], (long long)r->dims[1],
-		    (long long)r->dims[2], vx_scalar_name(r->type),
+		    (long long)r->dims[2],
+		    vx_enum_str(&vx_scalar_enum, r->type),
 		    (unsigned long long)(r->skip + bytes));
 out:
 	vx_imp_src_close(&s);

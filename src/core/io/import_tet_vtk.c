@@ -2,45 +2,20 @@
  * BINARY big-endian; legacy CELLS lists or the 5.1 OFFSETS/CONNECTIVITY
  * form) as tet meshes with one point scalar. */
 #include "vx_tetimport.h"
-#include "tetscan.h"
+#include "import_priv.h"
+#include "vx_scan.h"
 
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
-enum {
-	T_NONE = 0, T_U8, T_I8, T_U16, T_I16, T_U32, T_I32, T_U64, T_I64,
-	T_F32, T_F64
-};
-
-static const struct { const char *name; int t; } types[] = {
-	{ "unsigned_char", T_U8 }, { "char", T_I8 }, { "signed_char", T_I8 },
-	{ "unsigned_short", T_U16 }, { "short", T_I16 },
-	{ "unsigned_int", T_U32 }, { "int", T_I32 },
-	/* LP64: VTK writes long as 8 bytes on 64-bit Unix */
-	{ "unsigned_long", T_U64 }, { "long", T_I64 },
-	{ "unsigned_long_long", T_U64 }, { "long_long", T_I64 },
-	/* the legacy writer writes vtkIdType arrays as int */
-	{ "vtkIdType", T_I32 },
-	{ "vtktypeint8", T_I8 }, { "vtktypeuint8", T_U8 },
-	{ "vtktypeint16", T_I16 }, { "vtktypeuint16", T_U16 },
-	{ "vtktypeint32", T_I32 }, { "vtktypeuint32", T_U32 },
-	{ "vtktypeint64", T_I64 }, { "vtktypeuint64", T_U64 },
-	{ "float", T_F32 }, { "double", T_F64 },
-	{ "vtktypefloat32", T_F32 }, { "vtktypefloat64", T_F64 },
-};
-
-static size_t
-type_size(int t)
-{
-	static const size_t sz[] = { 0, 1, 1, 2, 2, 4, 4, 8, 8, 4, 8 };
-	return sz[t];
-}
+#define TOK 256              /* a keyword's or a name's bytes, with the NUL */
 
 typedef struct vtkr {
-	scan s;
+	vx_scan s;
 	int binary;
 	int v51;                 /* CELLS as OFFSETS + CONNECTIVITY */
 	vx_err *e;
@@ -51,20 +26,29 @@ fail(vtkr *r, const char *fmt, const char *a, const char *b)
 {
 	char msg[400];
 	snprintf(msg, sizeof msg, fmt, a ? a : "", b ? b : "");
-	return vx_err_set(r->e, VX_EDATA, "vtk: line %zu: %s", scan_line(&r->s),
-	    msg);
+	return vx_err_set(r->e, VX_EDATA, "vtk: line %zu: %s",
+	    vx_scan_lineno(&r->s), msg);
+}
+
+/* is: token t is keyword kw (VTK keywords are read in any case). */
+static int
+is(const char *t, const char *kw)
+{
+	return strcasecmp(t, kw) == 0;
+}
+
+/* next_i64: the next word as an integer of the file (VX_IMP_INT_MAX). */
+static int
+next_i64(vx_scan *s, int64_t *v)
+{
+	return vx_scan_i64(s, -VX_IMP_INT_MAX, VX_IMP_INT_MAX, v) == 0;
 }
 
 static int
 parse_type(vtkr *r, const char *t, int *out)
 {
-	size_t i;
-
-	for (i = 0; i < sizeof types / sizeof types[0]; i++)
-		if (scan_is(t, types[i].name)) {
-			*out = types[i].t;
-			return 0;
-		}
+	if ((*out = vx_enum_val(&vx_imp_vtk_types, t)) != VX_SCALAR_UNKNOWN)
+		return 0;
 	return fail(r, "data type '%.40s' is not supported", t, NULL);
 }
 
@@ -73,7 +57,7 @@ parse_type(vtkr *r, const char *t, int *out)
 static void
 end_line(vtkr *r)
 {
-	scan_next_line(&r->s);
+	vx_scan_next_line(&r->s);
 }
 
 static uint64_t
@@ -89,32 +73,32 @@ be(const unsigned char *p, size_t n)
 static void
 decode(int t, const unsigned char *p, double *f, int64_t *i)
 {
-	uint64_t u = be(p, type_size(t));
+	uint64_t u = be(p, vx_scalar_size((vx_scalar)t));
 	float f32;
 	double f64;
 
 	switch (t) {
-	case T_U8: case T_U16: case T_U32:
+	case VX_S_U8: case VX_S_U16: case VX_S_U32:
 		*i = (int64_t)u;
 		*f = (double)u;
 		return;
-	case T_I8:
+	case VX_S_I8:
 		*i = (int8_t)u;
 		break;
-	case T_I16:
+	case VX_S_I16:
 		*i = (int16_t)u;
 		break;
-	case T_I32:
+	case VX_S_I32:
 		*i = (int32_t)(uint32_t)u;
 		break;
-	case T_U64:
+	case VX_S_U64:
 		*i = u > INT64_MAX ? -1 : (int64_t)u;
 		*f = (double)u;
 		return;
-	case T_I64:
+	case VX_S_I64:
 		*i = (int64_t)u;
 		break;
-	case T_F32: {
+	case VX_S_F32: {
 		uint32_t w = (uint32_t)u;
 		memcpy(&f32, &w, 4);
 		*f = f32;
@@ -135,7 +119,7 @@ decode(int t, const unsigned char *p, double *f, int64_t *i)
 static int
 fits(vtkr *r, uint64_t count, size_t sz)
 {
-	size_t left = scan_left(&r->s);
+	size_t left = vx_scan_left(&r->s);
 	return r->binary ? count <= left / sz : count <= left / 2 + 1;
 }
 
@@ -146,10 +130,10 @@ static int
 read_values(vtkr *r, int t, size_t count, double *fo, int64_t *io,
     const char *what)
 {
-	size_t i, left = scan_left(&r->s);
+	size_t i, left = vx_scan_left(&r->s);
 
 	if (r->binary) {
-		size_t sz = type_size(t);
+		size_t sz = vx_scalar_size((vx_scalar)t);
 		if (count > left / sz)
 			return fail(r, "truncated: %s needs more bytes than the "
 			    "file has", what, NULL);
@@ -161,7 +145,7 @@ read_values(vtkr *r, int t, size_t count, double *fo, int64_t *io,
 				decode(t, p, &f, &v);
 				if (fo != NULL)
 					fo[i] = f;
-				else if (t == T_F32 || t == T_F64) {
+				else if (t == VX_S_F32 || t == VX_S_F64) {
 					if (!(f == floor(f) && fabs(f) < 9e15))
 						return fail(r, "%s: a non-integer "
 						    "value", what, NULL);
@@ -177,20 +161,22 @@ read_values(vtkr *r, int t, size_t count, double *fo, int64_t *io,
 		return fail(r, "truncated: %s needs more values than the file "
 		    "has", what, NULL);
 	for (i = 0; i < count; i++) {
-		char tok[SCAN_TOK];
+		const char *w;
+		size_t n = vx_scan_word(&r->s, &w);
 		double f;
-		int k = scan_token(&r->s, tok);
-		if (k == 0)
+		if (n == 0)
 			return fail(r, "truncated: %s ends early", what, NULL);
-		if (k < 0 || !scan_parse_double(tok, &f))
-			return fail(r, "%s: '%.40s' is not a number", what, tok);
+		if (vx_num_f64(w, n, VX_NUM_NONFINITE, &f) != 0)
+			return fail(r, "%s: '%.40s' is not a number", what,
+			    vx_imp_show(w, n));
 		if (fo != NULL)
 			fo[i] = f;
 		else if (io != NULL) {
 			int64_t v;
-			if (!scan_parse_i64(tok, &v))
+			if (vx_num_i64(w, n, -VX_IMP_INT_MAX, VX_IMP_INT_MAX,
+			    &v) != 0)
 				return fail(r, "%s: '%.40s' is not an integer",
-				    what, tok);
+				    what, vx_imp_show(w, n));
 			io[i] = v;
 		}
 	}
@@ -244,7 +230,7 @@ attr_array(vtkimp *v, int mode, const char *name, int t, int64_t n,
 	if (ncomp < 1 || ncomp > 1 << 20 || n < 0 || n > (int64_t)1 << 40)
 		return fail(r, "%s: bad component or tuple count", what, NULL);
 	count = (size_t)(n * ncomp);
-	if (!fits(r, count, type_size(t)))
+	if (!fits(r, count, vx_scalar_size((vx_scalar)t)))
 		return fail(r, "truncated: %s needs more data than the file has",
 		    what, NULL);
 	if (mode == 'p' && ncomp == 1 && v->info)
@@ -272,29 +258,29 @@ static int
 field(vtkimp *v, int mode, int64_t ntuple)
 {
 	vtkr *r = &v->r;
-	char tok[SCAN_TOK], name[SCAN_TOK];
+	char tok[TOK], name[TOK];
 	int64_t narr, nc, nt;
 	int t, rc;
 
-	if (scan_token(&r->s, tok) <= 0 || !scan_i64(&r->s, &narr) ||
+	if (vx_scan_token(&r->s, tok, TOK) <= 0 || !next_i64(&r->s, &narr) ||
 	    narr < 0 || narr > 1 << 20)
 		return fail(r, "FIELD: expected a name and an array count", NULL,
 		    NULL);
 	end_line(r);
 	for (int64_t a = 0; a < narr; a++) {
-		if (scan_token(&r->s, name) <= 0)
+		if (vx_scan_token(&r->s, name, TOK) <= 0)
 			return fail(r, "FIELD: truncated", NULL, NULL);
-		if (scan_is(name, "METADATA")) {
+		if (is(name, "METADATA")) {
 			/* belongs to the previous array: skip to a blank line */
 			end_line(r);
-			while (r->s.p < r->s.end && !scan_eol(&r->s))
+			while (r->s.p < r->s.end && !vx_scan_eol(&r->s))
 				end_line(r);
 			end_line(r);
 			a--;
 			continue;
 		}
-		if (!scan_i64(&r->s, &nc) || !scan_i64(&r->s, &nt) ||
-		    scan_token(&r->s, tok) <= 0)
+		if (!next_i64(&r->s, &nc) || !next_i64(&r->s, &nt) ||
+		    vx_scan_token(&r->s, tok, TOK) <= 0)
 			return fail(r, "FIELD array '%.60s': expected components, "
 			    "tuples and type", name, NULL);
 		if ((rc = parse_type(r, tok, &t)) != 0)
@@ -312,7 +298,7 @@ static int
 cells(vtkimp *v, int64_t a, int64_t b)
 {
 	vtkr *r = &v->r;
-	char tok[SCAN_TOK];
+	char tok[TOK];
 	int t, rc;
 
 	if (v->ncell >= 0)
@@ -329,7 +315,7 @@ cells(vtkimp *v, int64_t a, int64_t b)
 		if ((v->conn = vx_malloc((size_t)b * sizeof *v->conn, r->e)) ==
 		    NULL)
 			return VX_ENOMEM;
-		return read_values(r, T_I32, (size_t)b, NULL, v->conn, "CELLS");
+		return read_values(r, VX_S_I32, (size_t)b, NULL, v->conn, "CELLS");
 	}
 	/* 5.1: CELLS noffsets nconnectivity, then OFFSETS and CONNECTIVITY */
 	if (a < 1)
@@ -337,25 +323,25 @@ cells(vtkimp *v, int64_t a, int64_t b)
 	v->ncell = a - 1;
 	v->nconn = b;
 	end_line(r);
-	if (scan_token(&r->s, tok) <= 0 || !scan_is(tok, "OFFSETS") ||
-	    scan_token(&r->s, tok) <= 0)
+	if (vx_scan_token(&r->s, tok, TOK) <= 0 || !is(tok, "OFFSETS") ||
+	    vx_scan_token(&r->s, tok, TOK) <= 0)
 		return fail(r, "expected OFFSETS after CELLS", NULL, NULL);
 	if ((rc = parse_type(r, tok, &t)) != 0)
 		return rc;
 	end_line(r);
-	if (!fits(r, (uint64_t)a, type_size(t)))
+	if (!fits(r, (uint64_t)a, vx_scalar_size((vx_scalar)t)))
 		return fail(r, "truncated: OFFSETS", NULL, NULL);
 	if ((v->offs = vx_malloc((size_t)a * sizeof *v->offs, r->e)) == NULL)
 		return VX_ENOMEM;
 	if ((rc = read_values(r, t, (size_t)a, NULL, v->offs, "OFFSETS")) != 0)
 		return rc;
-	if (scan_token(&r->s, tok) <= 0 || !scan_is(tok, "CONNECTIVITY") ||
-	    scan_token(&r->s, tok) <= 0)
+	if (vx_scan_token(&r->s, tok, TOK) <= 0 || !is(tok, "CONNECTIVITY") ||
+	    vx_scan_token(&r->s, tok, TOK) <= 0)
 		return fail(r, "expected CONNECTIVITY after OFFSETS", NULL, NULL);
 	if ((rc = parse_type(r, tok, &t)) != 0)
 		return rc;
 	end_line(r);
-	if (!fits(r, (uint64_t)b, type_size(t)))
+	if (!fits(r, (uint64_t)b, vx_scalar_size((vx_scalar)t)))
 		return fail(r, "truncated: CONNECTIVITY", NULL, NULL);
 	if ((v->conn = vx_malloc((size_t)b * sizeof *v->conn, r->e)) == NULL)
 		return VX_ENOMEM;
@@ -504,54 +490,56 @@ static int
 parse(vtkimp *v, vx_tetmesh *m)
 {
 	vtkr *r = &v->r;
-	scan *s = &r->s;
-	char tok[SCAN_TOK], name[SCAN_TOK];
+	vx_scan *s = &r->s;
+	char tok[TOK], name[TOK];
 	int mode = 0, rc, t;
 	int64_t ntuple = 0, a, b;
 	static const char magic[] = "# vtk DataFile Version";
 
 	/* line 1: magic and version; line 2: title; line 3: ASCII|BINARY */
-	if (scan_left(s) < sizeof magic - 1 ||
+	if (vx_scan_left(s) < sizeof magic - 1 ||
 	    strncasecmp((const char *)s->p, magic, sizeof magic - 1) != 0)
 		return vx_err_set(r->e, VX_EDATA, "vtk: not a VTK legacy file "
 		    "(no '# vtk DataFile Version' line)");
 	s->p += sizeof magic - 1;
 	double ver = 0;
-	if (scan_token_line(s, tok) > 0)
-		scan_parse_double(tok, &ver);
+	const char *w;
+	size_t wn = vx_scan_word_line(s, &w);
+	if (wn > 0 && vx_num_f64(w, wn, 0, &ver) != 0)
+		ver = 0;
 	r->v51 = ver >= 5.05;
 	end_line(r);
 	end_line(r);
-	if (scan_token(s, tok) <= 0)
+	if (vx_scan_token(s, tok, TOK) <= 0)
 		return fail(r, "truncated header", NULL, NULL);
-	if (scan_is(tok, "BINARY"))
+	if (is(tok, "BINARY"))
 		r->binary = 1;
-	else if (!scan_is(tok, "ASCII"))
+	else if (!is(tok, "ASCII"))
 		return fail(r, "expected ASCII or BINARY, not '%.40s'", tok, NULL);
-	if (scan_token(s, tok) <= 0 || !scan_is(tok, "DATASET") ||
-	    scan_token(s, name) <= 0)
+	if (vx_scan_token(s, tok, TOK) <= 0 || !is(tok, "DATASET") ||
+	    vx_scan_token(s, name, TOK) <= 0)
 		return fail(r, "expected DATASET", NULL, NULL);
-	if (!scan_is(name, "UNSTRUCTURED_GRID"))
+	if (!is(name, "UNSTRUCTURED_GRID"))
 		return fail(r, "dataset %.40s is not supported (need "
 		    "UNSTRUCTURED_GRID)", name, NULL);
 	end_line(r);
 	v->info->format = r->binary ? VX_TETFMT_VTK_BINARY : VX_TETFMT_VTK_ASCII;
 
-	while ((rc = scan_token(s, tok)) != 0) {
+	while ((rc = vx_scan_token(s, tok, TOK)) != 0) {
 		if (rc < 0)
 			return fail(r, "unexpected long token", NULL, NULL);
-		if (scan_is(tok, "POINTS")) {
+		if (is(tok, "POINTS")) {
 			if (v->npoint >= 0)
 				return fail(r, "POINTS given twice", NULL, NULL);
-			if (!scan_i64(s, &a) || a < 0 ||
+			if (!next_i64(s, &a) || a < 0 ||
 			    (uint64_t)a > VX_TETMESH_MAX_POINTS ||
-			    scan_token(s, tok) <= 0)
+			    vx_scan_token(s, tok, TOK) <= 0)
 				return fail(r, "POINTS: expected a count (0 .. "
 				    "2^32-2) and a type", NULL, NULL);
 			if ((rc = parse_type(r, tok, &t)) != 0)
 				return rc;
 			end_line(r);
-			if (!fits(r, 3 * (uint64_t)a, type_size(t)))
+			if (!fits(r, 3 * (uint64_t)a, vx_scalar_size((vx_scalar)t)))
 				return fail(r, "truncated: POINTS needs more data "
 				    "than the file has", NULL, NULL);
 			v->npoint = a;
@@ -561,17 +549,17 @@ parse(vtkimp *v, vx_tetmesh *m)
 			if ((rc = read_values(r, t, 3 * (size_t)a, v->pts, NULL,
 			    "POINTS")) != 0)
 				return rc;
-		} else if (scan_is(tok, "CELLS")) {
-			if (!scan_i64(s, &a) || !scan_i64(s, &b))
+		} else if (is(tok, "CELLS")) {
+			if (!next_i64(s, &a) || !next_i64(s, &b))
 				return fail(r, "CELLS: expected two counts", NULL,
 				    NULL);
 			if ((rc = cells(v, a, b)) != 0)
 				return rc;
-		} else if (scan_is(tok, "CELL_TYPES")) {
+		} else if (is(tok, "CELL_TYPES")) {
 			if (v->ntype >= 0)
 				return fail(r, "CELL_TYPES given twice", NULL,
 				    NULL);
-			if (!scan_i64(s, &a) || a < 0 || a > (int64_t)1 << 40)
+			if (!next_i64(s, &a) || a < 0 || a > (int64_t)1 << 40)
 				return fail(r, "CELL_TYPES: expected a count",
 				    NULL, NULL);
 			end_line(r);
@@ -582,43 +570,45 @@ parse(vtkimp *v, vx_tetmesh *m)
 			if ((v->ctype = vx_malloc((size_t)a * sizeof *v->ctype,
 			    r->e)) == NULL && a > 0)
 				return VX_ENOMEM;
-			if ((rc = read_values(r, T_I32, (size_t)a, NULL,
+			if ((rc = read_values(r, VX_S_I32, (size_t)a, NULL,
 			    v->ctype, "CELL_TYPES")) != 0)
 				return rc;
-		} else if (scan_is(tok, "POINT_DATA") ||
-		    scan_is(tok, "CELL_DATA")) {
-			mode = scan_is(tok, "POINT_DATA") ? 'p' : 'c';
-			if (!scan_i64(s, &ntuple) || ntuple < 0)
+		} else if (is(tok, "POINT_DATA") ||
+		    is(tok, "CELL_DATA")) {
+			mode = is(tok, "POINT_DATA") ? 'p' : 'c';
+			if (!next_i64(s, &ntuple) || ntuple < 0)
 				return fail(r, "%s: expected a count", tok, NULL);
 			if (mode == 'p' && ntuple != v->npoint)
 				return fail(r, "POINT_DATA has a count other "
 				    "than POINTS'", NULL, NULL);
 			end_line(r);
-		} else if (scan_is(tok, "FIELD")) {
+		} else if (is(tok, "FIELD")) {
 			if ((rc = field(v, mode, ntuple)) != 0)
 				return rc;
-		} else if (scan_is(tok, "METADATA")) {
+		} else if (is(tok, "METADATA")) {
 			end_line(r);
-			while (s->p < s->end && !scan_eol(s))
+			while (s->p < s->end && !vx_scan_eol(s))
 				end_line(r);
 			end_line(r);
 		} else if (mode == 0) {
 			return fail(r, "unknown keyword '%.40s'", tok, NULL);
-		} else if (scan_is(tok, "SCALARS")) {
+		} else if (is(tok, "SCALARS")) {
 			int64_t nc = 1;
-			if (scan_token(s, name) <= 0 || scan_token(s, tok) <= 0)
+			if (vx_scan_token(s, name, TOK) <= 0 ||
+			    vx_scan_token(s, tok, TOK) <= 0)
 				return fail(r, "SCALARS: expected a name and a type",
 				    NULL, NULL);
 			if ((rc = parse_type(r, tok, &t)) != 0)
 				return rc;
-			if (scan_token_line(s, tok) > 0 &&
-			    (!scan_parse_i64(tok, &nc) || nc < 1 || nc > 4))
+			if ((wn = vx_scan_word_line(s, &w)) > 0 &&
+			    vx_num_i64(w, wn, 1, 4, &nc) != 0)
 				return fail(r, "SCALARS: bad component count "
-				    "'%.40s'", tok, NULL);
+				    "'%.40s'", vx_imp_show(w, wn), NULL);
 			end_line(r);
 			/* an optional LOOKUP_TABLE line */
 			const unsigned char *save = s->p;
-			if (scan_token(s, tok) > 0 && scan_is(tok, "LOOKUP_TABLE"))
+			if (vx_scan_token(s, tok, TOK) > 0 &&
+			    is(tok, "LOOKUP_TABLE"))
 				end_line(r);
 			else
 				s->p = save;
@@ -626,33 +616,34 @@ parse(vtkimp *v, vx_tetmesh *m)
 			if ((rc = attr_array(v, mode, name, t, ntuple, nc,
 			    "SCALARS")) != 0)
 				return rc;
-		} else if (scan_is(tok, "LOOKUP_TABLE") ||
-		    scan_is(tok, "COLOR_SCALARS")) {
-			int lut = scan_is(tok, "LOOKUP_TABLE");
-			if (scan_token(s, name) <= 0 || !scan_i64(s, &a) ||
+		} else if (is(tok, "LOOKUP_TABLE") ||
+		    is(tok, "COLOR_SCALARS")) {
+			int lut = is(tok, "LOOKUP_TABLE");
+			if (vx_scan_token(s, name, TOK) <= 0 ||
+			    !next_i64(s, &a) ||
 			    a < 0 || a > 1 << 24)
 				return fail(r, "%s: expected a name and a size",
 				    tok, NULL);
 			end_line(r);
-			if ((rc = attr_array(v, 'x', name, r->binary ? T_U8 :
-			    T_F32, lut ? a : ntuple, lut ? 4 : a, tok)) != 0)
+			if ((rc = attr_array(v, 'x', name, r->binary ? VX_S_U8 :
+			    VX_S_F32, lut ? a : ntuple, lut ? 4 : a, tok)) != 0)
 				return rc;
-		} else if (scan_is(tok, "VECTORS") || scan_is(tok, "NORMALS") ||
-		    scan_is(tok, "TENSORS") || scan_is(tok, "TENSORS6") ||
-		    scan_is(tok, "GLOBAL_IDS") || scan_is(tok, "PEDIGREE_IDS") ||
-		    scan_is(tok, "TEXTURE_COORDINATES")) {
-			int64_t nc = scan_is(tok, "VECTORS") ||
-			    scan_is(tok, "NORMALS") ? 3 : scan_is(tok, "TENSORS") ?
-			    9 : scan_is(tok, "TENSORS6") ? 6 : 1;
-			char kw[SCAN_TOK];
+		} else if (is(tok, "VECTORS") || is(tok, "NORMALS") ||
+		    is(tok, "TENSORS") || is(tok, "TENSORS6") ||
+		    is(tok, "GLOBAL_IDS") || is(tok, "PEDIGREE_IDS") ||
+		    is(tok, "TEXTURE_COORDINATES")) {
+			int64_t nc = is(tok, "VECTORS") ||
+			    is(tok, "NORMALS") ? 3 : is(tok, "TENSORS") ?
+			    9 : is(tok, "TENSORS6") ? 6 : 1;
+			char kw[TOK];
 			memcpy(kw, tok, sizeof kw);
-			if (scan_token(s, name) <= 0)
+			if (vx_scan_token(s, name, TOK) <= 0)
 				return fail(r, "%s: expected a name", kw, NULL);
-			if (scan_is(kw, "TEXTURE_COORDINATES") &&
-			    (!scan_i64(s, &nc) || nc < 1 || nc > 3))
+			if (is(kw, "TEXTURE_COORDINATES") &&
+			    (!next_i64(s, &nc) || nc < 1 || nc > 3))
 				return fail(r, "TEXTURE_COORDINATES: bad "
 				    "dimension", NULL, NULL);
-			if (scan_token(s, tok) <= 0)
+			if (vx_scan_token(s, tok, TOK) <= 0)
 				return fail(r, "%s: expected a type", kw, NULL);
 			if ((rc = parse_type(r, tok, &t)) != 0)
 				return rc;
@@ -690,7 +681,7 @@ vx_tetmesh_import_vtk(vx_tetmesh *m, const void *buf, size_t n,
 		info = &dummy;
 	memset(info, 0, sizeof *info);
 	memset(&v, 0, sizeof v);
-	scan_init(&v.r.s, buf, n);
+	vx_scan_init(&v.r.s, buf, n);
 	v.r.e = e;
 	v.opt = opt;
 	v.info = info;

@@ -2,6 +2,7 @@
  * FILE.  "PF" is RGB, "Pf" gray; the scale's sign gives the byte order
  * (negative: little-endian); rows are stored bottom row first. */
 #include "vx_imageio.h"
+#include "vx_scan.h"
 
 #include <errno.h>
 #include <math.h>
@@ -44,20 +45,15 @@ read_dim(const unsigned char *p, size_t n, size_t *pos, long *out)
 	return 0;
 }
 
-/* read_scale: a floating-point token of at most 63 bytes. */
+/* read_scale: a real (vx_scan.h's grammar), not 0. */
 static int
 read_scale(const unsigned char *p, size_t n, size_t *pos, double *out)
 {
-	char tok[64], *end;
-	size_t k = 0;
+	size_t s = *pos;
 
-	while (*pos < n && !is_space(p[*pos]) && k < sizeof tok - 1)
-		tok[k++] = (char)p[(*pos)++];
-	tok[k] = '\0';
-	if (k == 0 || (*pos < n && !is_space(p[*pos])))
-		return -1;
-	*out = vx_strtod(tok, &end);
-	if (*end != '\0' || errno == ERANGE || !isfinite(*out) || *out == 0)
+	while (*pos < n && !is_space(p[*pos]))
+		(*pos)++;
+	if (vx_num_f64((const char *)p + s, *pos - s, 0, out) != 0 || *out == 0)
 		return -1;
 	return 0;
 }

@@ -4,27 +4,12 @@
 #include <math.h>
 #include <string.h>
 
-static const char *synth_names[VX_SYNTH_LAST] = {
-	"unknown", "sphere", "torus", "linear", "ml", "saddle"
+static const vx_enum_name synth_names[] = {
+	{ "sphere", VX_SYNTH_SPHERE }, { "torus", VX_SYNTH_TORUS },
+	{ "linear", VX_SYNTH_LINEAR }, { "ml", VX_SYNTH_ML },
+	{ "saddle", VX_SYNTH_SADDLE }, { NULL, VX_SYNTH_UNKNOWN }
 };
-
-const char *
-vx_synth_name(vx_synth_kind k)
-{
-	return k > VX_SYNTH_UNKNOWN && k < VX_SYNTH_LAST ? synth_names[k] :
-	    "unknown";
-}
-
-vx_synth_kind
-vx_synth_parse(const char *s)
-{
-	int k;
-
-	for (k = VX_SYNTH_UNKNOWN + 1; k < VX_SYNTH_LAST; k++)
-		if (strcmp(s, synth_names[k]) == 0)
-			return (vx_synth_kind)k;
-	return VX_SYNTH_UNKNOWN;
-}
+const vx_enum vx_synth_enum = { "field", synth_names, "unknown", 0 };
 
 double
 vx_synth_coord(int64_t i, int64_t n)

@@ -1,7 +1,7 @@
-/* vx_export.h: writing voxlux data in other tools' formats.  For now NRRD
- * (Teem's format, read by unu, ParaView and 3D Slicer) for scalar volumes;
- * multi-component volumes (irradiance, SH) will join through the same
- * header and body writers (export_nrrd.c). */
+/* vx_export.h: writing voxlux data in other tools' formats: NRRD (Teem's
+ * format, read by unu, ParaView and 3D Slicer) for scalar volumes and for
+ * irradiance volumes (RGB texels and their flags), through the same header
+ * and body writers (export_nrrd.c). */
 #ifndef VX_EXPORT_H
 #define VX_EXPORT_H
 
@@ -10,6 +10,7 @@
 
 #include "vx_err.h"
 #include "vx_grid.h"
+#include "vx_irrvol.h"
 
 /* Options of the NRRD writer.  A zeroed struct means raw, no comments. */
 typedef struct vx_nrrd_opts {
@@ -49,6 +50,33 @@ typedef struct vx_nrrd_opts {
 int vx_export_nrrd(const vx_grid *g, FILE *f, int gzip, vx_err *e);
 int vx_export_nrrd_opts(const vx_grid *g, FILE *f, const vx_nrrd_opts *o,
     vx_err *e);
+
+/* vx_export_nrrd_irr: write irradiance volume v, laid over volume g (whose
+ * dims must be v's volume-dims: VX_EDATA otherwise), as a 4-D NRRD of
+ * binary32 RGB texels that overlays g in world space:
+ *
+ *   content: the volume's name
+ *   type: float
+ *   dimension: 4
+ *   sizes: 3 N0 N1 N2                  (the lattice's dims)
+ *   space directions: none (H0,0,0) (0,H1,0) (0,0,H2)
+ *   kinds: RGB-color domain domain domain
+ *   centerings: ??? node node node
+ *   space origin: g's origin          (texel 0 sits on sample 0)
+ *
+ * with Ha = v->step[a] * g->spacing[a], the lattice's world spacing; the
+ * rest of the header as vx_export_nrrd_opts.  The body: the mean E (R, G, B)
+ * of each texel, x fastest; texels that are absent or not usable
+ * (vx_irr_usable) are 0 0 0.
+ *
+ * vx_export_nrrd_irr_flags: the texels' VX_TEXEL_* flags as a 3-D NRRD of
+ * the same geometry (dimension 3, kinds domain, centerings node), type
+ * uint8 (bytes 1; VX_EDATA if a texel has a flag past bit 7) or uint32
+ * (bytes 4); absent texels are 0.  Other bytes: VX_EUSAGE. */
+int vx_export_nrrd_irr(const vx_irrvol *v, const vx_grid *g, FILE *f,
+    const vx_nrrd_opts *o, vx_err *e);
+int vx_export_nrrd_irr_flags(const vx_irrvol *v, const vx_grid *g, int bytes,
+    FILE *f, const vx_nrrd_opts *o, vx_err *e);
 
 /* vx_nrrd_type: the NRRD type name of a sample type ("uint8", "uint16",
  * "int16", "float"), or NULL. */

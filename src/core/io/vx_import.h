@@ -32,6 +32,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "vx_enum.h"
 #include "vx_err.h"
 #include "vx_grid.h"
 
@@ -45,8 +46,9 @@ typedef enum vx_scalar {
 } vx_scalar;
 
 size_t vx_scalar_size(vx_scalar t);          /* bytes per sample, 0 if unknown */
-const char *vx_scalar_name(vx_scalar t);     /* "u8", "i8", ..., "f64" */
-vx_scalar vx_scalar_parse(const char *s);    /* inverse; VX_SCALAR_UNKNOWN */
+/* The names (vx_enum.h): "u8", "i8", ..., "f64"; VX_SCALAR_UNKNOWN and
+ * "unknown" for the others. */
+extern const vx_enum vx_scalar_enum;
 vx_type vx_scalar_target(vx_scalar t);       /* the voxlux type it is stored as */
 
 /* ---- formats ---- */
@@ -57,8 +59,9 @@ typedef enum vx_format {
 	VX_FORMAT_LAST
 } vx_format;
 
-const char *vx_format_name(vx_format f);     /* "raw", "nrrd", "nifti", "vtk" */
-vx_format vx_format_parse(const char *s);    /* inverse; VX_FORMAT_UNKNOWN */
+/* The names (vx_enum.h): "raw", "nrrd", "nifti", "vtk"; VX_FORMAT_UNKNOWN
+ * and "unknown" for the others. */
+extern const vx_enum vx_format_enum;
 
 /* vx_import_detect: the format of buf (decompressing a gzip prefix if need
  * be) from its magic bytes: "NRRD000x", a NIfTI-1 header (sizeof_hdr 348 in
@@ -77,6 +80,10 @@ typedef struct vx_raw_info {
 	double spacing[3];   /* default 1 */
 	double origin[3];    /* default 0 */
 } vx_raw_info;
+
+/* The byte orders' names (vx_enum.h), as in raw_info.big_endian: "little"
+ * 0, "big" 1, any ASCII case; -1 for another word. */
+extern const vx_enum vx_endian_enum;
 
 /* vx_raw_info_init: no dims, unknown type, little-endian, skip 0,
  * spacing 1, origin 0. */
@@ -170,8 +177,9 @@ typedef enum vx_synth_kind {
 	VX_SYNTH_LAST
 } vx_synth_kind;
 
-const char *vx_synth_name(vx_synth_kind k);
-vx_synth_kind vx_synth_parse(const char *s);
+/* The names (vx_enum.h): "sphere", "torus", "linear", "ml", "saddle";
+ * VX_SYNTH_UNKNOWN and "unknown" for the others. */
+extern const vx_enum vx_synth_enum;
 /* vx_synth_coord: world coordinate of sample i of n along one axis. */
 double vx_synth_coord(int64_t i, int64_t n);
 /* vx_synth_eval: the field at a world point (NaN for an unknown kind). */

@@ -5,25 +5,22 @@
 #include <math.h>
 #include <string.h>
 
-static const char *const solver_names[] = { "exact", "neubauer", "linear" };
+static const vx_enum_name solver_names[] = {
+	{ "exact", VX_CELL_EXACT }, { "neubauer", VX_CELL_NEUBAUER },
+	{ "linear", VX_CELL_LINEAR }, { NULL, -1 }
+};
+const vx_enum vx_cell_solver_enum = { "solver", solver_names, "unknown", 0 };
 
 const char *
 vx_cell_solver_name(int solver)
 {
-	if (solver < 0 || solver >= VX_CELL_SOLVER_LAST)
-		return "unknown";
-	return solver_names[solver];
+	return vx_enum_str(&vx_cell_solver_enum, solver);
 }
 
 int
 vx_cell_solver_parse(const char *s)
 {
-	int i;
-
-	for (i = 0; i < VX_CELL_SOLVER_LAST; i++)
-		if (strcmp(s, solver_names[i]) == 0)
-			return i;
-	return -1;
+	return vx_enum_val(&vx_cell_solver_enum, s);
 }
 
 int

@@ -4,6 +4,12 @@
 #include <math.h>
 #include <string.h>
 
+static const vx_enum_name diff_map_names[] = {
+	{ "abs", VX_DIFF_ABS }, { "signed", VX_DIFF_SIGNED },
+	{ NULL, VX_DIFF_UNKNOWN }
+};
+const vx_enum vx_diff_map_enum = { "map", diff_map_names, "unknown", 0 };
+
 static int
 check_same(const vx_image *a, const vx_image *b, vx_err *e)
 {

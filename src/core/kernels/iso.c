@@ -27,7 +27,9 @@ vx_cycles(void)
 typedef struct iso_ctx {
 	const vx_iso_tracer *tr;
 	const double *o, *d;
-	const float *iso;
+	const double *iso;       /* the isovalues, as given */
+	float fiso[VX_ISO_MAX];  /* each rounded to float, for the walk's
+	                            bracket tests (a superset: vx_iso.h) */
 	int niso;
 	vx_iso_hit_fn fn;
 	void *ctx;
@@ -388,14 +390,18 @@ visit(void *vctx, const vx_leaf_visit *v)
  * ray counted; 0 when there is nothing to trace */
 static int
 iso_start(iso_ctx *x, const vx_iso_tracer *tr, const double o[3],
-    const double d[3], const float *iso, int niso, vx_iso_hit_fn fn,
+    const double d[3], const double *iso, int niso, vx_iso_hit_fn fn,
     void *ctx, vx_iso_stats *st)
 {
+	int s;
+
 	x->tr = tr;
 	x->o = o;
 	x->d = d;
 	x->iso = iso;
 	x->niso = niso > VX_ISO_MAX ? VX_ISO_MAX : niso;
+	for (s = 0; s < x->niso; s++)
+		x->fiso[s] = (float)iso[s];
 	x->fn = fn;
 	x->ctx = ctx;
 	x->st = st;
@@ -408,7 +414,7 @@ iso_start(iso_ctx *x, const vx_iso_tracer *tr, const double o[3],
 
 int
 vx_iso_trace(const vx_iso_tracer *tr, const double o[3], const double d[3],
-    double tmin, double tmax, const float *iso, int niso, vx_iso_hit_fn fn,
+    double tmin, double tmax, const double *iso, int niso, vx_iso_hit_fn fn,
     void *ctx, vx_iso_stats *st)
 {
 	iso_ctx x;
@@ -417,18 +423,19 @@ vx_iso_trace(const vx_iso_tracer *tr, const double o[3], const double d[3],
 		return 0;
 	if (tr->flat || tr->m == NULL)
 		return vx_macro_traverse_flat(tr->m, tr->g, o, d, tmin, tmax,
-		    iso, x.niso, visit, &x, st ? &st->trav : NULL);
+		    x.fiso, x.niso, visit, &x, st ? &st->trav : NULL);
 	if (tr->mask != NULL)
 		return vx_macro_traverse_masked(tr->m, tr->g, tr->mask, o, d,
-		    tmin, tmax, iso, x.niso, visit, &x, st ? &st->trav : NULL);
-	return vx_macro_traverse(tr->m, tr->g, o, d, tmin, tmax, iso, x.niso,
-	    visit, &x, st ? &st->trav : NULL);
+		    tmin, tmax, x.fiso, x.niso, visit, &x, st ? &st->trav :
+		    NULL);
+	return vx_macro_traverse(tr->m, tr->g, o, d, tmin, tmax, x.fiso,
+	    x.niso, visit, &x, st ? &st->trav : NULL);
 }
 
 int
 vx_iso_trace_boxes(const vx_iso_tracer *tr, const double o[3],
     const double d[3], const vx_cellbox *box, const uint32_t *ix,
-    size_t nbox, const vx_boxpick *pk, const float *iso, int niso,
+    size_t nbox, const vx_boxpick *pk, const double *iso, int niso,
     vx_iso_hit_fn fn, void *ctx, vx_iso_stats *st)
 {
 	iso_ctx x;
@@ -439,7 +446,7 @@ vx_iso_trace_boxes(const vx_iso_tracer *tr, const double o[3],
 	if (!iso_start(&x, tr, o, d, iso, niso, fn, ctx, st))
 		return 0;
 	return vx_macro_traverse_boxes(tr->m, tr->g, tr->mask, box, ix, nbox,
-	    pk, o, d, iso, x.niso, visit, &x, st ? &st->trav : NULL);
+	    pk, o, d, x.fiso, x.niso, visit, &x, st ? &st->trav : NULL);
 }
 
 static int
@@ -451,7 +458,7 @@ keep_first(void *ctx, const vx_iso_hit *h)
 
 int
 vx_iso_first(const vx_iso_tracer *tr, const double o[3], const double d[3],
-    double tmin, double tmax, const float *iso, int niso, vx_iso_hit *hit,
+    double tmin, double tmax, const double *iso, int niso, vx_iso_hit *hit,
     vx_iso_stats *st)
 {
 	return vx_iso_trace(tr, o, d, tmin, tmax, iso, niso, keep_first, hit,

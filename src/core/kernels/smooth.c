@@ -23,7 +23,7 @@ vx_bspline_gradient(const vx_grid *g, const double p[3], double grad[3])
 {
 	double w[3][4], dw[3][4];
 	int64_t idx[3][4];
-	int flags = 0;
+	int flags = 0, nk[3];
 
 	for (int a = 0; a < 3; a++) {
 		double u = p[a], fl;
@@ -34,7 +34,10 @@ vx_bspline_gradient(const vx_grid *g, const double p[3], double grad[3])
 			u = (double)(g->dims[a] - 1);
 		fl = floor(u);
 		vx_bspline_weights(u - fl, w[a], dw[a]);
-		for (int k = 0; k < 4; k++) {
+		/* at a sample (t = 0) the fourth weight and its derivative are
+		 * 0: that sample is not in the support */
+		nk[a] = u - fl > 0 ? 4 : 3;
+		for (int k = 0; k < nk[a]; k++) {
 			int64_t i = (int64_t)fl - 1 + k;
 
 			if (i < 0 || i > g->dims[a] - 1) {
@@ -45,11 +48,11 @@ vx_bspline_gradient(const vx_grid *g, const double p[3], double grad[3])
 		}
 	}
 	grad[0] = grad[1] = grad[2] = 0;
-	for (int z = 0; z < 4; z++)
-		for (int y = 0; y < 4; y++) {
+	for (int z = 0; z < nk[2]; z++)
+		for (int y = 0; y < nk[1]; y++) {
 			double gx = 0, gy = 0, gz = 0;
 
-			for (int x = 0; x < 4; x++) {
+			for (int x = 0; x < nk[0]; x++) {
 				double f = vx_grid_get(g, idx[0][x], idx[1][y],
 				    idx[2][z]);
 

@@ -103,13 +103,19 @@ vx_grid_histogram(const vx_grid *g, double lo, double hi, size_t nbins,
     uint64_t *counts, vx_err *e)
 {
 	int64_t x, y, z;
-	double scale;
+	double span, scale, nb = (double)nbins;
+	int fast;
 
 	if (nbins == 0 || !isfinite(lo) || !isfinite(hi) || lo > hi)
 		return vx_err_set(e, VX_EUSAGE, "histogram: %zu bins over "
 		    "[%g, %g]", nbins, lo, hi);
 	memset(counts, 0, nbins * sizeof *counts);
-	scale = hi > lo ? (double)nbins / (hi - lo) : 0;
+	/* a product a sample where the scale is a double; a quotient where
+	 * the width is subnormal (its scale overflows), a quotient of
+	 * halves where the width itself overflows */
+	span = hi - lo;
+	scale = nb / span;
+	fast = span > 0 && isfinite(span) && isfinite(scale);
 	for (z = 0; z < g->dims[2]; z++)
 		for (y = 0; y < g->dims[1]; y++) {
 			size_t base = (size_t)(g->lay.off[1][y] + g->lay.off[2][z]);
@@ -117,13 +123,16 @@ vx_grid_histogram(const vx_grid *g, double lo, double hi, size_t nbins,
 			for (x = 0; x < g->dims[0]; x++) {
 				double v = vx_grid_get_index(g,
 				    base + (size_t)g->lay.off[0][x]);
+				double q;
 				size_t b;
 
 				if (!(v >= lo && v <= hi))   /* also NaN */
 					continue;
-				b = (size_t)((v - lo) * scale);
-				if (b >= nbins)
-					b = nbins - 1;
+				q = fast ? (v - lo) * scale : isfinite(span) ?
+				    (v - lo) / span * nb : (0.5 * v - 0.5 * lo) /
+				    (0.5 * hi - 0.5 * lo) * nb;
+				/* NaN (lo == hi: 0 / 0) is bin 0 */
+				b = q >= nb ? nbins - 1 : q >= 1 ? (size_t)q : 0;
 				counts[b]++;
 			}
 		}

@@ -9,8 +9,11 @@
 #define LUM_G 0.7152
 #define LUM_B 0.0722
 
-static const char *op_names[VX_TM_LAST] = { NULL, "clamp", "reinhard",
-    "aces" };
+static const vx_enum_name op_names[] = {
+	{ "clamp", VX_TM_CLAMP }, { "reinhard", VX_TM_REINHARD },
+	{ "aces", VX_TM_ACES }, { NULL, VX_TM_UNKNOWN }
+};
+const vx_enum vx_tonemap_op_enum = { "operator", op_names, "unknown", 0 };
 
 void
 vx_tonemap_defaults(vx_tonemap_opts *o)
@@ -19,23 +22,6 @@ vx_tonemap_defaults(vx_tonemap_opts *o)
 	o->op = VX_TM_CLAMP;
 	o->transfer = VX_TF_SRGB;
 	o->gamma = 2.2;
-}
-
-int
-vx_tonemap_op_parse(const char *s)
-{
-	int op;
-
-	for (op = VX_TM_UNKNOWN + 1; op < VX_TM_LAST; op++)
-		if (strcmp(s, op_names[op]) == 0)
-			return op;
-	return VX_TM_UNKNOWN;
-}
-
-const char *
-vx_tonemap_op_name(int op)
-{
-	return op > VX_TM_UNKNOWN && op < VX_TM_LAST ? op_names[op] : "unknown";
 }
 
 double

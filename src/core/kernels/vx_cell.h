@@ -32,6 +32,8 @@
 
 #include <math.h>
 
+#include "vx_enum.h"
+
 /* Root solvers: the accuracy knob of vx_cell_first_root.  All three isolate
  * the first root identically (same hit or miss decision, same bracket);
  * they differ only in how the bracket is refined.  0 is EXACT, the default. */
@@ -72,8 +74,10 @@ enum {
 	VX_NORMAL_RAY = 3        /* both vanished: -d normalized */
 };
 
-/* vx_cell_solver_name: "exact", "neubauer", "linear" ("unknown" otherwise).
- * vx_cell_solver_parse: the inverse; -1 for an unknown name. */
+/* The solvers' names (vx_enum.h): "exact", "neubauer", "linear"; -1 and
+ * "unknown" for the others.  vx_cell_solver_name, vx_cell_solver_parse:
+ * shorthands for vx_enum_str and vx_enum_val on vx_cell_solver_enum. */
+extern const vx_enum vx_cell_solver_enum;
 const char *vx_cell_solver_name(int solver);
 int vx_cell_solver_parse(const char *s);
 

@@ -12,6 +12,7 @@
 
 #include <stddef.h>
 
+#include "vx_enum.h"
 #include "vx_err.h"
 #include "vx_image.h"
 
@@ -45,6 +46,9 @@ enum {
 	                     -scale .. scale (blue: a below b) */
 	VX_DIFF_LAST
 };
+
+/* The maps' names (vx_enum.h): "abs", "signed". */
+extern const vx_enum vx_diff_map_enum;
 
 /* vx_image_diff: a false-color RGB picture of a - b into dst (initialized
  * by this call), already display-encoded (sRGB) for vx_image_png_write.

@@ -72,9 +72,15 @@ typedef int (*vx_iso_hit_fn)(void *ctx, const vx_iso_hit *h);
 
 /* vx_iso_trace: every crossing of the isovalues iso[0..niso) along o + t d
  * for t in [tmin, tmax], in order, handed to fn.  Returns 0 when the ray
- * ended, or fn's nonzero value.  st may be NULL.  Reentrant. */
+ * ended, or fn's nonzero value.  st may be NULL.  Reentrant.
+ * The isovalues are doubles and are drawn as given: a cell brackets iso
+ * when its corners' min <= iso <= max in double, and every root and touch
+ * is of the field minus the double iso.  (The macrocell walk and the cell
+ * mask take floats: they are given each iso rounded to the nearest float,
+ * which brackets whatever iso does, since rounding is monotone and the
+ * ranges' ends are floats: they visit a superset of the cells to solve.) */
 int vx_iso_trace(const vx_iso_tracer *tr, const double o[3],
-    const double d[3], double tmin, double tmax, const float *iso, int niso,
+    const double d[3], double tmin, double tmax, const double *iso, int niso,
     vx_iso_hit_fn fn, void *ctx, vx_iso_stats *st);
 
 /* vx_iso_trace_boxes: vx_iso_trace for t >= 0 whose walk goes through the
@@ -87,13 +93,13 @@ int vx_iso_trace(const vx_iso_tracer *tr, const double o[3],
  * counts the ray only when it entered a box. */
 int vx_iso_trace_boxes(const vx_iso_tracer *tr, const double o[3],
     const double d[3], const vx_cellbox *box, const uint32_t *ix,
-    size_t nbox, const vx_boxpick *pk, const float *iso, int niso,
+    size_t nbox, const vx_boxpick *pk, const double *iso, int niso,
     vx_iso_hit_fn fn, void *ctx, vx_iso_stats *st);
 
 /* vx_iso_first: the first hit in [tmin, tmax]; returns 1 and fills *hit, or
  * 0 for none. */
 int vx_iso_first(const vx_iso_tracer *tr, const double o[3],
-    const double d[3], double tmin, double tmax, const float *iso, int niso,
+    const double d[3], double tmin, double tmax, const double *iso, int niso,
     vx_iso_hit *hit, vx_iso_stats *st);
 
 /* vx_iso_normal: the unit world-space normal at a hit, facing against the

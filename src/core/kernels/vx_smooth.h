@@ -2,8 +2,9 @@
  * 2006, §4.1.1: texel normals from the gradient smoothed over 4x4x4
  * samples).  The smoothed field is sum f[i,j,k] B(x-i) B(y-j) B(z-k) with
  * B the uniform cubic B-spline (support [-2, 2]); at a point it reads the
- * 4x4x4 samples around it, indices clamped to the volume (edge samples
- * repeated). */
+ * 4x4x4 samples around it (3 along an axis where the point sits on a
+ * sample: the fourth has weight 0), indices clamped to the volume (edge
+ * samples repeated). */
 #ifndef VX_SMOOTH_H
 #define VX_SMOOTH_H
 

@@ -22,6 +22,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "vx_enum.h"
 #include "vx_err.h"
 #include "vx_image.h"
 
@@ -68,10 +69,9 @@ typedef struct vx_tonemap_stats {
  * (unused), no flattening, black background, no dither. */
 void vx_tonemap_defaults(vx_tonemap_opts *o);
 
-/* vx_tonemap_op_parse / vx_tonemap_op_name: "clamp", "reinhard", "aces";
- * parse returns VX_TM_UNKNOWN for anything else. */
-int vx_tonemap_op_parse(const char *s);
-const char *vx_tonemap_op_name(int op);
+/* The operators' names (vx_enum.h): "clamp", "reinhard", "aces";
+ * VX_TM_UNKNOWN and "unknown" for the others. */
+extern const vx_enum vx_tonemap_op_enum;
 
 /* vx_tonemap_curve: the operator on one clean value x >= 0 (or +inf) used
  * as luminance (reinhard) or per channel (clamp, aces).  For reinhard this

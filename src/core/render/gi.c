@@ -153,11 +153,9 @@ static int
 trace(const vx_gi *gi, const double o[3], const double d[3], double tmax,
     double iso, int high, first_ctx *x, vx_gi_stats *st)
 {
-	float isof = (float)iso;
-
 	x->found = 0;
 	x->high = high;
-	vx_iso_trace(&gi->tr, o, d, 0, tmax, &isof, 1, first_fn, x,
+	vx_iso_trace(&gi->tr, o, d, 0, tmax, &iso, 1, first_fn, x,
 	    st ? &st->iso : NULL);
 	return x->found;
 }

@@ -559,18 +559,18 @@ vx_mip_ray(const vx_grid *g, const vx_macro *m, vx_mip_work *w,
 
 		for (a = 0; a < 3; a++) {
 			p[a] = o[a] + ts * d[a];
-			c[a] = (int64_t)floor(p[a]);
-			if (c[a] > n[a] - 1)
-				c[a] = n[a] - 1;
-			if (c[a] < 0)
-				c[a] = 0;
+			/* floor(p) in [0, n - 1], clamped before the
+			 * conversion (a far camera's p can be NaN: cell 0) */
+			c[a] = !(p[a] >= 1) ? 0 : p[a] >= (double)(n[a] - 1) ?
+			    n[a] - 1 : (int64_t)p[a];
 			l[a] = p[a] - (double)c[a];
 		}
 		vx_grid_cell(g, c[0], c[1], c[2], v);
 		if (vx_cell_finite(v)) {
 			double s = vx_cell_trilinear(v, l);
 
-			x.lb = s - fabs(s) * 1e-9 - 1e-300;
+			if (isfinite(s))
+				x.lb = s - fabs(s) * 1e-9 - 1e-300;
 		}
 	}
 	col = -1;

@@ -47,8 +47,12 @@ walk_start(const double o[3], const double d[3], double ta,
 	int a;
 
 	for (a = 0; a < 3; a++) {
-		double p = o[a] + ta * d[a];
-		int64_t k = (int64_t)floor(p / (double)w[a]);
+		double p = o[a] + ta * d[a], q = floor(p / (double)w[a]);
+		/* q clamped before the conversion (NaN too: a far camera's p
+		 * can be NaN or beyond int64), to a range the clamps below
+		 * map as they would q itself */
+		int64_t k = !(q >= (double)(clo[a] - 1)) ? clo[a] - 1 :
+		    q > (double)(chi[a] + 1) ? chi[a] + 1 : (int64_t)q;
 
 		/* on a plane going down: the cell below */
 		if (d[a] < 0 && (double)(k * w[a]) == p)

@@ -195,10 +195,10 @@ pixel(const rc_shared *S, rc_local *L, double px, double py, double out[4],
 
 			vx_iso_trace_boxes(&sf->tr, oi, di, S->bins.box,
 			    S->bins.list + t, (size_t)(S->bins.off[bin + 1] - t),
-			    &pk, sf->iso, sf->niso, layer, &x, &L->ss.iso);
+			    &pk, sf->isod, sf->niso, layer, &x, &L->ss.iso);
 			L->binned += L->ss.iso.trav.rays == walked;
 		} else
-			vx_iso_trace(&sf->tr, oi, di, 0, INFINITY, sf->iso,
+			vx_iso_trace(&sf->tr, oi, di, 0, INFINITY, sf->isod,
 			    sf->niso, layer, &x, &L->ss.iso);
 	}
 out:

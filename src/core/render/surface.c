@@ -63,8 +63,8 @@ vx_surfaces_add(vx_surfaces *sf, double iso, int surface, double opacity,
 		    VX_ISO_MAX);
 		return -1;
 	}
+	sf->isod[n] = iso;
 	sf->iso[n] = (float)iso;
-	sf->isod[n] = sf->iso[n];
 	sf->surf[n] = surface;
 	sf->opacity[n] = opacity;
 	sf->niso = n + 1;
@@ -168,7 +168,7 @@ vx_surf_trace(const vx_surfaces *sf, const double ow[3], const double dw[3],
 		    sf->niso, 0, tmax, trace_mesh_hit, &x, &st->tet);
 	vx_world_to_index(sf->g, ow, oi);
 	vx_world_to_index_dir(sf->g, dw, di);
-	return vx_iso_trace(&sf->tr, oi, di, 0, tmax, sf->iso, sf->niso,
+	return vx_iso_trace(&sf->tr, oi, di, 0, tmax, sf->isod, sf->niso,
 	    trace_volume_hit, &x, &st->iso);
 }
 
@@ -284,7 +284,7 @@ visibility(const vx_surfaces *S, const vx_hit *h, const double Ld[3],
 		for (a = 0; a < 3; a++)
 			oi[a] = h->pi[a] + S->offset * ni[a];
 		vx_world_to_index_dir(S->g, Ld, di);
-		vx_iso_trace(&S->tr, oi, di, 0, dist, S->iso, S->niso,
+		vx_iso_trace(&S->tr, oi, di, 0, dist, S->isod, S->niso,
 		    shadow_hit, &x, &st->iso);
 	}
 	return x.T;
@@ -393,7 +393,7 @@ path_traced(const vx_surfaces *S, const vx_hit *h, const vx_material *m,
 	const vx_scene *s = S->s;
 	const vx_gi *gi = S->gi;
 	vx_gi_stats gs;
-	double E[3] = { 0, 0, 0 }, D[3], isov = S->iso[h->iso];
+	double E[3] = { 0, 0, 0 }, D[3], isov = S->isod[h->iso];
 	int high = !h->entering;     /* the eye's side is lit */
 	uint64_t stream = 0xcbf29ce484222325u, bits;
 	int a, l;
@@ -435,7 +435,7 @@ baked(const vx_surfaces *S, const vx_hit *h, const vx_material *m,
 		return;
 	}
 	if (!vx_irr_lookup(S->irr, h->pi, S->irr_interp, S->g,
-	    S->iso[h->iso], E))
+	    S->isod[h->iso], E))
 		st->irr_missing++;
 	lambert_irr(m, alb, E, col);
 }

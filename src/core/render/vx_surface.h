@@ -56,8 +56,11 @@ typedef struct vx_surfaces {
 	                            (mesh) */
 	/* the isovalues */
 	int niso;
-	float iso[VX_ISO_MAX];   /* as the volume's tracer takes them */
-	double isod[VX_ISO_MAX]; /* the same values, as the mesh's takes them */
+	double isod[VX_ISO_MAX]; /* drawn isovalues, as given (the tracers
+	                            take them so) */
+	float iso[VX_ISO_MAX];   /* each rounded to float: the cell mask's
+	                            and bins' bracket tests (a superset of
+	                            isod's, vx_iso.h) */
 	int surf[VX_ISO_MAX];    /* the scene surface of each (its material) */
 	double opacity[VX_ISO_MAX];   /* light lost crossing it, 0..1 */
 	/* shading: the scene (lights, ambient, materials), the plan (which

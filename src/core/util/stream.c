@@ -1,8 +1,8 @@
 /* stream.c: read and write the chunked voxlux stream; text headers; bodies. */
 #include "vx_stream.h"
+#include "vx_scan.h"
 
 #include <errno.h>
-#include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -755,49 +755,12 @@ vx_hdr_parse(vx_hdr *h, const unsigned char *p, size_t n, size_t *body,
 	return vx_err_set(e, VX_EDATA, "header: no empty line ends it");
 }
 
-/* number_end: the end of the number token at s, or NULL if the token (up
- * to a space, a tab or the end) is not in the grammar of formats/stream.md:
- *   integer  [+-]?[0-9]+
- *   real     [+-]?([0-9]+(\.[0-9]*)?|\.[0-9]+)([eE][+-]?[0-9]+)?
- * strtod alone would also take hex, "inf" and "nan" (and the locale's
- * comma, but vx_strtod reads in the C locale). */
-static const char *
-number_end(const char *s, int isint)
-{
-	size_t d = 0;
-
-	if (*s == '+' || *s == '-')
-		s++;
-	for (; *s >= '0' && *s <= '9'; s++)
-		d++;
-	if (!isint) {
-		if (*s == '.')
-			for (s++; *s >= '0' && *s <= '9'; s++)
-				d++;
-		if (d > 0 && (*s == 'e' || *s == 'E')) {
-			size_t x = 0;
-
-			s++;
-			if (*s == '+' || *s == '-')
-				s++;
-			for (; *s >= '0' && *s <= '9'; s++)
-				x++;
-			if (x == 0)
-				return NULL;
-		}
-	}
-	if (d == 0 || (*s != '\0' && *s != ' ' && *s != '\t'))
-		return NULL;
-	return s;
-}
-
 static int
 hdr_numbers(const vx_hdr *h, const char *key, size_t count, int isint,
     int64_t *oi, double *of, int *found, vx_err *e)
 {
-	const char *v = vx_hdr_get(h, key), *s, *t;
-	char *end;
-	size_t i;
+	const char *v = vx_hdr_get(h, key), *s;
+	size_t i, n;
 
 	if (v == NULL) {
 		if (found != NULL) {
@@ -807,21 +770,14 @@ hdr_numbers(const vx_hdr *h, const char *key, size_t count, int isint,
 		return vx_err_set(e, VX_EDATA, "header: missing key '%s'", key);
 	}
 	s = v;
-	for (i = 0; i < count; i++) {
+	for (i = 0; i < count; i++) {      /* vx_scan.h's grammar */
 		while (*s == ' ' || *s == '\t')
 			s++;
-		if ((t = number_end(s, isint)) == NULL)
+		n = strcspn(s, " \t");
+		if (isint ? vx_num_i64(s, n, INT64_MIN, INT64_MAX, &oi[i]) :
+		    vx_num_f64(s, n, 0, &of[i]))
 			goto bad;
-		errno = 0;
-		if (isint)
-			oi[i] = strtoll(s, &end, 10);
-		else
-			of[i] = vx_strtod(s, &end);
-		/* overflow is an error; underflow rounds towards zero, so a
-		 * subnormal written with %.17g reads back */
-		if (end != t || (errno == ERANGE && (isint || isinf(of[i]))))
-			goto bad;
-		s = end;
+		s += n;
 	}
 	while (*s == ' ' || *s == '\t')
 		s++;

@@ -23,11 +23,36 @@
 
 #ifdef _OPENMP
 #include <omp.h>
+#include <pthread.h>
 #endif
 
 const char *tool_name = "voxlux";
 static char history[8192];
 static tool_out *live_out;   /* removed on failure exits */
+static char notes[2048];     /* tool_note's, printed by tool_finish */
+static size_t nnotes;
+/* the temporary a signal handler removes (a copy: the handler reads no
+ * tool_out); armed while one exists */
+static char sig_tmp[4096];
+static volatile sig_atomic_t sig_armed;
+
+/* hold_fd: a closed standard descriptor fd held by /dev/null, opened so
+ * that using fd still fails (EBADF), as it would closed */
+static void
+hold_fd(int fd, int flags)
+{
+	int h;
+
+	if (fcntl(fd, F_GETFD) != -1 || errno != EBADF)
+		return;
+	if ((h = open("/dev/null", flags)) < 0)
+		return;
+	if (h != fd) {      /* the lowest free number, so fd unless a lower
+	                       one was closed too (then it is held first) */
+		dup2(h, fd);
+		close(h);
+	}
+}
 
 void
 tool_init(const char *name, int argc, char **argv)
@@ -35,6 +60,9 @@ tool_init(const char *name, int argc, char **argv)
 	size_t k;
 	int i;
 
+	hold_fd(STDIN_FILENO, O_WRONLY);
+	hold_fd(STDOUT_FILENO, O_RDONLY);
+	hold_fd(STDERR_FILENO, O_RDONLY);
 	tool_name = name;
 	opterr = 0;     /* getopt's own messages would make a second line */
 	k = (size_t)snprintf(history, sizeof history, "%s %s", name, VX_VERSION);
@@ -49,6 +77,30 @@ const char *
 tool_history_line(void)
 {
 	return history;
+}
+
+void
+tool_note(const char *fmt, ...)
+{
+	va_list ap;
+	int n;
+
+	if (nnotes >= sizeof notes - 1)
+		return;
+	n = snprintf(notes + nnotes, sizeof notes - nnotes, "%s: note: ",
+	    tool_name);
+	if (n > 0 && (size_t)n < sizeof notes - nnotes) {
+		nnotes += (size_t)n;
+		va_start(ap, fmt);
+		n = vsnprintf(notes + nnotes, sizeof notes - nnotes, fmt, ap);
+		va_end(ap);
+		if (n > 0)
+			nnotes += (size_t)n;
+	}
+	if (nnotes > sizeof notes - 2)
+		nnotes = sizeof notes - 2;
+	notes[nnotes++] = '\n';
+	notes[nnotes] = '\0';
 }
 
 static _Noreturn void
@@ -151,6 +203,17 @@ tool_parse_doubles(const char *opt, const char *s, double *out, int n)
 		tool_fail(VX_EUSAGE, "%s: '%s': expected %d numbers", opt, s, n);
 }
 
+int
+tool_parse_enum(const char *opt, const vx_enum *en, const char *s)
+{
+	vx_err e;
+	int v;
+
+	if (vx_enum_parse(en, s, &v, VX_EUSAGE, &e) != 0)
+		tool_fail(e.code, "%s: %s", opt, e.msg);
+	return v;
+}
+
 /* pipe_widen: a pipe's buffer as large as an unprivileged process may make
  * it (1 MiB by default, /proc/sys/fs/pipe-max-size): a 126 MB stream then
  * crosses in 1 MiB turns instead of 64 KiB ones.  Not a pipe, or not
@@ -192,6 +255,54 @@ tool_read_stream(vx_stream *s, const char *path)
 	}
 }
 
+/* on_signal: remove the armed temporary, then die of sig as the run
+ * would have without the handler (async-signal-safe calls only) */
+static void
+on_signal(int sig)
+{
+	if (sig_armed)
+		unlink(sig_tmp);
+	signal(sig, SIG_DFL);
+	raise(sig);
+}
+
+/* catch_signals: on_signal for the signals that end a run (those the
+ * caller ignored stay ignored), once; SIGXFSZ ignored: writes beyond the
+ * file size limit fail with EFBIG instead, and the error path cleans up */
+static void
+catch_signals(void)
+{
+	static const int sigs[] = { SIGHUP, SIGINT, SIGQUIT, SIGTERM, SIGPIPE };
+	static int done;
+	struct sigaction sa, old;
+	size_t i;
+
+	if (done)
+		return;
+	done = 1;
+	memset(&sa, 0, sizeof sa);
+	sigemptyset(&sa.sa_mask);
+	for (i = 0; i < sizeof sigs / sizeof sigs[0]; i++)
+		sigaddset(&sa.sa_mask, sigs[i]);
+	sa.sa_handler = on_signal;
+	for (i = 0; i < sizeof sigs / sizeof sigs[0]; i++)
+		if (sigaction(sigs[i], NULL, &old) == 0 &&
+		    old.sa_handler != SIG_IGN)
+			sigaction(sigs[i], &sa, NULL);
+#ifdef SIGXFSZ
+	signal(SIGXFSZ, SIG_IGN);
+#endif
+}
+
+/* arm: the handler's copy of o's temporary (disarmed while it changes) */
+static void
+arm(const tool_out *o)
+{
+	sig_armed = 0;
+	memcpy(sig_tmp, o->tmp, sizeof sig_tmp);
+	sig_armed = 1;
+}
+
 void
 tool_out_open(tool_out *o, const char *path)
 {
@@ -217,7 +328,17 @@ tool_out_open(tool_out *o, const char *path)
 		return;
 	}
 	snprintf(o->tmp, sizeof o->tmp, "%s.tmpXXXXXX", path);
-	if ((fd = mkstemp(o->tmp)) < 0)
+	catch_signals();
+	/* the signals blocked from mkstemp to arm: a temporary is never
+	 * made unseen by the handler */
+	sigset_t all, prev;
+	sigfillset(&all);
+	sigprocmask(SIG_BLOCK, &all, &prev);
+	fd = mkstemp(o->tmp);
+	if (fd >= 0)
+		arm(o);
+	sigprocmask(SIG_SETMASK, &prev, NULL);
+	if (fd < 0)
 		tool_fail(VX_ECANTCREAT, "%s: %s", path, strerror(errno));
 	/* mkstemp makes the file 0600; give it the mode open(2) would */
 	um = umask(0);
@@ -227,6 +348,7 @@ tool_out_open(tool_out *o, const char *path)
 
 		close(fd);
 		unlink(o->tmp);
+		sig_armed = 0;
 		tool_fail(VX_ECANTCREAT, "%s: %s", path, strerror(err));
 	}
 	live_out = o;
@@ -239,8 +361,10 @@ tool_out_abort(tool_out *o)
 		return;
 	fclose(o->f);
 	o->f = NULL;
-	if (!o->is_direct)
+	if (!o->is_direct) {
 		unlink(o->tmp);
+		sig_armed = 0;
+	}
 	if (live_out == o)
 		live_out = NULL;
 }
@@ -277,6 +401,7 @@ tool_out_close(tool_out *o)
 
 		o->f = NULL;
 		unlink(o->tmp);
+		sig_armed = 0;
 		tool_fail(VX_EIO, "write %s: %s", o->path, strerror(err));
 	}
 	o->f = NULL;
@@ -284,8 +409,12 @@ tool_out_close(tool_out *o)
 		int err = errno;
 
 		unlink(o->tmp);
+		sig_armed = 0;
 		tool_fail(VX_ECANTCREAT, "%s: %s", o->path, strerror(err));
 	}
+	/* disarmed after the rename: a signal before it still removes the
+	 * temporary; one after finds it gone */
+	sig_armed = 0;
 }
 
 void
@@ -308,6 +437,10 @@ tool_write_stream(vx_stream *s, const char *path)
 int
 tool_finish(void)
 {
+	if (nnotes > 0) {
+		fputs(notes, stderr);
+		nnotes = 0;
+	}
 	if (fflush(stdout) != 0 || ferror(stdout))
 		tool_fail(VX_EIO, "write <stdout>: %s", strerror(errno));
 	if (fclose(stdout) != 0)
@@ -315,15 +448,119 @@ tool_finish(void)
 	return 0;
 }
 
+#ifdef _OPENMP
+/* The thread probe: threads that wait until released, so that all exist
+ * at once, as OpenMP's team will. */
+typedef struct probe {
+	pthread_mutex_t mu;
+	pthread_cond_t cv;
+	int go;
+} probe;
+
+static void *
+probe_wait(void *arg)
+{
+	probe *p = arg;
+
+	pthread_mutex_lock(&p->mu);
+	while (!p->go)
+		pthread_cond_wait(&p->cv, &p->mu);
+	pthread_mutex_unlock(&p->mu);
+	return NULL;
+}
+
+/* stack_size: OMP_STACKSIZE (or GOMP_STACKSIZE) as OpenMP reads it: a
+ * number with an optional B, K, M or G (K when none); 0 when unset or
+ * not understood (the default stack then, as OpenMP's) */
+static size_t
+stack_size(void)
+{
+	const char *s = getenv("OMP_STACKSIZE");
+	unsigned long long v, mul = 1024;
+	char *end;
+
+	if (s == NULL && (s = getenv("GOMP_STACKSIZE")) == NULL)
+		return 0;
+	errno = 0;
+	v = strtoull(s, &end, 10);
+	if (end == s || errno != 0)
+		return 0;
+	while (*end == ' ')
+		end++;
+	switch (*end) {
+	case 'b': case 'B': mul = 1; end++; break;
+	case 'k': case 'K': mul = 1024; end++; break;
+	case 'm': case 'M': mul = 1024 * 1024; end++; break;
+	case 'g': case 'G': mul = 1024ull * 1024 * 1024; end++; break;
+	}
+	if (*end != '\0' || v > SIZE_MAX / mul)
+		return 0;
+	return (size_t)(v * mul);
+}
+
+/* probe_threads: how many of want threads (the caller's included) can
+ * exist at once: want - 1 are made with OpenMP's stack size and released;
+ * *err the first failure's error number */
+static int
+probe_threads(int want, int *err)
+{
+	pthread_t *th;
+	pthread_attr_t at;
+	probe p;
+	size_t ss = stack_size();
+	int n = 1, i;
+
+	*err = 0;
+	if (want <= 1)
+		return want < 1 ? 1 : want;
+	if ((th = malloc((size_t)(want - 1) * sizeof *th)) == NULL) {
+		*err = ENOMEM;
+		return 1;
+	}
+	pthread_mutex_init(&p.mu, NULL);
+	pthread_cond_init(&p.cv, NULL);
+	p.go = 0;
+	pthread_attr_init(&at);
+	if (ss > 0)
+		pthread_attr_setstacksize(&at, ss);
+	for (i = 0; i < want - 1; i++) {
+		if ((*err = pthread_create(&th[i], &at, probe_wait, &p)) != 0)
+			break;
+		n++;
+	}
+	pthread_mutex_lock(&p.mu);
+	p.go = 1;
+	pthread_cond_broadcast(&p.cv);
+	pthread_mutex_unlock(&p.mu);
+	for (i = 0; i < n - 1; i++)
+		pthread_join(th[i], NULL);
+	pthread_attr_destroy(&at);
+	pthread_cond_destroy(&p.cv);
+	pthread_mutex_destroy(&p.mu);
+	free(th);
+	return n;
+}
+#endif
+
 int
 tool_threads(long j)
 {
 #ifdef _OPENMP
-	int n = j <= 0 ? omp_get_num_procs() : (int)j;
+	int want = j <= 0 ? omp_get_num_procs() : (int)j, n, err;
 
+	n = probe_threads(want, &err);
+	if (n < want && j > 0)
+		tool_fail(VX_ENOMEM, "-j %ld: cannot start %ld threads: %s", j,
+		    j, strerror(err));
 	/* every parallel region of the run, not only those given n: -j N
 	 * bounds the threads (a batch scheduler granted N cores) */
 	omp_set_num_threads(n);
+	/* OpenMP's team made now, while the probe's stacks are free: later
+	 * regions of at most n threads take it as it is */
+#pragma omp parallel num_threads(n)
+	{
+		(void)0;
+	}
 	return n;
 #else
 	(void)j;
@@ -385,6 +622,31 @@ tool_scene_opts_load(vx_scene *s, const tool_scene_opts *so,
 	tool_scene_load(s, so->file, st, so->n, so->name, so->val);
 }
 
+/* scene_paths: a relative file name in a scene file names a file beside
+ * the scene: prefix the scene's directory (formats/scene.md). */
+static void
+scene_paths(vx_scene *s, const char *file)
+{
+	const char *slash = strrchr(file, '/');
+	size_t dl = slash != NULL ? (size_t)(slash - file) + 1 : 0;
+
+	if (dl == 0)
+		return;
+	for (int k = 0; k < s->nlight; k++) {
+		vx_light *l = &s->light[k];
+		size_t fl = strlen(l->file);
+
+		if (l->type != VX_LIGHT_ENVIRONMENT || l->file[0] == '/')
+			continue;
+		if (dl + fl >= sizeof l->file)
+			tool_fail(VX_EDATA, "%s: light %d: file name longer than "
+			    "%zu bytes with the scene's directory", file, k + 1,
+			    sizeof l->file - 1);
+		memmove(l->file + dl, l->file, fl + 1);
+		memcpy(l->file, file, dl);
+	}
+}
+
 void
 tool_scene_load(vx_scene *s, const char *file, const vx_stream *st, int n,
     const char *const *names, const char *const *vals)
@@ -404,6 +666,7 @@ tool_scene_load(vx_scene *s, const char *file, const vx_stream *st, int n,
 			tool_fail_err(&e);
 		}
 		fclose(f);
+		scene_paths(s, file);
 	} else if (vx_scene_from_stream(s, st, NULL, &e) != 0)
 		tool_fail_err(&e);
 	for (i = 0; i < n; i++)
@@ -452,9 +715,9 @@ tool_stream_keep(vx_stream *out, vx_stream *in, const char *const *drop)
 static void
 build_note(int status, const char *what, const char *name, const char *them)
 {
-	fprintf(stderr, "%s: note: %s %s '%s'; building %s (run macrocell(1) "
-	    "in the pipeline to keep %s)\n", tool_name, status ==
-	    VX_MACRO_STALE ? "stale" : "no", what, name, them, them);
+	tool_note("%s %s '%s'; built %s (run macrocell(1) in the pipeline to "
+	    "keep %s)", status == VX_MACRO_STALE ? "stale" : "no", what, name,
+	    them, them);
 }
 
 void

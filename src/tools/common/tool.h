@@ -9,13 +9,23 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "vx_enum.h"
 #include "vx_err.h"
 #include "vx_stream.h"
 
 extern const char *tool_name;
 
-/* tool_init: remember the program name and the command line (for history). */
+/* tool_init: remember the program name and the command line (for history).
+ * A standard descriptor (0, 1, 2) that the caller left closed is held by
+ * /dev/null opened the other way round (write-only for 0, read-only for 1
+ * and 2): files the run opens never take its number, a run that does not
+ * use it succeeds (closing an unused stdout is no error), and one that
+ * reads or writes it still fails with EBADF. */
 void tool_init(const char *name, int argc, char **argv);
+
+/* tool_note: a note for standard error ("name: note: ..."), kept until
+ * tool_finish prints it: a run that fails prints only its error line. */
+void tool_note(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 
 /* tool_fail: print "name: message" and exit with code. */
 _Noreturn void tool_fail(int code, const char *fmt, ...)
@@ -68,6 +78,9 @@ double tool_parse_double(const char *opt, const char *s, double lo, double hi);
 long tool_parse_long(const char *opt, const char *s, long lo, long hi);
 /* tool_parse_doubles: exactly n comma- or space-separated numbers. */
 void tool_parse_doubles(const char *opt, const char *s, double *out, int n);
+/* tool_parse_enum: the value s names in en; else exits 64 with "name: opt:
+ * unknown WHAT 'S' (one of: ...)". */
+int tool_parse_enum(const char *opt, const vx_enum *en, const char *s);
 
 /* tool_read_stream: read a whole stream from path ("-" is stdin); exits on
  * error.  Refuses a terminal on stdin with a usage hint. */
@@ -84,7 +97,11 @@ const char *tool_history_line(void);
  * an existing path that is not a regular file, such as /dev/null or a FIFO,
  * is written directly, since renaming over it would replace the node);
  * tool_out_close flushes, checks, closes and renames into place, or removes
- * the temporary and exits on error.  tool_out_abort removes the temporary. */
+ * the temporary and exits on error.  tool_out_abort removes the temporary.
+ * While a temporary exists, SIGHUP, SIGINT, SIGQUIT, SIGTERM and SIGPIPE
+ * remove it before the signal ends the run as it would have (those the
+ * caller ignored stay ignored); SIGXFSZ is ignored, so that a write beyond
+ * the file size limit fails with EFBIG: one line, exit 74, no temporary. */
 typedef struct tool_out {
 	FILE *f;
 	char path[4096];
@@ -98,7 +115,8 @@ void tool_out_open(tool_out *o, const char *path);
 void tool_out_close(tool_out *o);
 void tool_out_abort(tool_out *o);
 
-/* tool_finish: check stdout for write errors before exiting 0. */
+/* tool_finish: print the notes (tool_note), check stdout for write errors
+ * before exiting 0. */
 int tool_finish(void);
 
 /* tool_scene_load: the scene from FILE (when not NULL), else the stream's,
@@ -180,7 +198,13 @@ void tool_gi_setup(struct vx_gi *gi, const struct vx_scene *s,
 
 /* tool_threads: number of threads for -j N (0: all cores), made the
  * default of every parallel region of the run (tonemapping, sample CRCs):
- * -j N bounds the run's threads, not only the frame's. */
+ * -j N bounds the run's threads, not only the frame's.  The threads are
+ * started here, once (OpenMP keeps them for every later region), after a
+ * probe that they can be: OpenMP's own failure to create one ends the
+ * process with a bare message.  Where fewer can be made than asked, an
+ * explicit -j N fails (exit 71, VX_EOSERR: "-j N: cannot start N threads:
+ * why") and the default (j <= 0) takes as many as could be made (at least
+ * one: the calling thread). */
 int tool_threads(long j);
 
 #endif
