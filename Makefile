@@ -99,11 +99,11 @@ $(BUILD)/%.o: %.cc Makefile
 	$(CXX) $(CPPFLAGS) $(CXXFLAGS) -c -o $@ $<
 
 # The isosurface kernels (the hierarchy, its walks and cell masks, cells,
-# the render loop, the camera's rays) at -O3, after any CFLAGS: 8% fewer instructions a frame, the same
-# bits (no fast-math, and -std=c11 keeps -ffp-contract=off).  -fno-math-errno and
-# -fno-trapping-math change no result either (these files never read errno,
-# the FP flags or traps): sqrt needs no errno path, and floating-point
-# selects may be made without branches; 2-3% less time a frame.  Not under
+# the render loop, the camera's rays) at -O3 -fno-math-errno
+# -fno-trapping-math, after any CFLAGS: the same bits as at -O2 (no
+# fast-math, -std=c11 keeps -ffp-contract=off, and these files read neither
+# errno nor the FP flags and enable no traps), with no errno path for sqrt
+# and floating-point selects without branches (README, "Rules").  Not under
 # the sanitizers.
 HOT_OBJ := $(addprefix $(BUILD)/src/core/,kernels/macro.o kernels/macrowalk.o \
 	kernels/macrobox.o kernels/cellmask.o kernels/iso.o kernels/cell.o \

@@ -1,9 +1,10 @@
 #!/bin/sh
 # examples/demo.sh: the README's first command (`make deps demo`).
 # Renders a real MRI head (Debian's mricron-data: the Colin Holmes "ch2" T1
-# template, 181x217x181 u8) as a globally illuminated skin isosurface (sky
-# and key light, shadows, one bounce, from an irradiance volume baked lazily
-# for the texels the view reads), the same skin with local Phong shading
+# template, 181x217x181 u8) as a globally illuminated skin isosurface (an
+# HDR environment from Debian's blender-data and a key light, shadows, one
+# bounce, from an irradiance volume baked lazily for the texels the view
+# reads), the same skin with local Phong shading
 # and shadows, and its maximum-intensity projection, printing what each
 # spent.
 set -eu

@@ -12,8 +12,8 @@
  * if the pair's alu loops are slower than alone while the div loops are
  * not, the two vCPUs are sharing one core's execution units (neither loop
  * reads memory, so caches and memory bandwidth play no part).  voxlux's
- * frame is like the alu loop (0.5 G instructions in about 50 ms); see
- * corepair.sh and RESULTS.md, "Session 9". */
+ * frame is like the alu loop (a dense stream of instructions); see
+ * corepair.sh and RESULTS.md, "Two threads". */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>

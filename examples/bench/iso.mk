@@ -60,7 +60,7 @@ iso: $(ISOBENCH) $(EMBREE) $(foreach d,$(ISO_DATASETS),$(OUT)/$(d).nrrd $(OUT)/$
 	cd $(RESULTS) && cat $$(ls frames.md latency.md table3.md sizes.md pictures.md 2>/dev/null) > iso.md
 
 # alone against side by side (coreprobe's two loops, voxlux, Embree): whether
-# the two vCPUs share a core's execution units (RESULTS.md, Session 9); after
+# the two vCPUs share a core's execution units (RESULTS.md, "Two threads"); after
 # `iso` has made the mesh
 corepair: $(ISOBENCH) $(EMBREE) $(OUT)/ch2-b.vx
 	sh corepair.sh $(RUNS)

@@ -239,7 +239,7 @@ class Bench:
               "minute; against the pair = T1 pair / (2 x T2), the median of the "
               "per-round ratios (100%: "
               "the threads lose nothing to each other; the machine's own slowdown of a "
-              "second busy vCPU, RESULTS.md Session 9, is in T1 pair too); efficiency = "
+              "second busy vCPU, RESULTS.md \"Two threads\", is in T1 pair too); efficiency = "
               "T1 / (2 x T2) as in Table 2.", "",
               "| case | voxlux T1 ms | T1 pair ms | T2 ms | efficiency | against the pair | Embree T1 ms | T1 pair ms | T2 ms | efficiency | against the pair |",
               "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]

@@ -163,7 +163,7 @@ parse(opts *o, int argc, char **argv)
 				tool_opt_other(ch, usage, argv);
 		}
 	}
-	o->in = tool_input(argc, argv, usage);
+	o->in = tool_opt_input(argc, argv, usage);
 	if (o->all && o->has_range)
 		tool_usage_fail(usage, "--all and --iso-range exclude each other");
 }

@@ -62,7 +62,7 @@ parse_args(opts *o, int argc, char **argv)
 	if (o->linear && o->bricks)
 		tool_usage_fail(usage, "--bricks and --linear exclude each "
 		    "other");
-	o->in = tool_input(argc, argv, usage);
+	o->in = tool_opt_input(argc, argv, usage);
 }
 
 /* bricks_spec: "--bricks AxBxC,DxExF" as the layout string "bricked AxBxC

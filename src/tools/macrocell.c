@@ -80,7 +80,7 @@ parse_args(opts *o, int argc, char **argv)
 			tool_opt_other(ch, usage, argv);
 		}
 	}
-	o->in = tool_input(argc, argv, usage);
+	o->in = tool_opt_input(argc, argv, usage);
 }
 
 /* find_owned: the index of the MCEL (TLEF) chunk of volume (mesh) `name`,

@@ -97,7 +97,7 @@ parse(opts *o, int argc, char **argv)
 				tool_opt_other(c, usage, argv);
 		}
 	}
-	o->in = tool_input(argc, argv, usage);
+	o->in = tool_opt_input(argc, argv, usage);
 }
 
 static void

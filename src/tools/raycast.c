@@ -124,7 +124,7 @@ parse(opts *o, int argc, char **argv)
 				tool_opt_other(c, usage, argv);
 		}
 	}
-	o->in = tool_input(argc, argv, usage);
+	o->in = tool_opt_input(argc, argv, usage);
 }
 
 /* load_scene: the stream's scene, replaced by --scene, then the options. */
@@ -251,7 +251,7 @@ lazy_mark(void *ctx, int64_t i, int64_t j, int64_t k)
  * defaults): a collecting pass over the view, then the missing texels
  * baked.  Prints what it spent with --stats. */
 static void
-lazy_bake(vx_irrvol *irr, int have, const vx_scene *s, const vx_grid *g,
+lazy_bake(vx_irrvol *irr, int have, vx_scene *s, const vx_grid *g,
     const vx_macro *m, const vx_plan *plan, const vx_grid *const *tex,
     vx_raycast_opts *ro, int nthr, int stats)
 {

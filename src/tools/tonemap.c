@@ -135,11 +135,13 @@ parse(opts *o, int argc, char **argv)
 			o->peak = tool_parse_double("--peak", optarg, 1e-30, 1e30);
 			break;
 		case O_JSON: o->json = 1; break;
+		case O_HELP:
+			tool_opt_other('h', usage, argv);
 		default:
-			tool_opt_other(c == O_HELP ? 'h' : c, usage, argv);
+			tool_opt_other(c, usage, argv);
 		}
 	}
-	o->in = tool_input(argc, argv, usage);
+	o->in = tool_opt_input(argc, argv, usage);
 	if (ntf > 1)
 		tool_fail(VX_EUSAGE, "--srgb, --gamma and --linear exclude "
 		    "each other");
@@ -278,22 +280,13 @@ load(input *in, const char *path, const char *name, int allow_png)
 
 /* ---- outputs ---- */
 
+/* refuse_tty: a picture is not written to a terminal. */
 static void
-write_pfm(const char *path, const vx_image *img)
+refuse_tty(const char *path)
 {
-	vx_err e = { 0, "" };
-	tool_out o;
-
 	if (strcmp(path, "-") == 0 && isatty(STDOUT_FILENO))
 		tool_fail(VX_EUSAGE, "standard output is a terminal: give -o "
 		    "FILE or redirect");
-	tool_out_open(&o, path);
-	if (vx_pfm_write(img, o.f, &e) != 0) {
-		tool_out_abort(&o);
-		vx_err_push(&e, "%s", o.path);
-		tool_fail_err(&e);
-	}
-	tool_out_close(&o);
 }
 
 static double
@@ -511,7 +504,8 @@ main(int argc, char **argv)
 
 		if (o.pfm) {
 			scene(&out, &in.img, &o);
-			write_pfm(path, &out);
+			refuse_tty(path);
+			tool_write_pfm(path, &out);
 		} else {
 			display(&out, &in.img, &o, o.tm.flatten, &st);
 			tool_write_png(path, &out, o.bits, png_gamma(&o.tm),

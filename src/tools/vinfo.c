@@ -92,7 +92,7 @@ parse_args(opts *o, int argc, char **argv)
 			tool_opt_other(ch, usage, argv);
 		}
 	}
-	o->in = tool_input(argc, argv, usage);
+	o->in = tool_opt_input(argc, argv, usage);
 }
 
 /* ---- text output helpers ---- */
@@ -359,23 +359,45 @@ decode_mcel(const vx_stream *s, const vx_chunk *c, mcel_info *mi, vx_err *e)
 	return 0;
 }
 
+/* text_levels, json_levels: a hierarchy's levels above its leaves and its
+ * root range (macrocells and leaf grids alike). */
 static void
-text_mcel(const mcel_info *mi)
+text_levels(const vx_macro *mc)
 {
 	int l;
 
+	for (l = 1; l <= mc->nlev; l++)
+		printf("    level %d: %dx%dx%d of level %d, %lld x %lld x %lld "
+		    "cells\n", l, mc->size[l][0], mc->size[l][1],
+		    mc->size[l][2], l - 1, (long long)mc->dims[l][0],
+		    (long long)mc->dims[l][1], (long long)mc->dims[l][2]);
+	printf("    root range: %.9g %.9g\n", (double)mc->root[0],
+	    (double)mc->root[1]);
+}
+
+static void
+json_levels(const vx_macro *mc)
+{
+	double r[2] = { mc->root[0], mc->root[1] };
+	int l;
+
+	printf("\"sizes\":[");
+	for (l = 1; l <= mc->nlev; l++)
+		printf("%s[%d,%d,%d]", l > 1 ? "," : "", mc->size[l][0],
+		    mc->size[l][1], mc->size[l][2]);
+	printf("],\"root\":");
+	json_nums(r, 2);
+}
+
+static void
+text_mcel(const mcel_info *mi)
+{
 	printf("  macrocells: %d level%s over %lld x %lld x %lld %s leaves\n",
 	    mi->m.nlev, mi->m.nlev == 1 ? "" : "s",
 	    (long long)mi->m.dims[0][0], (long long)mi->m.dims[0][1],
 	    (long long)mi->m.dims[0][2],
 	    mi->m.explicit_leaves ? "explicit" : "cell");
-	for (l = 1; l <= mi->m.nlev; l++)
-		printf("    level %d: %dx%dx%d of level %d, %lld x %lld x %lld "
-		    "cells\n", l, mi->m.size[l][0], mi->m.size[l][1],
-		    mi->m.size[l][2], l - 1, (long long)mi->m.dims[l][0],
-		    (long long)mi->m.dims[l][1], (long long)mi->m.dims[l][2]);
-	printf("    root range: %.9g %.9g\n", (double)mi->m.root[0],
-	    (double)mi->m.root[1]);
+	text_levels(&mi->m);
 	if (!mi->m.explicit_leaves) {
 		printf("    volume: ");
 		put_str(mi->m.name);
@@ -386,19 +408,12 @@ text_mcel(const mcel_info *mi)
 static void
 json_mcel(const mcel_info *mi)
 {
-	double r[2] = { mi->m.root[0], mi->m.root[1] };
-	int l;
-
 	printf(",\"macrocells\":{\"levels\":%d,\"leaf_dims\":[%lld,%lld,%lld],"
-	    "\"explicit\":%s,\"sizes\":[", mi->m.nlev,
+	    "\"explicit\":%s,", mi->m.nlev,
 	    (long long)mi->m.dims[0][0], (long long)mi->m.dims[0][1],
 	    (long long)mi->m.dims[0][2],
 	    mi->m.explicit_leaves ? "true" : "false");
-	for (l = 1; l <= mi->m.nlev; l++)
-		printf("%s[%d,%d,%d]", l > 1 ? "," : "", mi->m.size[l][0],
-		    mi->m.size[l][1], mi->m.size[l][2]);
-	printf("],\"root\":");
-	json_nums(r, 2);
+	json_levels(&mi->m);
 	if (!mi->m.explicit_leaves) {
 		printf(",\"volume\":");
 		json_str(mi->m.name);
@@ -484,7 +499,6 @@ text_tlef(const tlef_info *ti)
 {
 	const vx_macro *mc = &ti->lg.mc;
 	double nt = ti->id.ntet ? (double)ti->id.ntet : 1;
-	int l;
 
 	printf("  leaf grid: %lld x %lld x %lld leaves, %lu list entries "
 	    "(%.2f per tet), %d level%s\n", (long long)ti->lg.dims[0],
@@ -492,13 +506,7 @@ text_tlef(const tlef_info *ti)
 	    (unsigned long)ti->lg.off[ti->lg.nleaf],
 	    (double)ti->lg.off[ti->lg.nleaf] / nt, mc->nlev,
 	    mc->nlev == 1 ? "" : "s");
-	for (l = 1; l <= mc->nlev; l++)
-		printf("    level %d: %dx%dx%d of level %d, %lld x %lld x %lld "
-		    "cells\n", l, mc->size[l][0], mc->size[l][1],
-		    mc->size[l][2], l - 1, (long long)mc->dims[l][0],
-		    (long long)mc->dims[l][1], (long long)mc->dims[l][2]);
-	printf("    root range: %.9g %.9g\n", (double)mc->root[0],
-	    (double)mc->root[1]);
+	text_levels(mc);
 	printf("    memory: %zu bytes (%.1f per tet)\n",
 	    vx_tetleaf_bytes(&ti->lg), (double)vx_tetleaf_bytes(&ti->lg) / nt);
 	printf("    mesh: ");
@@ -510,18 +518,12 @@ static void
 json_tlef(const tlef_info *ti)
 {
 	const vx_macro *mc = &ti->lg.mc;
-	double r[2] = { mc->root[0], mc->root[1] };
-	int l;
 
 	printf(",\"leaf_grid\":{\"leaf_dims\":[%lld,%lld,%lld],\"entries\":%lu,"
-	    "\"levels\":%d,\"sizes\":[", (long long)ti->lg.dims[0],
+	    "\"levels\":%d,", (long long)ti->lg.dims[0],
 	    (long long)ti->lg.dims[1], (long long)ti->lg.dims[2],
 	    (unsigned long)ti->lg.off[ti->lg.nleaf], mc->nlev);
-	for (l = 1; l <= mc->nlev; l++)
-		printf("%s[%d,%d,%d]", l > 1 ? "," : "", mc->size[l][0],
-		    mc->size[l][1], mc->size[l][2]);
-	printf("],\"root\":");
-	json_nums(r, 2);
+	json_levels(mc);
 	printf(",\"bytes\":%zu,\"mesh\":", vx_tetleaf_bytes(&ti->lg));
 	json_str(ti->id.mesh);
 	printf(",\"status\":");
@@ -800,6 +802,91 @@ json_irrv(const irrv_info *ii)
 	putchar('}');
 }
 
+/* What vinfo decoded of a content chunk, for either report. */
+enum { K_OTHER, K_VOLUME, K_IMAGE, K_SCENE, K_MCEL, K_TETM, K_TLEF,
+    K_IRRV };
+
+typedef struct content {
+	int kind;
+	vol_info v;
+	img_info m;
+	unsigned char *text;    /* K_SCENE: NULL when the chunk has none */
+	size_t ntext;
+	mcel_info mi;
+	vx_tetmesh tm;
+	tlef_info ti;
+	irrv_info ii;
+} content;
+
+/* decode_content: the payload of c as its type says (K_OTHER: nothing to
+ * decode beyond the header); 0 or the decoder's error.  d is freed by
+ * free_content either way. */
+static int
+decode_content(const vx_stream *s, const vx_chunk *c, const opts *o,
+    content *d, vx_err *e)
+{
+	memset(d, 0, sizeof *d);
+	vx_tetmesh_init(&d->tm);
+	if (memcmp(c->type, VX_CHUNK_VOLUME, 4) == 0) {
+		d->kind = K_VOLUME;
+		return decode_volume(c, o, &d->v, e);
+	}
+	if (memcmp(c->type, VX_CHUNK_IMAGE, 4) == 0) {
+		d->kind = K_IMAGE;
+		return decode_image(c, &d->m, e);
+	}
+	if (memcmp(c->type, VX_CHUNK_SCENE, 4) == 0) {
+		d->kind = K_SCENE;
+		return decode_text_body(c, &d->text, &d->ntext, e);
+	}
+	if (memcmp(c->type, VX_CHUNK_MACRO, 4) == 0) {
+		d->kind = K_MCEL;
+		return decode_mcel(s, c, &d->mi, e);
+	}
+	if (memcmp(c->type, VX_CHUNK_TETMESH, 4) == 0) {
+		d->kind = K_TETM;
+		return vx_tetmesh_from_chunk(&d->tm, c, e);
+	}
+	if (memcmp(c->type, VX_CHUNK_TETLEAF, 4) == 0) {
+		d->kind = K_TLEF;
+		return decode_tlef(s, c, &d->ti, e);
+	}
+	if (memcmp(c->type, VX_CHUNK_IRRAD, 4) == 0) {
+		d->kind = K_IRRV;
+		return decode_irrv(s, c, &d->ii, e);
+	}
+	return 0;
+}
+
+static void
+free_content(content *d)
+{
+	switch (d->kind) {
+	case K_VOLUME: free_volume(&d->v); break;
+	case K_IMAGE: vx_image_free(&d->m.img); break;
+	case K_SCENE: free(d->text); break;
+	case K_MCEL: vx_macro_free(&d->mi.m); break;
+	case K_TETM: vx_tetmesh_free(&d->tm); break;
+	case K_TLEF: vx_tetleaf_free(&d->ti.lg); break;
+	case K_IRRV: vx_irr_free(&d->ii.v); break;
+	default: break;
+	}
+}
+
+/* check_range: a volume whose header's range is not its samples' is an
+ * error of the stream (reported after the chunk). */
+static void
+check_range(const vx_chunk *c, const content *d)
+{
+	vx_err e = { 0, "" };
+
+	if (d->kind == K_VOLUME && !d->v.agrees) {
+		vx_err_set(&e, VX_EDATA, "volume: the header's range differs "
+		    "from the samples'");
+		chunk_error(c, &e);
+	}
+}
+
 /* ---- text report ---- */
 
 static void
@@ -908,6 +995,7 @@ static void
 text_chunk(const vx_stream *s, size_t idx, const vx_chunk *c, const opts *o)
 {
 	vx_err e = { 0, "" };
+	content d;
 	int rc;
 
 	printf("chunk %zu: %s at %llu, length %zu, %s, %s\n", idx, c->type,
@@ -948,79 +1036,29 @@ text_chunk(const vx_stream *s, size_t idx, const vx_chunk *c, const opts *o)
 		}
 		vx_hdr_free(&h);
 	}
-	if (memcmp(c->type, VX_CHUNK_VOLUME, 4) == 0) {
-		vol_info v;
-
-		if ((rc = decode_volume(c, o, &v, &e)) != 0) {
-			printf("  error: %s\n", e.msg);
-			chunk_error(c, &e);
-		} else {
-			text_volume(&v, o->bins);
-			if (!v.agrees) {
-				vx_err_set(&e, VX_EDATA, "volume: the header's "
-				    "range differs from the samples'");
-				chunk_error(c, &e);
-			}
-		}
-		free_volume(&v);
-	} else if (memcmp(c->type, VX_CHUNK_IMAGE, 4) == 0) {
-		img_info m;
-
-		if ((rc = decode_image(c, &m, &e)) != 0) {
-			printf("  error: %s\n", e.msg);
-			chunk_error(c, &e);
-		} else
-			text_image(&m);
-		vx_image_free(&m.img);
-	} else if (memcmp(c->type, VX_CHUNK_SCENE, 4) == 0) {
-		unsigned char *text;
-		size_t n;
-
-		if ((rc = decode_text_body(c, &text, &n, &e)) != 0) {
-			printf("  error: %s\n", e.msg);
-			chunk_error(c, &e);
-		} else if (text != NULL) {
-			printf("  scene:\n");
-			text_lines(text, n, "    ");
-		}
-		free(text);
-	} else if (memcmp(c->type, VX_CHUNK_MACRO, 4) == 0) {
-		mcel_info mi;
-
-		if ((rc = decode_mcel(s, c, &mi, &e)) != 0) {
-			printf("  error: %s\n", e.msg);
-			chunk_error(c, &e);
-		} else
-			text_mcel(&mi);
-		vx_macro_free(&mi.m);
-	} else if (memcmp(c->type, VX_CHUNK_TETMESH, 4) == 0) {
-		vx_tetmesh m;
-
-		if ((rc = vx_tetmesh_from_chunk(&m, c, &e)) != 0) {
-			printf("  error: %s\n", e.msg);
-			chunk_error(c, &e);
-		} else
-			text_tetm(&m);
-		vx_tetmesh_free(&m);
-	} else if (memcmp(c->type, VX_CHUNK_TETLEAF, 4) == 0) {
-		tlef_info ti;
-
-		if ((rc = decode_tlef(s, c, &ti, &e)) != 0) {
-			printf("  error: %s\n", e.msg);
-			chunk_error(c, &e);
-		} else
-			text_tlef(&ti);
-		vx_tetleaf_free(&ti.lg);
-	} else if (memcmp(c->type, VX_CHUNK_IRRAD, 4) == 0) {
-		irrv_info ii;
-
-		if ((rc = decode_irrv(s, c, &ii, &e)) != 0) {
-			printf("  error: %s\n", e.msg);
-			chunk_error(c, &e);
-		} else
-			text_irrv(&ii);
-		vx_irr_free(&ii.v);
+	if (decode_content(s, c, o, &d, &e) != 0) {
+		printf("  error: %s\n", e.msg);
+		chunk_error(c, &e);
+		free_content(&d);
+		return;
 	}
+	switch (d.kind) {
+	case K_VOLUME: text_volume(&d.v, o->bins); break;
+	case K_IMAGE: text_image(&d.m); break;
+	case K_SCENE:
+		if (d.text != NULL) {
+			printf("  scene:\n");
+			text_lines(d.text, d.ntext, "    ");
+		}
+		break;
+	case K_MCEL: text_mcel(&d.mi); break;
+	case K_TETM: text_tetm(&d.tm); break;
+	case K_TLEF: text_tlef(&d.ti); break;
+	case K_IRRV: text_irrv(&d.ii); break;
+	default: break;
+	}
+	check_range(c, &d);
+	free_content(&d);
 }
 
 /* ---- JSON report ---- */
@@ -1124,6 +1162,7 @@ static void
 json_chunk(const vx_stream *s, size_t idx, const vx_chunk *c, const opts *o)
 {
 	vx_err e = { 0, "" };
+	content d;
 
 	printf("%s{\"index\":%zu,\"type\":", idx ? "," : "", idx);
 	json_text((const unsigned char *)c->type, 4);
@@ -1167,72 +1206,28 @@ json_chunk(const vx_stream *s, size_t idx, const vx_chunk *c, const opts *o)
 		putchar('}');
 		vx_hdr_free(&h);
 	}
-	if (memcmp(c->type, VX_CHUNK_VOLUME, 4) == 0) {
-		vol_info v;
-
-		if (decode_volume(c, o, &v, &e) != 0)
-			json_error(c, &e);
-		else {
-			json_volume(&v, o->bins);
-			if (!v.agrees) {
-				vx_err_set(&e, VX_EDATA, "volume: the header's "
-				    "range differs from the samples'");
-				chunk_error(c, &e);
-			}
-		}
-		free_volume(&v);
-	} else if (memcmp(c->type, VX_CHUNK_IMAGE, 4) == 0) {
-		img_info m;
-
-		if (decode_image(c, &m, &e) != 0)
-			json_error(c, &e);
-		else
-			json_image(&m);
-		vx_image_free(&m.img);
-	} else if (memcmp(c->type, VX_CHUNK_SCENE, 4) == 0) {
-		unsigned char *text;
-		size_t n;
-
-		if (decode_text_body(c, &text, &n, &e) != 0)
-			json_error(c, &e);
-		else if (text != NULL) {
-			printf(",\"text\":");
-			json_text(text, n);
-		}
-		free(text);
-	} else if (memcmp(c->type, VX_CHUNK_MACRO, 4) == 0) {
-		mcel_info mi;
-
-		if (decode_mcel(s, c, &mi, &e) != 0)
-			json_error(c, &e);
-		else
-			json_mcel(&mi);
-		vx_macro_free(&mi.m);
-	} else if (memcmp(c->type, VX_CHUNK_TETMESH, 4) == 0) {
-		vx_tetmesh m;
-
-		if (vx_tetmesh_from_chunk(&m, c, &e) != 0)
-			json_error(c, &e);
-		else
-			json_tetm(&m);
-		vx_tetmesh_free(&m);
-	} else if (memcmp(c->type, VX_CHUNK_TETLEAF, 4) == 0) {
-		tlef_info ti;
-
-		if (decode_tlef(s, c, &ti, &e) != 0)
-			json_error(c, &e);
-		else
-			json_tlef(&ti);
-		vx_tetleaf_free(&ti.lg);
-	} else if (memcmp(c->type, VX_CHUNK_IRRAD, 4) == 0) {
-		irrv_info ii;
-
-		if (decode_irrv(s, c, &ii, &e) != 0)
-			json_error(c, &e);
-		else
-			json_irrv(&ii);
-		vx_irr_free(&ii.v);
+	if (decode_content(s, c, o, &d, &e) != 0) {
+		json_error(c, &e);
+		free_content(&d);
+		goto done;
 	}
+	switch (d.kind) {
+	case K_VOLUME: json_volume(&d.v, o->bins); break;
+	case K_IMAGE: json_image(&d.m); break;
+	case K_SCENE:
+		if (d.text != NULL) {
+			printf(",\"text\":");
+			json_text(d.text, d.ntext);
+		}
+		break;
+	case K_MCEL: json_mcel(&d.mi); break;
+	case K_TETM: json_tetm(&d.tm); break;
+	case K_TLEF: json_tlef(&d.ti); break;
+	case K_IRRV: json_irrv(&d.ii); break;
+	default: break;
+	}
+	check_range(c, &d);
+	free_content(&d);
 done:
 	putchar('}');
 }

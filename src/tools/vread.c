@@ -182,8 +182,8 @@ parse_args(opts *o, int argc, char **argv)
 			tool_opt_other(c, usage, argv);
 		}
 	}
-	if (optind < argc)     /* none named: NULL (--synth reads none) */
-		o->in = tool_input(argc, argv, usage);
+	if (optind < argc)
+		o->in = tool_opt_input(argc, argv, usage);
 	if ((o->have_type || o->have_endian || o->have_skip) && !o->raw)
 		tool_fail(VX_EUSAGE, "--type, --endian and --skip go with "
 		    "--raw");

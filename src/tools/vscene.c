@@ -49,7 +49,7 @@ main(int argc, char **argv)
 				tool_opt_other(c, usage, argv);
 		}
 	}
-	in = tool_input(argc, argv, usage);
+	in = tool_opt_input(argc, argv, usage);
 	if (remove && (so.file != NULL || so.n > 0))
 		tool_usage_fail(usage, "--remove takes no scene options");
 	vx_stream_init(&st);

@@ -74,9 +74,9 @@ parse_args(opts *o, int argc, char **argv)
 			tool_opt_other(ch, usage, argv);
 		}
 	}
-	o->in = tool_input(argc, argv, usage);
-	/* Which chunk kinds can be exported: volumes and irradiance
-	 * volumes. */
+	o->in = tool_opt_input(argc, argv, usage);
+	/* which chunk kinds can be exported: volumes and irradiance
+	 * volumes */
 	if (strlen(o->chunk) != 4 || !vx_chunk_type_valid(o->chunk))
 		tool_usage_fail(usage, "--chunk %s: not a chunk type", o->chunk);
 	if (strcmp(o->chunk, VX_CHUNK_VOLUME) != 0 &&

@@ -161,6 +161,7 @@ printf 'not a stream' >"$T/junk"
 expect_fail "not a stream" 65 "junk" brick "$T/junk"
 expect_fail "unknown option" 64 "unknown option '--frobnicate'" brick --frobnicate "$T/u8.vx"
 expect_fail "missing value" 64 "needs a value" brick --bricks
+expect_fail "unknown option in a cluster" 64 "unknown option '-q'" brick -vq "$T/u8.vx"
 expect_fail "padded volume too large" 65 "exceeds" brick --bricks 1024x1024x1024,64x64x64 "$T/u8.vx"
 
 done_testing

@@ -43,7 +43,9 @@ expect_fail "--raw against --format" 64 "contradicts" vread --format nrrd --raw 
 expect_fail "zero spacing" 64 "must be positive" vread --spacing 1,0,1 --synth sphere
 expect_fail "bad name" 64 "--name" vread --name 'a b' --synth sphere
 expect_fail "two inputs" 64 "at most one input" vread a b
-expect_fail "missing value" 64 "needs a value" vread --synth
+expect_fail "missing value" 64 "vread: --synth needs a value" vread --synth
+expect_fail "missing value of a short option" 64 "vread: -z needs a value" vread -z
+expect_fail "unknown short option" 64 "unknown option '-q'" vread -q
 
 printf 'hello' >"$T/mystery.dat"
 expect_fail "unknown format" 65 "unknown format" vread "$T/mystery.dat"

@@ -1361,6 +1361,8 @@ vtk_binary(void)
 	return b;
 }
 
+static const char *edit(const char *src, const char *from, const char *to);
+
 /* Oracle: the hand-written files decode to the counts and values written
  * into them, whatever the encoding (ASCII, BINARY, 5.1 offsets). */
 static void
@@ -1417,6 +1419,25 @@ vtk_import_good(void **state)
 	assert_memory_equal(m.val, vtk_vals, sizeof vtk_vals);
 	assert_int_equal(info.nskip_lower, 1);
 	vx_tetmesh_free(&m);
+	/* its arrays' errors, named after the array (oracle: the text) */
+	static const struct { const char *from, *to, *msg; } bad51[] = {
+		{ "OFFSETS vtktypeint64", "OFFSET vtktypeint64",
+		  "expected OFFSETS after CELLS" },
+		{ "CONNECTIVITY vtktypeint64", "CONNECTIVITY vtkbit",
+		  "data type 'vtkbit' is not supported" },
+		{ "CONNECTIVITY vtktypeint64\n0 1 2 3 1 2 3 4 0 1 2\n"
+		  "CELL_TYPES", "CONNECTIVITY vtktypeint64\n0 1 2 3 1 2 3 4 0 "
+		  "1.5 2\nCELL_TYPES",
+		  "CONNECTIVITY: '1.5' is not an integer" },
+		{ "CELLS 4 11", "CELLS 4 11000", "truncated: CONNECTIVITY" },
+	};
+	for (size_t i = 0; i < sizeof bad51 / sizeof bad51[0]; i++) {
+		const char *t = edit(v51, bad51[i].from, bad51[i].to);
+
+		if (vx_tetmesh_import_mem(&m, t, strlen(t), NULL, NULL, &e) !=
+		    VX_EDATA || strstr(e.msg, bad51[i].msg) == NULL)
+			fail_msg("%s: '%s'", bad51[i].msg, e.msg);
+	}
 }
 
 /* Replace the first occurrence of `from` in src by `to`; the result lives

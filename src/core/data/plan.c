@@ -198,12 +198,13 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 		snprintf(name, sizeof name, "light %d %s", k + 1,
 		    vx_enum_str(&vx_light_type_enum, l->type));
 		if (p->pathtrace) {
-			vx_plan_add(p, name, l->type == VX_LIGHT_HEADLIGHT ||
-			    l->type == VX_LIGHT_ENVIRONMENT ? VX_PLAN_OFF :
-			    VX_PLAN_ON, 0, "%s", l->type == VX_LIGHT_HEADLIGHT ?
-			    "illumination pathtrace: a headlight is not part of "
-			    "global illumination" : l->type == VX_LIGHT_ENVIRONMENT ?
-			    "illumination pathtrace: environment maps not yet" :
+			vx_plan_add(p, name, l->type == VX_LIGHT_HEADLIGHT ?
+			    VX_PLAN_OFF : VX_PLAN_ON, 0, "%s",
+			    l->type == VX_LIGHT_HEADLIGHT ? "illumination "
+			    "pathtrace: a headlight is not part of global "
+			    "illumination" : l->type == VX_LIGHT_ENVIRONMENT ?
+			    "illumination pathtrace: importance-sampled at every "
+			    "path vertex (MIS with the cosine lobe)" :
 			    "illumination pathtrace: sampled at every path vertex");
 			continue;
 		}

@@ -51,8 +51,8 @@ void vx_image_init(vx_image *img);
  * 1..4, VX_ENOMEM.  On error img is empty.  Free with vx_image_free. */
 int vx_image_alloc(vx_image *img, int w, int h, int nc, vx_err *e);
 /* vx_image_alloc_uninit: vx_image_alloc without zeroing the pixels, for a
- * writer that writes every one of them (raycast's frames: a 512 x 512
- * colour image is 4 MB to clear, serially, before the threads start) */
+ * writer that writes every one of them (a renderer's tiles: the clear
+ * would be serial work before the threads start). */
 int vx_image_alloc_uninit(vx_image *img, int w, int h, int nc, vx_err *e);
 
 /* vx_image_free: release the pixels; img becomes empty.  Accepts an empty or

@@ -5,7 +5,6 @@
 #include "import_priv.h"
 #include "vx_scan.h"
 
-#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -342,11 +341,40 @@ classify(gmsh *g, int64_t type, int *nnode, int *keep)
 	    vx_scan_lineno(&g->s), (long long)type, elem_name(type));
 }
 
+/* element: the node tags of element tag, of type type (the rest of its
+ * line), into the tet list when it is a tet. */
+static int
+element(gmsh *g, int64_t tag, int64_t type)
+{
+	int64_t q[4], v;
+	int rc, k, nnode = 0, keep = 0;
+
+	if ((rc = classify(g, type, &nnode, &keep)) != 0)
+		return rc;
+	for (k = 0; k < nnode; k++) {
+		if ((rc = gi64(g, &v, "$Elements")))
+			return rc;
+		if (keep)
+			q[k] = v;
+	}
+	return keep ? add_tet(g, q, tag) : 0;
+}
+
+/* alloc_elems: room for n tets (every element might be one). */
+static int
+alloc_elems(gmsh *g, int64_t n)
+{
+	g->info->ncell = (size_t)n;
+	g->tet = vx_malloc(((size_t)n ? (size_t)n : 1) * 4 * sizeof *g->tet,
+	    g->e);
+	return g->tet != NULL ? 0 : VX_ENOMEM;
+}
+
 static int
 elements(gmsh *g)
 {
-	int64_t n, nb, i, k, tag, type, q[4];
-	int rc, nnode, keep;
+	int64_t n, nb, i, k, tag, type;
+	int rc;
 
 	if (!g->have_nodes)
 		return gfail(g, "$Elements before $Nodes", NULL);
@@ -357,12 +385,9 @@ elements(gmsh *g)
 		return rc;
 	if (!g->v4) {
 		/* n, then lines "tag type ntags tags... nodes..." (>= 10 bytes) */
-		if ((rc = gcount(g, &n, 10, "$Elements")))
+		if ((rc = gcount(g, &n, 10, "$Elements")) ||
+		    (rc = alloc_elems(g, n)))
 			return rc;
-		if ((g->tet = vx_malloc(((size_t)n ? (size_t)n : 1) * 4 *
-		    sizeof *g->tet, g->e)) == NULL)
-			return VX_ENOMEM;
-		g->info->ncell = (size_t)n;
 		for (i = 0; i < n; i++) {
 			int64_t ntags, dummy;
 			if ((rc = gi64(g, &tag, "$Elements")) ||
@@ -374,16 +399,7 @@ elements(gmsh *g)
 			for (k = 0; k < ntags; k++)
 				if ((rc = gi64(g, &dummy, "$Elements")))
 					return rc;
-			if ((rc = classify(g, type, &nnode, &keep)) != 0)
-				return rc;
-			for (k = 0; k < nnode; k++) {
-				int64_t v;
-				if ((rc = gi64(g, &v, "$Elements")))
-					return rc;
-				if (keep)
-					q[k] = v;
-			}
-			if (keep && (rc = add_tet(g, q, tag)) != 0)
+			if ((rc = element(g, tag, type)) != 0)
 				return rc;
 		}
 		return gend(g, "Elements");
@@ -393,12 +409,9 @@ elements(gmsh *g)
 	int64_t mn, mx;
 	if ((rc = gcount(g, &nb, 8, "$Elements")) ||
 	    (rc = gcount(g, &n, 4, "$Elements")) ||
-	    (rc = gi64(g, &mn, "$Elements")) || (rc = gi64(g, &mx, "$Elements")))
+	    (rc = gi64(g, &mn, "$Elements")) ||
+	    (rc = gi64(g, &mx, "$Elements")) || (rc = alloc_elems(g, n)))
 		return rc;
-	if ((g->tet = vx_malloc(((size_t)n ? (size_t)n : 1) * 4 *
-	    sizeof *g->tet, g->e)) == NULL)
-		return VX_ENOMEM;
-	g->info->ncell = (size_t)n;
 	size_t seen = 0;
 	for (int64_t b = 0; b < nb; b++) {
 		int64_t dim, etag, cnt;
@@ -410,21 +423,10 @@ elements(gmsh *g)
 		if (cnt < 0 || (uint64_t)cnt > (uint64_t)n - seen)
 			return gfail(g, "$Elements: more elements than announced",
 			    NULL);
-		for (i = 0; i < cnt; i++) {
-			if ((rc = gi64(g, &tag, "$Elements")))
+		for (i = 0; i < cnt; i++)
+			if ((rc = gi64(g, &tag, "$Elements")) ||
+			    (rc = element(g, tag, type)))
 				return rc;
-			if ((rc = classify(g, type, &nnode, &keep)) != 0)
-				return rc;
-			for (k = 0; k < nnode; k++) {
-				int64_t v;
-				if ((rc = gi64(g, &v, "$Elements")))
-					return rc;
-				if (keep)
-					q[k] = v;
-			}
-			if (keep && (rc = add_tet(g, q, tag)) != 0)
-				return rc;
-		}
 		seen += (size_t)cnt;
 	}
 	if (seen != (size_t)n)
@@ -621,23 +623,18 @@ vx_tetmesh_import_gmsh(vx_tetmesh *m, const void *buf, size_t n,
 	if (rc == 0 && (uint64_t)g.ntet > VX_TETMESH_MAX_TETS)
 		rc = vx_err_set(e, VX_EDATA, "gmsh: too many tetrahedra");
 	if (rc == 0) {
+		size_t bad;
+
 		m->npoint = g.npoint;
 		m->pts = g.pts;
 		g.pts = NULL;
 		m->ntet = g.ntet;
 		m->tet = g.tet;
 		g.tet = NULL;
-		m->val = vx_malloc((g.npoint ? g.npoint : 1) * sizeof *m->val, e);
-		if (m->val == NULL)
-			rc = VX_ENOMEM;
-		for (size_t i = 0; rc == 0 && i < g.npoint; i++) {
-			double x = g.val[i];
-			if (isfinite(x) && fabs(x) > FLT_MAX)
-				rc = vx_err_set(e, VX_EDATA, "gmsh: value %g of "
-				    "node %lld is beyond the float range", x,
-				    (long long)g.ntag[i]);
-			m->val[i] = (float)x;
-		}
+		if ((rc = vx_imp_mesh_values(m, g.val, &bad, e)) == VX_EDATA)
+			vx_err_set(e, rc, "gmsh: value %g of node %lld is "
+			    "beyond the float range", g.val[bad],
+			    (long long)g.ntag[bad]);
 		vx_tetmesh_set_scalar(m, g.valname);
 	}
 	if (rc == 0)

@@ -151,6 +151,14 @@ int vx_imp_total(const int64_t dims[3], size_t size, uint64_t *total,
  * (tags, counts, indices): sums and differences of two stay in int64_t. */
 #define VX_IMP_INT_MAX ((int64_t)1 << 62)
 
+/* vx_imp_mesh_values: m->val (m->npoint floats, allocated here) from the
+ * doubles val.  VX_EDATA, with the point's index in *bad and e left for
+ * the caller to fill, when a finite value lies beyond the float range;
+ * VX_ENOMEM. */
+struct vx_tetmesh;
+int vx_imp_mesh_values(struct vx_tetmesh *m, const double *val, size_t *bad,
+    vx_err *e);
+
 /* vx_imp_vtk_types: the data type names of VTK legacy files (any ASCII
  * case), as source sample types. */
 extern const vx_enum vx_imp_vtk_types;

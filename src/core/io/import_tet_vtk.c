@@ -5,7 +5,6 @@
 #include "import_priv.h"
 #include "vx_scan.h"
 
-#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -294,12 +293,33 @@ field(vtkimp *v, int mode, int64_t ntuple)
 	return 0;
 }
 
+/* index_array: "KW type", then n integers into *out (allocated here); a
+ * 5.1 file's OFFSETS and CONNECTIVITY, which follow after. */
+static int
+index_array(vtkr *r, const char *kw, const char *after, int64_t n,
+    int64_t **out)
+{
+	char tok[TOK];
+	int t, rc;
+
+	if (vx_scan_token(&r->s, tok, TOK) <= 0 || !is(tok, kw) ||
+	    vx_scan_token(&r->s, tok, TOK) <= 0)
+		return fail(r, "expected %s after %s", kw, after);
+	if ((rc = parse_type(r, tok, &t)) != 0)
+		return rc;
+	end_line(r);
+	if (!fits(r, (uint64_t)n, vx_scalar_size((vx_scalar)t)))
+		return fail(r, "truncated: %s", kw, NULL);
+	if ((*out = vx_malloc((size_t)n * sizeof **out, r->e)) == NULL)
+		return VX_ENOMEM;
+	return read_values(r, t, (size_t)n, NULL, *out, kw);
+}
+
 static int
 cells(vtkimp *v, int64_t a, int64_t b)
 {
 	vtkr *r = &v->r;
-	char tok[TOK];
-	int t, rc;
+	int rc;
 
 	if (v->ncell >= 0)
 		return fail(r, "CELLS given twice", NULL, NULL);
@@ -323,29 +343,9 @@ cells(vtkimp *v, int64_t a, int64_t b)
 	v->ncell = a - 1;
 	v->nconn = b;
 	end_line(r);
-	if (vx_scan_token(&r->s, tok, TOK) <= 0 || !is(tok, "OFFSETS") ||
-	    vx_scan_token(&r->s, tok, TOK) <= 0)
-		return fail(r, "expected OFFSETS after CELLS", NULL, NULL);
-	if ((rc = parse_type(r, tok, &t)) != 0)
+	if ((rc = index_array(r, "OFFSETS", "CELLS", a, &v->offs)) != 0)
 		return rc;
-	end_line(r);
-	if (!fits(r, (uint64_t)a, vx_scalar_size((vx_scalar)t)))
-		return fail(r, "truncated: OFFSETS", NULL, NULL);
-	if ((v->offs = vx_malloc((size_t)a * sizeof *v->offs, r->e)) == NULL)
-		return VX_ENOMEM;
-	if ((rc = read_values(r, t, (size_t)a, NULL, v->offs, "OFFSETS")) != 0)
-		return rc;
-	if (vx_scan_token(&r->s, tok, TOK) <= 0 || !is(tok, "CONNECTIVITY") ||
-	    vx_scan_token(&r->s, tok, TOK) <= 0)
-		return fail(r, "expected CONNECTIVITY after OFFSETS", NULL, NULL);
-	if ((rc = parse_type(r, tok, &t)) != 0)
-		return rc;
-	end_line(r);
-	if (!fits(r, (uint64_t)b, vx_scalar_size((vx_scalar)t)))
-		return fail(r, "truncated: CONNECTIVITY", NULL, NULL);
-	if ((v->conn = vx_malloc((size_t)b * sizeof *v->conn, r->e)) == NULL)
-		return VX_ENOMEM;
-	return read_values(r, t, (size_t)b, NULL, v->conn, "CONNECTIVITY");
+	return index_array(r, "CONNECTIVITY", "OFFSETS", b, &v->conn);
 }
 
 /* VTK cell types: dimension (0..3) or -1 unknown; names of volume cells
@@ -688,20 +688,14 @@ vx_tetmesh_import_vtk(vx_tetmesh *m, const void *buf, size_t n,
 	v.npoint = v.ncell = v.ntype = -1;
 	rc = parse(&v, m);
 	if (rc == 0) {
-		size_t i;
+		size_t bad;
+
 		m->npoint = (size_t)v.npoint;
 		m->pts = v.pts;
 		v.pts = NULL;
-		if ((m->val = vx_malloc((m->npoint ? m->npoint : 1) *
-		    sizeof *m->val, e)) == NULL)
-			rc = VX_ENOMEM;
-		for (i = 0; rc == 0 && i < m->npoint; i++) {
-			double x = v.val[i];
-			if (isfinite(x) && fabs(x) > FLT_MAX)
-				rc = vx_err_set(e, VX_EDATA, "vtk: value %g of "
-				    "point %zu is beyond the float range", x, i);
-			m->val[i] = (float)x;
-		}
+		if ((rc = vx_imp_mesh_values(m, v.val, &bad, e)) == VX_EDATA)
+			vx_err_set(e, rc, "vtk: value %g of point %zu is "
+			    "beyond the float range", v.val[bad], bad);
 		vx_tetmesh_set_scalar(m, v.valname);
 	}
 	if (rc == 0)

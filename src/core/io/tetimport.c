@@ -4,8 +4,28 @@
 #include "vx_tetimport.h"
 #include "import_priv.h"
 
+#include <float.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+int
+vx_imp_mesh_values(vx_tetmesh *m, const double *val, size_t *bad, vx_err *e)
+{
+	size_t i;
+
+	if ((m->val = vx_malloc((m->npoint ? m->npoint : 1) * sizeof *m->val,
+	    e)) == NULL)
+		return VX_ENOMEM;
+	for (i = 0; i < m->npoint; i++) {
+		if (isfinite(val[i]) && fabs(val[i]) > FLT_MAX) {
+			*bad = i;
+			return VX_EDATA;
+		}
+		m->val[i] = (float)val[i];
+	}
+	return 0;
+}
 
 /* Inflate a gzip buffer completely (at most VX_TETMESH_FILE_MAX bytes). */
 static int

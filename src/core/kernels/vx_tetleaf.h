@@ -22,16 +22,14 @@
  * bmin + (i,j,k) * cell to bmin + (i+1,j+1,k+1) * cell.  Its tets are
  * idx[off[l] .. off[l+1]-1] (ascending): every tet that overlaps the leaf's
  * box padded by VX_TETLEAF_PAD leaf widths, by an exact separating-axis
- * test (the default) or by the tet's bounding box (VX_TETLEAF_BBOX).  On
- * the CFD meshes of /work/shared/data the exact lists are 1.6 to 2.1 times
- * shorter (9 to 12 entries per tet instead of 15 to 22) and nearest-hit
- * queries 1.6 times faster, for a build 2.3 to 3 times slower
- * (formats/tetmesh.md has the numbers).  Tets that can never hit (a
- * non-finite vertex value, zero volume) are not listed.  The padding makes a hit at a leaf boundary safe against the rounding of
- * the traversal's t values.  The leaf ranges (min/max of the vertex values
- * of the listed tets; empty leaf: +inf, -inf) are level 0 of a vx_macro
- * hierarchy with explicit leaves (vx_macro.h), whose leaf index space is
- * (world - bmin) / cell. */
+ * test (the default) or by the tet's bounding box (VX_TETLEAF_BBOX): the
+ * exact lists are shorter, for a slower build (formats/tetmesh.md has the
+ * measurements).  Tets that can never hit (a non-finite vertex value, zero
+ * volume) are not listed.  The padding makes a hit at a leaf boundary safe
+ * against the rounding of the traversal's t values.  The leaf ranges
+ * (min/max of the vertex values of the listed tets; empty leaf: +inf, -inf)
+ * are level 0 of a vx_macro hierarchy with explicit leaves (vx_macro.h),
+ * whose leaf index space is (world - bmin) / cell. */
 #define VX_TETLEAF_PAD 1e-6
 #define VX_TETLEAF_MAX_LEAVES ((uint64_t)1 << 31)
 #define VX_TETLEAF_BBOX 1      /* flag: list by bounding box only */

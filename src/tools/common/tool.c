@@ -214,6 +214,33 @@ tool_parse_enum(const char *opt, const vx_enum *en, const char *s)
 	return v;
 }
 
+void
+tool_opt_other(int ch, const char *usage, char **argv)
+{
+	const char *arg = argv[optind - 1];
+	char opt[8];
+
+	if (ch == 'h') {
+		printf("usage: %s\n", usage);
+		exit(tool_finish());
+	}
+	if (strncmp(arg, "--", 2) != 0 && optopt > 0 && optopt < 256) {
+		snprintf(opt, sizeof opt, "-%c", optopt);   /* in a cluster */
+		arg = opt;
+	}
+	if (ch == ':')
+		tool_usage_fail(usage, "%s needs a value", arg);
+	tool_usage_fail(usage, "unknown option '%s'", arg);
+}
+
+const char *
+tool_opt_input(int argc, char **argv, const char *usage)
+{
+	if (argc - optind > 1)
+		tool_usage_fail(usage, "at most one input");
+	return optind < argc ? argv[optind] : "-";
+}
+
 /* pipe_widen: a pipe's buffer as large as an unprivileged process may make
  * it (1 MiB by default, /proc/sys/fs/pipe-max-size): a 126 MB stream then
  * crosses in 1 MiB turns instead of 64 KiB ones.  Not a pipe, or not
@@ -566,32 +593,6 @@ tool_threads(long j)
 	(void)j;
 	return 1;
 #endif
-}
-
-_Noreturn void
-tool_opt_other(int c, const char *usage, char **argv)
-{
-	const char *name = argv[optind - 1];
-	char sh[3] = { '-', (char)optopt, '\0' };
-
-	if (c == 'h') {
-		printf("usage: %s\n", usage);
-		exit(tool_finish());
-	}
-	/* a short option by its letter (it may be one of a bundle, -vx) */
-	if (strncmp(name, "--", 2) != 0 && optopt > 0 && optopt < 256)
-		name = sh;
-	if (c == ':')
-		tool_usage_fail(usage, "%s needs a value", name);
-	tool_usage_fail(usage, "unknown option '%s'", name);
-}
-
-const char *
-tool_input(int argc, char **argv, const char *usage)
-{
-	if (argc - optind > 1)
-		tool_usage_fail(usage, "at most one input");
-	return argc - optind == 1 ? argv[optind] : "-";
 }
 
 int

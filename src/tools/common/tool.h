@@ -38,18 +38,6 @@ _Noreturn void tool_fail_err(const vx_err *e);
 _Noreturn void tool_usage_fail(const char *usage, const char *fmt, ...)
 	__attribute__((format(printf, 2, 3)));
 
-/* tool_opt_other: what every program does with an option its own switch
- * does not take: -h or --help (c 'h') prints the usage on standard output
- * and exits 0; a missing value (c ':', getopt with opterr 0 and an
- * optstring that starts with ':') and an unknown option are usage errors,
- * one line, exit 64. */
-_Noreturn void tool_opt_other(int c, const char *usage, char **argv);
-
-/* tool_input: the input named after the options ("-": standard input,
- * also when none is named); a second is a usage error ("at most one
- * input"). */
-const char *tool_input(int argc, char **argv, const char *usage);
-
 /* The scene options the renderers, bakers and vscene share, by
  * vx_scene_option's names, kept in command-line order and applied after
  * the scene is loaded (tool_scene_load).  A program lists those it takes
@@ -81,6 +69,16 @@ void tool_parse_doubles(const char *opt, const char *s, double *out, int n);
 /* tool_parse_enum: the value s names in en; else exits 64 with "name: opt:
  * unknown WHAT 'S' (one of: ...)". */
 int tool_parse_enum(const char *opt, const vx_enum *en, const char *s);
+
+/* tool_opt_other: the getopt_long results a program leaves to every
+ * program's rule: 'h' prints the usage and exits 0; ':' (a value missing,
+ * with an option string that starts with ':') and any other exit 64
+ * naming the option ("--size needs a value", "unknown option '-x'"). */
+_Noreturn void tool_opt_other(int ch, const char *usage, char **argv);
+
+/* tool_opt_input: the input operand after the options, "-" (standard
+ * input) when there is none; a second one exits 64. */
+const char *tool_opt_input(int argc, char **argv, const char *usage);
 
 /* tool_read_stream: read a whole stream from path ("-" is stdin); exits on
  * error.  Refuses a terminal on stdin with a usage hint. */
@@ -189,11 +187,13 @@ void tool_write_png_radiance(const char *path, const struct vx_image *color,
     double exposure, const double bg[3], int bits, const vx_stream *in);
 
 /* tool_gi_setup: the global-illumination estimator (vx_gi.h) for scene s
- * over volume g and hierarchy m; exits 64 when the scene has no light a
- * bake can use (headlights move with the camera). */
+ * over volume g and hierarchy m, with the scene's environment map (at most
+ * one; read now, its content hash checked or recorded in s); exits 64
+ * when the scene has no light global illumination can use (headlights
+ * move with the camera), 65 or 66 for a map that cannot be read. */
 struct vx_gi;
 struct vx_scene;
-void tool_gi_setup(struct vx_gi *gi, const struct vx_scene *s,
+void tool_gi_setup(struct vx_gi *gi, struct vx_scene *s,
     const struct vx_grid *g, const struct vx_macro *m);
 
 /* tool_threads: number of threads for -j N (0: all cores), made the
