@@ -985,17 +985,19 @@ cell_max(void **state)
 	(void)state;
 	vx_cell_poly(dbl_cell, dbl_o, dbl_d, 0, k);
 	assert_int_equal(vx_cell_max(k, 0, 1, &tm, &fm), 1);
-	assert_true(fabs(tm - 2.0 / 3) <= 1e-15 && fabs(fm - 4) <= 1e-14);
+	assert_true(fabs(tm - 2.0 / 3) <= 1e-15 && fm <= 4 && fm >= 4 - 1e-13);
 	/* only the ends: t in [0, 0.5] peaks at 0.5 (f increasing there) */
 	assert_int_equal(vx_cell_max(k, 0, 0.5, &tm, &fm), 1);
-	assert_true(tm == 0.5 && fm == 27 * 0.25 * 0.5);
+	/* (ends other than t = 0 are rounded down: never above f there) */
+	assert_true(tm == 0.5 && fm <= 27 * 0.25 * 0.5 &&
+	    fm >= 27 * 0.25 * 0.5 - 1e-14);
 	/* ties: f = t^2 - t is 0 at both ends: smallest t */
 	{
 		double q[4] = { 0, -1, 1, 0 }, c0[4] = { 3, 0, 0, 0 };
 		assert_int_equal(vx_cell_max(q, 0, 1, &tm, &fm), 1);
 		assert_true(tm == 0 && fm == 0);
 		assert_int_equal(vx_cell_max(c0, -2, 5, &tm, &fm), 1);
-		assert_true(tm == -2 && fm == 3);
+		assert_true(tm == -2 && fm <= 3 && fm >= 3 - 1e-14);
 	}
 	for (int i = 0; i < 100; i++) {
 		ray_case rc;
@@ -1015,7 +1017,11 @@ cell_max(void **state)
 			}
 		}
 		scale = corner_scale(rc.c, 0);
-		if (fm < best - 1e-14L * scale) {
+		/* the value is rounded down by Horner's error bound, 2^-50
+		 * of the terms' magnitudes (vx_cell_poly_low) */
+		double at = fabs(tm), terms = fabs(k[0]) + at * (fabs(k[1]) +
+		    at * (fabs(k[2]) + at * fabs(k[3])));
+		if (fm < best - 1e-14L * scale - 0x1p-47 * terms) {
 			worse++;
 			fail_msg("case %d: max %.17g below sampled %.17Lg", i, fm, best);
 		}
@@ -1446,6 +1452,78 @@ touch_exact(void **state)
 	assert_true(slow > 0);
 }
 
+/* vx_cell_max is never above the exact maximum of its cubic: the
+ * double-root cubic g(u) = 27 u^2 (1 - u) - 4 (maximum exactly 0 at u =
+ * 2/3, not a double: the critical point is rounded) under affine changes
+ * of variable u = al t + be (al = 1..9 odd times 2^-3..2^3, be = -1..1 in
+ * eighths) and scalings A = 2^-40..2^40, every coefficient exact; the
+ * double-root cell along dyadic rays; the maxima at the segment's ends.
+ * Oracle: the algebra (the maximum on u in [0, 1] is 0); and within 2^-47
+ * of the terms' magnitudes below it (Horner's bound, vx_cell_poly_low).
+ * Rounding put 77 of these up to 4.4e-16 A above 0 before. */
+static void
+cell_max_never_above(void **state)
+{
+	double k[4], tm, fm;
+	int n = 0;
+
+	(void)state;
+	for (int e = -40; e <= 40; e += 8)
+		for (int ai = 1; ai <= 9; ai += 2)
+			for (int ae = -3; ae <= 3; ae++)
+				for (int bi = -8; bi <= 8; bi++) {
+		double A = ldexp(1, e), al = ldexp(ai, ae), be = bi / 8.0;
+		double t0 = (0 - be) / al, t1 = (1 - be) / al;
+
+		/* A g(al t + be) expanded: exact (small integers times powers
+		 * of two) */
+		k[3] = A * -27 * al * al * al;
+		k[2] = A * (3 * -27 * al * al * be + 27 * al * al);
+		k[1] = A * (3 * -27 * al * be * be + 2 * 27 * al * be);
+		k[0] = A * (-27 * be * be * be + 27 * be * be - 4);
+		n++;
+		assert_int_equal(vx_cell_max(k, t0, t1, &tm, &fm), 1);
+		if (fm > 0)
+			fail_msg("A 2^%d al %g be %g: max %.17g above the exact 0",
+			    e, al, be, fm);
+		double at = fabs(tm), terms = fabs(k[0]) + at * (fabs(k[1]) +
+		    at * (fabs(k[2]) + at * fabs(k[3])));
+		if (!(fm >= -0x1p-47 * terms))
+			fail_msg("A 2^%d al %g be %g: max %.17g far below 0", e, al,
+			    be, fm);
+	}
+	assert_true(n > 6000);
+	/* the double-root cell along the line, and its parametrizations */
+	{
+		static const double os[4][3] = { { 0, 0, 1 }, { 1, 1, 0 },
+		    { -5, -5, 6 }, { 0, 0, 1 } };
+		static const double ds[4][3] = { { 1, 1, -1 }, { -1, -1, 1 },
+		    { 1, 1, -1 }, { 0.5, 0.5, -0.5 } };
+		static const double ts[4][2] = { { 0, 1 }, { 0, 1 }, { 5, 6 },
+		    { 0, 2 } };
+
+		for (int w = 0; w < 4; w++) {
+			vx_cell_poly(dbl_cell, os[w], ds[w], 4, k);
+			assert_int_equal(vx_cell_max(k, ts[w][0], ts[w][1], &tm,
+			    &fm), 1);
+			/* (t measured from 5 cells before the cell: terms
+			 * near 27 * 6^3, Horner's bound 2^-50 of that) */
+			if (!(fm <= 0 && fm >= -1e-10))
+				fail_msg("double-root cell %d: max %.17g", w, fm);
+		}
+	}
+	/* maxima at the ends: at t0 the value is k0 itself, exactly */
+	{
+		double q[4] = { 3, -1, 0, 0 };
+
+		assert_int_equal(vx_cell_max(q, 0, 1, &tm, &fm), 1);
+		assert_true(tm == 0 && fm == 3);
+		q[1] = 1;
+		assert_int_equal(vx_cell_max(q, 0, 1, &tm, &fm), 1);
+		assert_true(tm == 1 && fm <= 4 && fm >= 4 - 1e-14);
+	}
+}
+
 int
 main(void)
 {
@@ -1453,6 +1531,7 @@ main(void)
 		cmocka_unit_test(double_root),
 		cmocka_unit_test(touches),
 		cmocka_unit_test(touch_exact),
+		cmocka_unit_test(cell_max_never_above),
 		cmocka_unit_test(triple_root),
 		cmocka_unit_test(degenerate_leading),
 		cmocka_unit_test(far_origin),

@@ -650,117 +650,6 @@ ties_smallest_t(void **state)
 	}
 }
 
-static int
-same_f(float a, float b)
-{
-	return memcmp(&a, &b, sizeof a) == 0;
-}
-
-/* render_equals_rays: vx_mip_render's pictures, for a u8 volume (rays
- * along an axis take the column walk) and an f32 one with a NaN voxel, an
- * axis-aligned orthographic view and a perspective one that sees past the
- * volume, images that are not a whole number of tiles, 1 and 3 threads,
- * tiles of 16, 7 and 5, the last-t bound on and off, the exhaustive mode.
- * Oracle: pixel (x, y) is vx_mip_ray_exhaustive on the camera ray through
- * its centre, value and depth bit for bit, and the volume's minimum
- * (depth +Inf) where that ray finds nothing. */
-static void
-render_equals_rays(void **state)
-{
-	static const int64_t d[3] = { 13, 11, 9 };
-	static const struct { int nthreads, tile, last_t, exhaustive; } cfg[] = {
-		{ 1, 16, 1, 0 }, { 3, 16, 1, 0 }, { 3, 5, 0, 0 }, { 2, 7, 1, 1 },
-	};
-	vx_err e = { 0, "" };
-
-	(void)state;
-	for (int vol = 0; vol < 2; vol++) {
-		vx_grid g;
-		vx_macro m;
-		double lo[3], hi[3];
-
-		if (vol == 0) {
-			uint64_t i = 0;
-
-			assert_int_equal(vx_grid_alloc(&g, d, VX_U8, "linear", &e),
-			    0);
-			for (int64_t z = 0; z < d[2]; z++)
-				for (int64_t y = 0; y < d[1]; y++)
-					for (int64_t x = 0; x < d[0]; x++)
-						vx_grid_set(&g, x, y, z,
-						    floor(255 * hash01(7, i++)));
-			vx_grid_range(&g);
-		} else {
-			make_random(&g, d, 11, "linear");
-			vx_grid_set(&g, 4, 5, 6, NAN);
-			vx_grid_range(&g);
-		}
-		build(&m, &g, 2, 3);
-		vx_grid_box(&g, lo, hi);
-		for (int view = 0; view < 2; view++) {
-			vx_camera cam;
-
-			vx_camera_init(&cam);
-			cam.w = 23;
-			cam.h = 17;
-			if (view == 0) {
-				cam.projection = VX_ORTHOGRAPHIC;
-				cam.view = VX_VIEW_TOP;
-			} else {
-				cam.view = VX_VIEW_ANGLES;
-				cam.azimuth = 30;
-				cam.elevation = 20;
-				cam.distance = 0.8;   /* the box spills over */
-			}
-			assert_int_equal(vx_camera_resolve(&cam, lo, hi, &e), 0);
-			for (size_t c = 0; c < sizeof cfg / sizeof cfg[0]; c++) {
-				vx_mip_opts o;
-				vx_mip_stats st;
-				vx_image val, dep;
-				int misses = 0;
-
-				vx_mip_opts_init(&o);
-				o.nthreads = cfg[c].nthreads;
-				o.tile = cfg[c].tile;
-				o.last_t = cfg[c].last_t;
-				o.exhaustive = cfg[c].exhaustive;
-				vx_image_init(&val);
-				vx_image_init(&dep);
-				assert_int_equal(vx_mip_render(&cam, &g, &m, &o, &val,
-				    &dep, &st, &e), 0);
-				assert_int_equal(val.w, 23);
-				assert_int_equal(dep.h, 17);
-				assert_int_equal(st.threads, cfg[c].nthreads);
-				assert_int_equal(st.rays, cfg[c].exhaustive ? 0 :
-				    23 * 17);
-				for (int y = 0; y < 17; y++)
-					for (int x = 0; x < 23; x++) {
-						double ow[3], dw[3], oi[3], di[3], v, t;
-						int hit;
-
-						vx_camera_ray(&cam, x + 0.5, y + 0.5, ow, dw);
-						vx_world_to_index(&g, ow, oi);
-						vx_world_to_index_dir(&g, dw, di);
-						hit = vx_mip_ray_exhaustive(&g, oi, di, 0,
-						    INFINITY, &v, &t);
-						misses += !hit;
-						assert_true(same_f(*vx_image_pixel(&val, x,
-						    y), (float)(hit ? v : g.vmin)));
-						assert_true(same_f(*vx_image_pixel(&dep, x,
-						    y), (float)(hit ? t : INFINITY)));
-					}
-				/* both views see the volume and past it (the
-				 * top view's frame is wider than the box) */
-				assert_true(misses > 0 && misses < 23 * 17);
-				vx_image_free(&val);
-				vx_image_free(&dep);
-			}
-		}
-		vx_macro_free(&m);
-		vx_grid_free(&g);
-	}
-}
-
 /* bilin: the multilinear interpolation of g's samples at index point p
  * (each coordinate within the samples' range), in long double from the
  * samples written out: a one-sample axis contributes its only sample. */
@@ -933,10 +822,185 @@ one_sample_axes(void **state)
 	}
 }
 
+/* MIP never above the exact maximum: a 2x2x2 volume holding the double-
+ * root cell less 4 (corners -4 ... 23, floats), whose field along the line
+ * (0,0,1) + u (1,1,-1) is exactly 27 u^2 (1 - u) - 4, maximum 0 at u = 2/3
+ * (oracle: the algebra); rays along it both ways, starting inside the
+ * cell at u = 1/8 .. 7/8 (so the cubic in t is the affine image u = be +
+ * al t), with al = 1..9 odd times 2^-3..2^3, the volume scaled by 2^-60
+ * .. 2^60.  The queue and the exhaustive walk give one value, never above
+ * 0 (7 of 490 rays were, by 4.4e-16, before) and within 1e-10 of it. */
+static void
+never_above_exact(void **state)
+{
+	int64_t dims[3] = { 2, 2, 2 };
+	vx_err e = { 0, "" };
+
+	(void)state;
+	for (int sc = -60; sc <= 60; sc += 30) {
+		vx_grid g;
+		vx_macro m;
+		vx_mip_work w;
+		double f = ldexp(1, sc);
+
+		assert_int_equal(vx_grid_alloc(&g, dims, VX_F32, NULL, &e), 0);
+		for (int i = 0; i < 8; i++)
+			vx_grid_set(&g, i & 1, i >> 1 & 1, i >> 2, ((i == 7 ? 27 :
+			    0) - 4) * f);
+		vx_grid_range(&g);
+		build(&m, &g, 1, 2);
+		assert_int_equal(vx_mip_work_init(&w, &m, &e), 0);
+		for (int ai = 1; ai <= 9; ai += 2)
+			for (int ae = -3; ae <= 3; ae++)
+				for (int bi = 1; bi <= 7; bi++)
+					for (int r = 0; r < 2; r++) {
+			double al = ldexp(ai, ae), be = bi / 8.0, o[3], d[3];
+			double v, t, ve, te;
+
+			for (int a = 0; a < 3; a++) {
+				double sg = a < 2 ? 1 : -1;   /* along (1,1,-1) */
+				double u0 = r ? 1 - be : be;
+
+				o[a] = (a < 2 ? 0 : 1) + sg * u0;
+				d[a] = (r ? -sg : sg) * al;
+			}
+			assert_int_equal(vx_mip_ray(&g, &m, &w, o, d, 0, INFINITY,
+			    1, &v, &t, NULL), 1);
+			assert_int_equal(vx_mip_ray_exhaustive(&g, o, d, 0,
+			    INFINITY, &ve, &te), 1);
+			assert_true(v == ve && t == te);
+			/* the segment holds u = 2/3 (maximum 0), or its
+			 * maximum is at the start u0: g(u0), exact */
+			double u0 = r ? 1 - be : be;
+			double want = (r ? u0 > 2.0 / 3 : u0 < 2.0 / 3) ? 0 :
+			    (27 * u0 * u0 * (1 - u0) - 4) * f;
+			if (!(v <= want && v >= want - 1e-10 * f))
+				fail_msg("scale 2^%d al %g be %g ray %d: %.17g "
+				    "(exact maximum %.17g)", sc, al, be, r, v,
+				    want);
+		}
+		vx_mip_work_free(&w);
+		vx_macro_free(&m);
+		vx_grid_free(&g);
+	}
+}
+
+static int
+same_f(float a, float b)
+{
+	return memcmp(&a, &b, sizeof a) == 0;
+}
+
+/* render_equals_rays: vx_mip_render's pictures, for a u8 volume (rays
+ * along an axis take the column walk) and an f32 one with a NaN voxel, an
+ * axis-aligned orthographic view and a perspective one that sees past the
+ * volume, images that are not a whole number of tiles, 1 and 3 threads,
+ * tiles of 16, 7 and 5, the last-t bound on and off, the exhaustive mode.
+ * Oracle: pixel (x, y) is vx_mip_ray_exhaustive on the camera ray through
+ * its centre, value and depth bit for bit, and the volume's minimum
+ * (depth +Inf) where that ray finds nothing. */
+static void
+render_equals_rays(void **state)
+{
+	static const int64_t d[3] = { 13, 11, 9 };
+	static const struct { int nthreads, tile, last_t, exhaustive; } cfg[] = {
+		{ 1, 16, 1, 0 }, { 3, 16, 1, 0 }, { 3, 5, 0, 0 }, { 2, 7, 1, 1 },
+	};
+	vx_err e = { 0, "" };
+
+	(void)state;
+	for (int vol = 0; vol < 2; vol++) {
+		vx_grid g;
+		vx_macro m;
+		double lo[3], hi[3];
+
+		if (vol == 0) {
+			uint64_t i = 0;
+
+			assert_int_equal(vx_grid_alloc(&g, d, VX_U8, "linear", &e),
+			    0);
+			for (int64_t z = 0; z < d[2]; z++)
+				for (int64_t y = 0; y < d[1]; y++)
+					for (int64_t x = 0; x < d[0]; x++)
+						vx_grid_set(&g, x, y, z,
+						    floor(255 * hash01(7, i++)));
+			vx_grid_range(&g);
+		} else {
+			make_random(&g, d, 11, "linear");
+			vx_grid_set(&g, 4, 5, 6, NAN);
+			vx_grid_range(&g);
+		}
+		build(&m, &g, 2, 3);
+		vx_grid_box(&g, lo, hi);
+		for (int view = 0; view < 2; view++) {
+			vx_camera cam;
+
+			vx_camera_init(&cam);
+			cam.w = 23;
+			cam.h = 17;
+			if (view == 0) {
+				cam.projection = VX_ORTHOGRAPHIC;
+				cam.view = VX_VIEW_TOP;
+			} else {
+				cam.view = VX_VIEW_ANGLES;
+				cam.azimuth = 30;
+				cam.elevation = 20;
+				cam.distance = 0.8;   /* the box spills over */
+			}
+			assert_int_equal(vx_camera_resolve(&cam, lo, hi, &e), 0);
+			for (size_t c = 0; c < sizeof cfg / sizeof cfg[0]; c++) {
+				vx_mip_opts o;
+				vx_mip_stats st;
+				vx_image val, dep;
+				int misses = 0;
+
+				vx_mip_opts_init(&o);
+				o.nthreads = cfg[c].nthreads;
+				o.tile = cfg[c].tile;
+				o.last_t = cfg[c].last_t;
+				o.exhaustive = cfg[c].exhaustive;
+				vx_image_init(&val);
+				vx_image_init(&dep);
+				assert_int_equal(vx_mip_render(&cam, &g, &m, &o, &val,
+				    &dep, &st, &e), 0);
+				assert_int_equal(val.w, 23);
+				assert_int_equal(dep.h, 17);
+				assert_int_equal(st.threads, cfg[c].nthreads);
+				assert_int_equal(st.rays, cfg[c].exhaustive ? 0 :
+				    23 * 17);
+				for (int y = 0; y < 17; y++)
+					for (int x = 0; x < 23; x++) {
+						double ow[3], dw[3], oi[3], di[3], v, t;
+						int hit;
+
+						vx_camera_ray(&cam, x + 0.5, y + 0.5, ow, dw);
+						vx_world_to_index(&g, ow, oi);
+						vx_world_to_index_dir(&g, dw, di);
+						hit = vx_mip_ray_exhaustive(&g, oi, di, 0,
+						    INFINITY, &v, &t);
+						misses += !hit;
+						assert_true(same_f(*vx_image_pixel(&val, x,
+						    y), (float)(hit ? v : g.vmin)));
+						assert_true(same_f(*vx_image_pixel(&dep, x,
+						    y), (float)(hit ? t : INFINITY)));
+					}
+				/* both views see the volume and past it (the
+				 * top view's frame is wider than the box) */
+				assert_true(misses > 0 && misses < 23 * 17);
+				vx_image_free(&val);
+				vx_image_free(&dep);
+			}
+		}
+		vx_macro_free(&m);
+		vx_grid_free(&g);
+	}
+}
+
 int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(never_above_exact),
 		cmocka_unit_test(one_sample_axes),
 		cmocka_unit_test(interior_maximum),
 		cmocka_unit_test(constant_volume_stops),

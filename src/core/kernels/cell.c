@@ -896,9 +896,10 @@ vx_cell_max(const double k[4], double t0, double t1, double *tmax,
 		bf = f;
 		bt = t1;
 	}
-	/* back to the caller's scale (the identity unless normalized) */
+	/* back to the caller's scale (the identity unless normalized),
+	 * rounded down: never above the exact maximum */
 	*tmax = bt;
-	*fmax = vx_cell_poly_eval(k, bt);
+	*fmax = vx_cell_poly_low(k, bt);
 	if (!isfinite(*fmax)) {
 		*tmax = 0;
 		*fmax = -INFINITY;

@@ -31,6 +31,7 @@
 #define VX_CELL_H
 
 #include <math.h>
+#include <stdint.h>
 
 #include "vx_enum.h"
 
@@ -267,13 +268,45 @@ vx_cell_sign_bound_b3(const double k[4], double len, double *b3)
 	return 0;
 }
 
+/* vx_cell_poly_low: a lower bound of the cubic k's exact value at t (k
+ * and t taken as exact): k[0] itself at t == 0 (Horner is exact there),
+ * else Horner's value less its error bound, 2^-50 times the terms'
+ * magnitudes (over gamma_6 of them, Higham's bound for degree 3) plus
+ * 2^-1067 (gradual underflow), and then the next double below (the
+ * subtraction's own rounding): never above k's value at t, at most a few
+ * units of Horner's rounding below it.  For finite k and t. */
+static inline double
+vx_cell_poly_low(const double k[4], double t)
+{
+	union { double d; uint64_t u; } v;
+	double a = fabs(t);
+
+	if (t == 0)
+		return k[0];
+	v.d = ((k[3] * t + k[2]) * t + k[1]) * t + k[0];
+	v.d -= 0x1p-50 * (fabs(k[0]) + a * (fabs(k[1]) + a * (fabs(k[2]) +
+	    a * fabs(k[3])))) + 0x1p-1067;
+	if (v.d > 0)
+		v.u--;
+	else if (v.d < 0)
+		v.u++;
+	else
+		v.d = -0x1p-1074;
+	return v.d;
+}
+
 /* vx_cell_max: the exact maximum of the cubic k on [t0, t1]: the larger of
  * the ends and the critical points inside (stable quadratic formula), ties
  * broken by the smallest t.  Returns 1 and sets *tmax, *fmax; returns 0 (no
  * value: *tmax = 0, *fmax = -INFINITY) if any input is not finite or
  * t0 > t1.  For maximum-intensity projection pass iso = 0 to vx_cell_poly
  * and, as above, measure t from the cell's entry point.  The value is that
- * of the computed cubic (the ends are not replaced by face values). */
+ * of the computed cubic (the ends are not replaced by face values) at
+ * *tmax, rounded down (vx_cell_poly_low): never above the cubic's exact
+ * maximum on [t0, t1], whatever rounding did to the choice of *tmax (a
+ * maximum reached at an interior critical point is approximated from
+ * below), and below it by at most the rounding of the candidates'
+ * values (a few units of 2^-50 times the terms' magnitudes). */
 int vx_cell_max(const double k[4], double t0, double t1, double *tmax,
     double *fmax);
 

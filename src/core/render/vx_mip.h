@@ -21,9 +21,11 @@
  * and no NaN result.
  *
  * The result is fixed by a rule, not by the order of the work: each cell
- * on the ray gives the exact maximum of its cubic on its segment, clamped
- * into the range of its 8 corners (the trilinear field never leaves it;
- * rounding in the cubic could), with the smallest t where it is reached;
+ * on the ray gives the exact maximum of its cubic on its segment, rounded
+ * down (vx_cell_max: never above the cubic's exact maximum, below it by at
+ * most Horner's error bound), clamped into the range of its 8 corners (the
+ * trilinear field never leaves it; rounding in the cubic could), with the
+ * smallest t where it is reached;
  * the ray's result is the largest of these values and, among cells that
  * reach it, the smallest t.  A cell or macrocell is skipped only when its
  * maximum is below the best value, or equal to it with a segment starting
@@ -32,6 +34,14 @@
  * last-t bound, for the queue and for the column walk (rays along an axis:
  * the axis-aligned views, integer samples: no queue, see mip.c), and
  * equal to vx_mip_ray_exhaustive's.
+ *
+ * Bounds.  So the value is never above the exact maximum of the computed
+ * cubics, and never above the field's exact maximum where they are exact
+ * (samples, ray origin and direction whose arithmetic is exact in double);
+ * elsewhere their coefficients are within rounding of the field's: at most
+ * 2^-39 of the cell's largest |corner| (the analysis of iso.c's
+ * ends_certain, iso 0, W < 1024), the bound on how far above the field's
+ * maximum the value can be.
  *
  * A volume with an axis of one sample (dims 1 there) has no cells: its
  * samples span a plane, line or point, the field there is their bilinear
