@@ -27,7 +27,7 @@ static const char usage[] =
     "    [--order N] [--euler A,B,G | --axis X,Y,Z,DEG | --matrix M9]\n"
     "    [--print | --json | --irradiance] [--reconstruct OUT.pfm\n"
     "    [--width W] [--height H] [--window none|hanning|lanczos]]\n"
-    "    [--stats] [--explain] [-o OUT] [STREAM|-]";
+    "    [--irradiance-error] [--stats] [--explain] [-o OUT] [STREAM|-]";
 
 enum { WIN_NONE, WIN_HANNING, WIN_LANCZOS };
 
@@ -37,13 +37,13 @@ typedef struct opts {
 	int order, order_set;
 	int nrot;               /* rotation options given */
 	double r[3][3];         /* the rotation asked for */
-	int print, json, irr, stats, explain, out_set;
+	int print, json, irr, irrerr, stats, explain, out_set;
 	int width, height, window;
 } opts;
 
 enum { O_ENV = 256, O_LAYOUT, O_SCENE, O_ORDER, O_EULER, O_AXIS, O_MATRIX,
 	O_PRINT, O_JSON, O_IRR, O_RECON, O_WIDTH, O_HEIGHT, O_WINDOW,
-	O_STATS, O_EXPLAIN };
+	O_STATS, O_EXPLAIN, O_IRRERR };
 
 /* is_rotation: m m^T = I and det m = 1, to 1e-6 */
 static int
@@ -76,6 +76,7 @@ parse_args(opts *o, int argc, char **argv)
 		{ "json", 0, 0, O_JSON }, { "irradiance", 0, 0, O_IRR },
 		{ "reconstruct", 1, 0, O_RECON }, { "width", 1, 0, O_WIDTH },
 		{ "height", 1, 0, O_HEIGHT }, { "window", 1, 0, O_WINDOW },
+		{ "irradiance-error", 0, 0, O_IRRERR },
 		{ "stats", 0, 0, O_STATS }, { "explain", 0, 0, O_EXPLAIN },
 		{ "output", 1, 0, 'o' }, { "help", 0, 0, 'h' },
 		{ NULL, 0, 0, 0 },
@@ -150,6 +151,7 @@ parse_args(opts *o, int argc, char **argv)
 				tool_usage_fail(usage, "--window: none, hanning "
 				    "or lanczos, not '%s'", optarg);
 			break;
+		case O_IRRERR: o->irrerr = 1; break;
 		case O_STATS: o->stats = 1; break;
 		case O_EXPLAIN: o->explain = 1; break;
 		case 'o': o->out = optarg; o->out_set = 1; break;
@@ -163,9 +165,12 @@ parse_args(opts *o, int argc, char **argv)
 	    tool_opt_input(argc, argv, usage) : NULL;
 	if (o->nrot > 1)
 		tool_usage_fail(usage, "one of --euler, --axis, --matrix");
-	nout = o->print + o->json + o->irr;
+	nout = o->print + o->json + o->irr + o->irrerr;
 	if (nout > 1)
-		tool_usage_fail(usage, "one of --print, --json, --irradiance");
+		tool_usage_fail(usage, "one of --print, --json, --irradiance, "
+		    "--irradiance-error");
+	if (o->irrerr && o->env == NULL)
+		tool_usage_fail(usage, "--irradiance-error: needs --env");
 	if (nout && o->out_set)
 		tool_usage_fail(usage, "-o: the stream is not written with "
 		    "--print, --json or --irradiance");
@@ -365,6 +370,48 @@ print_irr(const vx_shlight *sl)
 	}
 }
 
+/* irr_error: the irradiance of the order-n lighting (vx_sh_irradiance)
+ * against the exact quadrature of the map's pixels, sum of radiance x solid
+ * angle x max(n.w, 0), at NERR normals of a Fibonacci sphere; prints the
+ * relative RMS error sqrt(sum dE^2 / sum E^2) and the largest |dE| over the
+ * mean E, all channels */
+#define NERR 256
+static void
+irr_error(const vx_env *env, const vx_shlight *sl)
+{
+	size_t np = vx_env_npixel(env);
+	double se = 0, s2 = 0, sum = 0, mx = 0;
+
+	for (int k = 0; k < NERR; k++) {
+		double z = 1 - (2 * k + 1.0) / NERR, r = sqrt(1 - z * z);
+		double ph = k * M_PI * (3 - sqrt(5.0));
+		double n[3] = { r * cos(ph), r * sin(ph), z }, ex[3] = { 0 };
+		double esh[3];
+
+		for (size_t i = 0; i < np; i++) {
+			double d[3], om, rgb[3], c;
+
+			vx_env_pixel(env, i, d, &om, rgb);
+			c = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+			if (c > 0 && om > 0)
+				for (int j = 0; j < 3; j++)
+					ex[j] += rgb[j] * om * c;
+		}
+		vx_sh_irradiance(sl->order, 3, sl->c, n, esh);
+		for (int j = 0; j < 3; j++) {
+			double d = esh[j] - ex[j];
+
+			se += d * d;
+			s2 += ex[j] * ex[j];
+			sum += ex[j];
+			mx = fmax(mx, fabs(d));
+		}
+	}
+	printf("order %d rms %.6g max %.6g normals %d\n", sl->order,
+	    s2 > 0 ? sqrt(se / s2) : 0, sum > 0 ? mx / (sum / (3 * NERR)) :
+	    0, NERR);
+}
+
 int
 main(int argc, char **argv)
 {
@@ -383,7 +430,7 @@ main(int argc, char **argv)
 
 	tool_init("sh-rotate", argc, argv);
 	parse_args(&o, argc, argv);
-	nout = o.print + o.json + o.irr;
+	nout = o.print + o.json + o.irr + o.irrerr;
 	vx_stream_init(&st);
 	memset(&env, 0, sizeof env);
 	if (o.in != NULL)
@@ -452,6 +499,8 @@ main(int argc, char **argv)
 		print_json(&sl);
 	else if (o.irr)
 		print_irr(&sl);
+	else if (o.irrerr)
+		irr_error(&env, &sl);
 	if (!nout && (o.recon == NULL || o.out_set)) {
 		memset(&c, 0, sizeof c);
 		if (vx_shlight_to_chunk(&sl, &c, &e) != 0)

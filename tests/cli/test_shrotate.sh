@@ -66,6 +66,12 @@ check_eq "irradiance of a constant: E = pi L at the six axes, to 1e-4 (256 x 128
 check_eq "irradiance: nine L_lm and six E lines" "$(grep -c '^L' "$T/irr.txt") $(grep -c '^E' "$T/irr.txt")" "9 6"
 check_close "irradiance: L00 is c00" "$(awk '$1 == "L00" { print $2 }' "$T/irr.txt")" "$(awk -v s=$s4pi 'BEGIN { printf "%.17g", 2 * s }')" 1e-6
 
+r1=$(sh-rotate --env "$T/c128.pfm" --order 3 --irradiance-error | awk '{ print $4 }')
+check_close "--irradiance-error of a constant: quadrature-level (< 1e-4)" "$r1" 0 1e-4
+r1=$(sh-rotate --env "$T/smooth.pfm" --order 2 --irradiance-error | awk '{ print $4 }')
+r2=$(sh-rotate --env "$T/smooth.pfm" --order 5 --irradiance-error | awk '{ print $4 }')
+check "--irradiance-error of exp(2z): order 5 below order 2's tenth" awk -v a="$r1" -v b="$r2" 'BEGIN { exit !(b < a / 10 && a > 1e-3) }'
+
 # ---- rotation ----
 sh-rotate --env "$T/lin.pfm" --order 2 --print > "$T/l0.txt"
 sh-rotate --env "$T/lin.pfm" --order 2 --euler 90,0,0 > "$T/l90.vx"
