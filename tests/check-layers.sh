@@ -51,7 +51,9 @@ if [ -n "$lib" ]; then
 	if ! command -v nm >/dev/null 2>&1; then
 		echo "check-layers: no nm: exported names not checked" >&2
 	else
-		nm -g --defined-only "$lib" | awk 'NF == 3 && $3 !~ /^vx_/ && !($2 ~ /^[WVu]$/ && $3 ~ /^(_Z|DW\.ref\.)/) { print $3 }' \
+		# ASan's __odr_asan.NAME marks each exported variable NAME
+		nm -g --defined-only "$lib" | awk 'NF == 3 { n = $3; sub(/^__odr_asan\./, "", n)
+		    if (n !~ /^vx_/ && !($2 ~ /^[WVu]$/ && n ~ /^(_Z|DW\.ref\.)/)) print $3 }' \
 		    | sort -u > "${TMPDIR:-/tmp}/check-layers.$$"
 		if [ -s "${TMPDIR:-/tmp}/check-layers.$$" ]; then
 			say "$lib exports names without the vx_ prefix: $(tr '\n' ' ' < "${TMPDIR:-/tmp}/check-layers.$$")"

@@ -802,6 +802,91 @@ json_irrv(const irrv_info *ii)
 	putchar('}');
 }
 
+/* What vinfo decoded of a content chunk, for either report. */
+enum { K_OTHER, K_VOLUME, K_IMAGE, K_SCENE, K_MCEL, K_TETM, K_TLEF,
+    K_IRRV };
+
+typedef struct content {
+	int kind;
+	vol_info v;
+	img_info m;
+	unsigned char *text;    /* K_SCENE: NULL when the chunk has none */
+	size_t ntext;
+	mcel_info mi;
+	vx_tetmesh tm;
+	tlef_info ti;
+	irrv_info ii;
+} content;
+
+/* decode_content: the payload of c as its type says (K_OTHER: nothing to
+ * decode beyond the header); 0 or the decoder's error.  d is freed by
+ * free_content either way. */
+static int
+decode_content(const vx_stream *s, const vx_chunk *c, const opts *o,
+    content *d, vx_err *e)
+{
+	memset(d, 0, sizeof *d);
+	vx_tetmesh_init(&d->tm);
+	if (memcmp(c->type, VX_CHUNK_VOLUME, 4) == 0) {
+		d->kind = K_VOLUME;
+		return decode_volume(c, o, &d->v, e);
+	}
+	if (memcmp(c->type, VX_CHUNK_IMAGE, 4) == 0) {
+		d->kind = K_IMAGE;
+		return decode_image(c, &d->m, e);
+	}
+	if (memcmp(c->type, VX_CHUNK_SCENE, 4) == 0) {
+		d->kind = K_SCENE;
+		return decode_text_body(c, &d->text, &d->ntext, e);
+	}
+	if (memcmp(c->type, VX_CHUNK_MACRO, 4) == 0) {
+		d->kind = K_MCEL;
+		return decode_mcel(s, c, &d->mi, e);
+	}
+	if (memcmp(c->type, VX_CHUNK_TETMESH, 4) == 0) {
+		d->kind = K_TETM;
+		return vx_tetmesh_from_chunk(&d->tm, c, e);
+	}
+	if (memcmp(c->type, VX_CHUNK_TETLEAF, 4) == 0) {
+		d->kind = K_TLEF;
+		return decode_tlef(s, c, &d->ti, e);
+	}
+	if (memcmp(c->type, VX_CHUNK_IRRAD, 4) == 0) {
+		d->kind = K_IRRV;
+		return decode_irrv(s, c, &d->ii, e);
+	}
+	return 0;
+}
+
+static void
+free_content(content *d)
+{
+	switch (d->kind) {
+	case K_VOLUME: free_volume(&d->v); break;
+	case K_IMAGE: vx_image_free(&d->m.img); break;
+	case K_SCENE: free(d->text); break;
+	case K_MCEL: vx_macro_free(&d->mi.m); break;
+	case K_TETM: vx_tetmesh_free(&d->tm); break;
+	case K_TLEF: vx_tetleaf_free(&d->ti.lg); break;
+	case K_IRRV: vx_irr_free(&d->ii.v); break;
+	default: break;
+	}
+}
+
+/* check_range: a volume whose header's range is not its samples' is an
+ * error of the stream (reported after the chunk). */
+static void
+check_range(const vx_chunk *c, const content *d)
+{
+	vx_err e = { 0, "" };
+
+	if (d->kind == K_VOLUME && !d->v.agrees) {
+		vx_err_set(&e, VX_EDATA, "volume: the header's range differs "
+		    "from the samples'");
+		chunk_error(c, &e);
+	}
+}
+
 /* ---- text report ---- */
 
 static void
@@ -910,6 +995,7 @@ static void
 text_chunk(const vx_stream *s, size_t idx, const vx_chunk *c, const opts *o)
 {
 	vx_err e = { 0, "" };
+	content d;
 	int rc;
 
 	printf("chunk %zu: %s at %llu, length %zu, %s, %s\n", idx, c->type,
@@ -950,79 +1036,29 @@ text_chunk(const vx_stream *s, size_t idx, const vx_chunk *c, const opts *o)
 		}
 		vx_hdr_free(&h);
 	}
-	if (memcmp(c->type, VX_CHUNK_VOLUME, 4) == 0) {
-		vol_info v;
-
-		if ((rc = decode_volume(c, o, &v, &e)) != 0) {
-			printf("  error: %s\n", e.msg);
-			chunk_error(c, &e);
-		} else {
-			text_volume(&v, o->bins);
-			if (!v.agrees) {
-				vx_err_set(&e, VX_EDATA, "volume: the header's "
-				    "range differs from the samples'");
-				chunk_error(c, &e);
-			}
-		}
-		free_volume(&v);
-	} else if (memcmp(c->type, VX_CHUNK_IMAGE, 4) == 0) {
-		img_info m;
-
-		if ((rc = decode_image(c, &m, &e)) != 0) {
-			printf("  error: %s\n", e.msg);
-			chunk_error(c, &e);
-		} else
-			text_image(&m);
-		vx_image_free(&m.img);
-	} else if (memcmp(c->type, VX_CHUNK_SCENE, 4) == 0) {
-		unsigned char *text;
-		size_t n;
-
-		if ((rc = decode_text_body(c, &text, &n, &e)) != 0) {
-			printf("  error: %s\n", e.msg);
-			chunk_error(c, &e);
-		} else if (text != NULL) {
-			printf("  scene:\n");
-			text_lines(text, n, "    ");
-		}
-		free(text);
-	} else if (memcmp(c->type, VX_CHUNK_MACRO, 4) == 0) {
-		mcel_info mi;
-
-		if ((rc = decode_mcel(s, c, &mi, &e)) != 0) {
-			printf("  error: %s\n", e.msg);
-			chunk_error(c, &e);
-		} else
-			text_mcel(&mi);
-		vx_macro_free(&mi.m);
-	} else if (memcmp(c->type, VX_CHUNK_TETMESH, 4) == 0) {
-		vx_tetmesh m;
-
-		if ((rc = vx_tetmesh_from_chunk(&m, c, &e)) != 0) {
-			printf("  error: %s\n", e.msg);
-			chunk_error(c, &e);
-		} else
-			text_tetm(&m);
-		vx_tetmesh_free(&m);
-	} else if (memcmp(c->type, VX_CHUNK_TETLEAF, 4) == 0) {
-		tlef_info ti;
-
-		if ((rc = decode_tlef(s, c, &ti, &e)) != 0) {
-			printf("  error: %s\n", e.msg);
-			chunk_error(c, &e);
-		} else
-			text_tlef(&ti);
-		vx_tetleaf_free(&ti.lg);
-	} else if (memcmp(c->type, VX_CHUNK_IRRAD, 4) == 0) {
-		irrv_info ii;
-
-		if ((rc = decode_irrv(s, c, &ii, &e)) != 0) {
-			printf("  error: %s\n", e.msg);
-			chunk_error(c, &e);
-		} else
-			text_irrv(&ii);
-		vx_irr_free(&ii.v);
+	if (decode_content(s, c, o, &d, &e) != 0) {
+		printf("  error: %s\n", e.msg);
+		chunk_error(c, &e);
+		free_content(&d);
+		return;
 	}
+	switch (d.kind) {
+	case K_VOLUME: text_volume(&d.v, o->bins); break;
+	case K_IMAGE: text_image(&d.m); break;
+	case K_SCENE:
+		if (d.text != NULL) {
+			printf("  scene:\n");
+			text_lines(d.text, d.ntext, "    ");
+		}
+		break;
+	case K_MCEL: text_mcel(&d.mi); break;
+	case K_TETM: text_tetm(&d.tm); break;
+	case K_TLEF: text_tlef(&d.ti); break;
+	case K_IRRV: text_irrv(&d.ii); break;
+	default: break;
+	}
+	check_range(c, &d);
+	free_content(&d);
 }
 
 /* ---- JSON report ---- */
@@ -1126,6 +1162,7 @@ static void
 json_chunk(const vx_stream *s, size_t idx, const vx_chunk *c, const opts *o)
 {
 	vx_err e = { 0, "" };
+	content d;
 
 	printf("%s{\"index\":%zu,\"type\":", idx ? "," : "", idx);
 	json_text((const unsigned char *)c->type, 4);
@@ -1169,72 +1206,28 @@ json_chunk(const vx_stream *s, size_t idx, const vx_chunk *c, const opts *o)
 		putchar('}');
 		vx_hdr_free(&h);
 	}
-	if (memcmp(c->type, VX_CHUNK_VOLUME, 4) == 0) {
-		vol_info v;
-
-		if (decode_volume(c, o, &v, &e) != 0)
-			json_error(c, &e);
-		else {
-			json_volume(&v, o->bins);
-			if (!v.agrees) {
-				vx_err_set(&e, VX_EDATA, "volume: the header's "
-				    "range differs from the samples'");
-				chunk_error(c, &e);
-			}
-		}
-		free_volume(&v);
-	} else if (memcmp(c->type, VX_CHUNK_IMAGE, 4) == 0) {
-		img_info m;
-
-		if (decode_image(c, &m, &e) != 0)
-			json_error(c, &e);
-		else
-			json_image(&m);
-		vx_image_free(&m.img);
-	} else if (memcmp(c->type, VX_CHUNK_SCENE, 4) == 0) {
-		unsigned char *text;
-		size_t n;
-
-		if (decode_text_body(c, &text, &n, &e) != 0)
-			json_error(c, &e);
-		else if (text != NULL) {
-			printf(",\"text\":");
-			json_text(text, n);
-		}
-		free(text);
-	} else if (memcmp(c->type, VX_CHUNK_MACRO, 4) == 0) {
-		mcel_info mi;
-
-		if (decode_mcel(s, c, &mi, &e) != 0)
-			json_error(c, &e);
-		else
-			json_mcel(&mi);
-		vx_macro_free(&mi.m);
-	} else if (memcmp(c->type, VX_CHUNK_TETMESH, 4) == 0) {
-		vx_tetmesh m;
-
-		if (vx_tetmesh_from_chunk(&m, c, &e) != 0)
-			json_error(c, &e);
-		else
-			json_tetm(&m);
-		vx_tetmesh_free(&m);
-	} else if (memcmp(c->type, VX_CHUNK_TETLEAF, 4) == 0) {
-		tlef_info ti;
-
-		if (decode_tlef(s, c, &ti, &e) != 0)
-			json_error(c, &e);
-		else
-			json_tlef(&ti);
-		vx_tetleaf_free(&ti.lg);
-	} else if (memcmp(c->type, VX_CHUNK_IRRAD, 4) == 0) {
-		irrv_info ii;
-
-		if (decode_irrv(s, c, &ii, &e) != 0)
-			json_error(c, &e);
-		else
-			json_irrv(&ii);
-		vx_irr_free(&ii.v);
+	if (decode_content(s, c, o, &d, &e) != 0) {
+		json_error(c, &e);
+		free_content(&d);
+		goto done;
 	}
+	switch (d.kind) {
+	case K_VOLUME: json_volume(&d.v, o->bins); break;
+	case K_IMAGE: json_image(&d.m); break;
+	case K_SCENE:
+		if (d.text != NULL) {
+			printf(",\"text\":");
+			json_text(d.text, d.ntext);
+		}
+		break;
+	case K_MCEL: json_mcel(&d.mi); break;
+	case K_TETM: json_tetm(&d.tm); break;
+	case K_TLEF: json_tlef(&d.ti); break;
+	case K_IRRV: json_irrv(&d.ii); break;
+	default: break;
+	}
+	check_range(c, &d);
+	free_content(&d);
 done:
 	putchar('}');
 }

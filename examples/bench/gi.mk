@@ -1,0 +1,38 @@
+# gi.mk: global illumination (Wyman et al. 2006): bake-irr and raycast's
+# irradiance shading (included by the Makefile here; RESULTS-gi.md has the
+# tables, the setup and what they mean).
+#
+#   make -C examples/bench gi              Tables 1 and 2, accuracy, memory: results/gi/
+#   make -C examples/bench gi GI_PARTS=t2 RUNS=3      one part: t1, t2, acc, mem
+#   make -C examples/bench gi GI_SAMPLES=16,100       fewer sample counts
+#
+# Datasets: the MRI head (ch2, skin at 40: examples/scenes/head-gi-sky.scn) and,
+# when $(DATA) has it, the Visible Human CT head (skin at 600.5:
+# examples/scenes/vhf-gi.scn); GI_RANGE_D is each one's --iso-range band.
+# Bakes of more than GI_MAX_PATHS paths (lazy images: GI_MAX_LAZY_PATHS)
+# are extrapolated from the measured ones, and the tables say so
+# (gibench.py).  Needs voxlux built (`make` at the top).
+
+GI_OUT ?= results/gi
+GI_PARTS ?= t1,t2,acc,mem
+GI_SAMPLES ?= 16,100,625
+GI_MAX_PATHS ?= 2e7
+GI_MAX_LAZY_PATHS ?= 8e7
+GI_CASES ?= ch2 $(if $(wildcard $(vhf_SRC)),vhf)
+ch2_GISCENE := ../scenes/head-gi-sky.scn
+ch2_GIRANGE := 30,50
+vhf_GISCENE := ../scenes/vhf-gi.scn
+vhf_GIRANGE := 500,700
+
+.PHONY: gi
+
+$(OUT)/gi/%.vx: $$($$*_SRC)
+	@mkdir -p $(@D)
+	$(VX_BIN)/vread $($*_VREAD) $< | $(VX_BIN)/brick | $(VX_BIN)/macrocell > $@.tmp && mv $@.tmp $@
+
+gi: $(foreach c,$(GI_CASES),$(OUT)/gi/$(c).vx)
+	@for p in vread brick macrocell bake-irr raycast vinfo; do [ -x $(VX_BIN)/$$p ] || \
+	  { echo "gi: $(VX_BIN)/$$p missing: run make at the top first" >&2; exit 69; }; done
+	$(PY) gibench.py --bin $(VX_BIN) --out $(GI_OUT) --runs $(RUNS) --parts $(GI_PARTS) \
+	  --samples $(GI_SAMPLES) --max-paths $(GI_MAX_PATHS) --max-lazy-paths $(GI_MAX_LAZY_PATHS) \
+	  $(foreach c,$(GI_CASES),--dataset $(c) $(OUT)/gi/$(c).vx $($(c)_GISCENE) $($(c)_GIRANGE))
