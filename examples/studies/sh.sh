@@ -13,7 +13,7 @@ set -eu
 PATH="$BIN:$PATH"
 mkdir -p results
 command -v gnuplot >/dev/null || { echo "studies: gnuplot: missing (make deps)" >&2; exit 69; }
-W=/usr/share/blender/datafiles/studiolights/world
+W=${WORLD:-/usr/share/blender/datafiles/studiolights/world}   # WORLD=: another folder of .exr maps
 
 maps=""
 for p in grace uffizi ennis pisa wells; do
