@@ -95,10 +95,14 @@ touches(void **state)
 		{ dbl_cell, { 0, 0, 1 }, { 3, 3, -3 }, 0, 1.0 / 3, 4, VX_CELL_TOUCH, 2.0 / 9, 1e-12 },
 		/* touched from above: f = 4 - 27 t^2 (1-t) >= 0, zero at 2/3 */
 		{ neg, { 0, 0, 1 }, { 1, 1, -1 }, 0, 1, -4, VX_CELL_TOUCH, 2.0 / 3, 1e-12 },
-		/* within the touch tolerance */
-		{ dbl_cell, { 0, 0, 1 }, { 1, 1, -1 }, 0, 1, 4 * (1 + 1e-14), VX_CELL_TOUCH, 2.0 / 3, 1e-12 },
-		{ neg, { 0, 0, 1 }, { 1, 1, -1 }, 0, 1, -4 * (1 + 1e-14), VX_CELL_TOUCH, 2.0 / 3, 1e-12 },
-		/* beyond it: a miss, and two crossings 2.4e-5 apart */
+		/* beside the touching isovalue by 1e-14 (relative): a miss
+		 * (touched from below and from above), and two crossings
+		 * 7.7e-8 apart; touches are decided exactly, none is taken
+		 * for a hit however near */
+		{ dbl_cell, { 0, 0, 1 }, { 1, 1, -1 }, 0, 1, 4 * (1 + 1e-14), VX_CELL_MISS, 0, 0 },
+		{ neg, { 0, 0, 1 }, { 1, 1, -1 }, 0, 1, -4 * (1 + 1e-14), VX_CELL_MISS, 0, 0 },
+		{ dbl_cell, { 0, 0, 1 }, { 1, 1, -1 }, 0, 1, 4 * (1 - 1e-14), VX_CELL_CROSS, -1, 1e-7 },
+		/* by 1e-9: a miss, and two crossings 2.4e-5 apart */
 		{ dbl_cell, { 0, 0, 1 }, { 1, 1, -1 }, 0, 1, 4 * (1 + 1e-9), VX_CELL_MISS, 0, 0 },
 		{ dbl_cell, { 0, 0, 1 }, { 1, 1, -1 }, 0, 1, 4 * (1 - 1e-9), VX_CELL_CROSS, -1, 1e-9 },
 	};
@@ -1354,12 +1358,101 @@ normal_thresh_range(void **state)
 	}
 }
 
+/* Touches decided exactly: cubics whose coefficients are exact doubles,
+ * f = s A (t - r)^2 (t - q) + eps with dyadic r inside the segment, q
+ * beyond it, A = 2^e (e from -600 to 600) and eps = 0 or +-2^-j A (j from
+ * 8 to 52, where eps is still exact in k0: far below the old touch
+ * tolerance 2^-40), and the same along rays: the double-root cell (iso 4
+ * +- 4 2^-j, its cubic exact for the dyadic ray).  Oracle: the algebra:
+ * eps = 0 is a double root at r, a touch there; eps of the sign that
+ * lifts the extremum across zero gives two crossings around r, the first
+ * before it; the other sign keeps f off zero: a miss.  Every solver
+ * decides alike. */
+static void
+touch_exact(void **state)
+{
+	static const double rs[] = { 0.375, 0.5, 0.6875, 0.125 };
+	int slow = 0;
+
+	(void)state;
+	for (int e = -600; e <= 600; e += 40)
+		for (size_t ri = 0; ri < sizeof rs / sizeof rs[0]; ri++)
+			for (int s = -1; s <= 1; s += 2)
+				for (int j = 7; j <= 52; j++)
+					for (int es = -1; es <= 1; es += 2) {
+		/* j = 7: eps = 0; j >= 8: |eps| <= A / 256, below f's value
+		 * at the segment's ends (at least A / 64) */
+		double r = rs[ri], q = 2, A = ldexp(1, e);
+		double eps = j == 7 ? 0 : es * ldexp(A, -j);
+		double k[4], t, want;
+		unsigned ex = 0;
+
+		if (j == 7 && es > 0)
+			continue;
+		k[3] = s * A;
+		k[2] = -s * A * (2 * r + q);
+		k[1] = s * A * (r * r + 2 * r * q);
+		k[0] = -s * A * r * r * q + eps;
+		/* the construction is exact: k0 - eps recovers the product */
+		assert_true(k[0] - eps == -s * A * r * r * q);
+		double f0 = vx_cell_poly_eval(k, 0), f1 = vx_cell_poly_eval(k, 1);
+		/* s = +1: a local minimum at r of value eps (q beyond: f is
+		 * s A (t - r)^2 (t - q) with t - q < 0, so s = +1 is a
+		 * maximum); see which */
+		int maxat = s > 0;   /* (t - r)^2 (t - q) <= 0 near r */
+		want = eps == 0 ? VX_CELL_TOUCH : (maxat ? eps > 0 : eps < 0) ?
+		    VX_CELL_CROSS : VX_CELL_MISS;
+		for (int sv = 0; sv < VX_CELL_SOLVER_LAST; sv++) {
+			int got = vx_cell_first_root_x(k, 0, 1, f0, f1, sv, &t,
+			    NULL, &ex);
+			if (got != want)
+				fail_msg("e %d r %g s %d eps %d 2^-%d solver %d: %d, "
+				    "want %d", e, r, s, es, j, sv, got, (int)want);
+			if (got == VX_CELL_TOUCH && t != r)
+				fail_msg("touch at %.17g, want %.17g", t, r);
+			if (got == VX_CELL_CROSS && !(t <= r))
+				fail_msg("first crossing at %.17g after %g", t, r);
+		}
+		slow += ex > 0;
+	}
+	/* along rays: the double-root cell and its mirror image */
+	for (int j = 0; j <= 52; j++)
+		for (int es = -1; es <= 1; es += 2) {
+			static const float neg[8] = { 0, 0, 0, 0, 0, 0, 0, -27 };
+			double iso = 4 + (j == 0 ? 0 : es * ldexp(4, -j)), k[4], t;
+
+			if (j == 0 && es > 0)
+				continue;
+			for (int w = 0; w < 2; w++) {
+				const float *c = w ? neg : dbl_cell;
+				double is = w ? -iso : iso;
+				/* f = 27 t^2 (1 - t) - iso, its maximum 4 - iso at
+				 * 2/3; the mirror f = iso - 27 t^2 (1 - t), its
+				 * minimum iso - 4: both cross for iso < 4 */
+				int want = j == 0 ? VX_CELL_TOUCH : es < 0 ?
+				    VX_CELL_CROSS : VX_CELL_MISS;
+				vx_cell_poly(c, dbl_o, dbl_d, is, k);
+				int got = vx_cell_first_root(k, 0, 1, -is, -is,
+				    VX_CELL_EXACT, &t, NULL);
+				if (got != want)
+					fail_msg("cell %d iso 4 %+d 2^-%d: %d, want "
+					    "%d", w, es, j, got, want);
+				if (got == VX_CELL_TOUCH &&
+				    !(fabs(t - 2.0 / 3) <= 1e-15))
+					fail_msg("cell %d: touch at %.17g", w, t);
+			}
+		}
+	/* the filter leaves the exact path to the near-touches only */
+	assert_true(slow > 0);
+}
+
 int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(double_root),
 		cmocka_unit_test(touches),
+		cmocka_unit_test(touch_exact),
 		cmocka_unit_test(triple_root),
 		cmocka_unit_test(degenerate_leading),
 		cmocka_unit_test(far_origin),

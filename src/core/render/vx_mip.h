@@ -31,7 +31,16 @@
  * whatever the order of the work: for any hierarchy, layout, thread count,
  * last-t bound, for the queue and for the column walk (rays along an axis:
  * the axis-aligned views, integer samples: no queue, see mip.c), and
- * equal to vx_mip_ray_exhaustive's.  */
+ * equal to vx_mip_ray_exhaustive's.
+ *
+ * A volume with an axis of one sample (dims 1 there) has no cells: its
+ * samples span a plane, line or point, the field there is their bilinear
+ * (linear) interpolation, and a ray with d nonzero along a one-sample axis
+ * meets it at the one t where that coordinate is 0 (two such axes must
+ * agree on t exactly, else a miss): the value is the field there.  A ray
+ * inside the span (o and d zero on every one-sample axis) gets the rule
+ * above over the cells of the other axes.  The hierarchy m is not used
+ * for such volumes; the result is the same for vx_mip_ray_exhaustive.  */
 #ifndef VX_MIP_H
 #define VX_MIP_H
 
