@@ -39,6 +39,44 @@ for src in cube cube5; do
 		else ok "$src: iso $iso draws the block ($c%)"; fi
 	done
 done
+# 4. One-sample-thick volumes.  A slice (8 x 6 x 1 u8 samples) is drawn by
+# mip as the slice itself: looking down on it (orthographic, along z) each
+# pixel is the bilinear value under it, as for the same slice stacked twice
+# (8 x 6 x 2, the field constant along z: oracle); raycast draws nothing (a
+# volume without cells has no isosurface) and says so in --stats.
+python3 -c "
+import sys
+v = bytes((7 * x + 31 * y) % 256 for y in range(6) for x in range(8))
+open(sys.argv[1], 'wb').write(v)
+open(sys.argv[2], 'wb').write(v + v)" "$T/slice.raw" "$T/slice2.raw"
+vread --raw 8,6,1 --type u8 "$T/slice.raw" > "$T/slice.vx"
+vread --raw 8,6,2 --type u8 "$T/slice2.raw" > "$T/slice2.vx"
+mip --view top --size 40x30 --hdr "$T/slice.vx" 2>/dev/null | tonemap --pfm -o "$T/s1.pfm" -
+mip --view top --size 40x30 --hdr "$T/slice2.vx" 2>/dev/null | tonemap --pfm -o "$T/s2.pfm" -
+cmp_pfm() {   # cmp_pfm A B: the largest difference of two PFMs' values
+	python3 -c "
+import struct, sys
+def rd(p):
+    b = open(p, 'rb').read()
+    parts = b.split(maxsplit=4)
+    w, h = int(parts[1]), int(parts[2])
+    n = w * h * (3 if parts[0] == b'PF' else 1)
+    return struct.unpack('<%df' % n, b[len(b) - 4 * n:])
+a, b = rd(sys.argv[1]), rd(sys.argv[2])
+print(max(abs(x - y) for x, y in zip(a, b)) if len(a) == len(b) else 'sizes differ')" "$1" "$2"
+}
+check_close "mip of a slice from above: the stacked slice's picture" "$(cmp_pfm "$T/s1.pfm" "$T/s2.pfm")" 0 1e-5
+mip --view top --size 40x30 --exhaustive --hdr "$T/slice.vx" 2>/dev/null | tonemap --pfm -o "$T/s3.pfm" -
+check "mip of a slice: --exhaustive the same bits" cmp -s "$T/s1.pfm" "$T/s3.pfm"
+raycast --iso 100 --size 16x16 --stats -o "$T/s.png" "$T/slice.vx" 2> "$T/s.err"
+check_eq "raycast of a slice: exit 0" "$?" 0
+check_eq "raycast of a slice draws nothing" "$(covered "$T/s.err")" 0.0
+for sz in 1,5,6 5,1,1 1,1,1; do
+	vread --synth sphere --size $sz > "$T/thin.vx"
+	check "mip of a $sz volume runs" sh -c "mip --size 8x8 -o '$T/t.png' '$T/thin.vx' 2>/dev/null"
+	check "raycast of a $sz volume runs" sh -c "raycast --iso 0.5 --size 8x8 -o '$T/t.png' '$T/thin.vx' 2>/dev/null"
+done
+
 # 8. A signal during the output write removes the temporary: strace
 # delivers the signal as the process enters fsync (after every byte is
 # written, before the rename) or its first write; the run dies of it as it

@@ -95,10 +95,14 @@ touches(void **state)
 		{ dbl_cell, { 0, 0, 1 }, { 3, 3, -3 }, 0, 1.0 / 3, 4, VX_CELL_TOUCH, 2.0 / 9, 1e-12 },
 		/* touched from above: f = 4 - 27 t^2 (1-t) >= 0, zero at 2/3 */
 		{ neg, { 0, 0, 1 }, { 1, 1, -1 }, 0, 1, -4, VX_CELL_TOUCH, 2.0 / 3, 1e-12 },
-		/* within the touch tolerance */
-		{ dbl_cell, { 0, 0, 1 }, { 1, 1, -1 }, 0, 1, 4 * (1 + 1e-14), VX_CELL_TOUCH, 2.0 / 3, 1e-12 },
-		{ neg, { 0, 0, 1 }, { 1, 1, -1 }, 0, 1, -4 * (1 + 1e-14), VX_CELL_TOUCH, 2.0 / 3, 1e-12 },
-		/* beyond it: a miss, and two crossings 2.4e-5 apart */
+		/* beside the touching isovalue by 1e-14 (relative): a miss
+		 * (touched from below and from above), and two crossings
+		 * 7.7e-8 apart; touches are decided exactly, none is taken
+		 * for a hit however near */
+		{ dbl_cell, { 0, 0, 1 }, { 1, 1, -1 }, 0, 1, 4 * (1 + 1e-14), VX_CELL_MISS, 0, 0 },
+		{ neg, { 0, 0, 1 }, { 1, 1, -1 }, 0, 1, -4 * (1 + 1e-14), VX_CELL_MISS, 0, 0 },
+		{ dbl_cell, { 0, 0, 1 }, { 1, 1, -1 }, 0, 1, 4 * (1 - 1e-14), VX_CELL_CROSS, -1, 1e-7 },
+		/* by 1e-9: a miss, and two crossings 2.4e-5 apart */
 		{ dbl_cell, { 0, 0, 1 }, { 1, 1, -1 }, 0, 1, 4 * (1 + 1e-9), VX_CELL_MISS, 0, 0 },
 		{ dbl_cell, { 0, 0, 1 }, { 1, 1, -1 }, 0, 1, 4 * (1 - 1e-9), VX_CELL_CROSS, -1, 1e-9 },
 	};
@@ -981,17 +985,19 @@ cell_max(void **state)
 	(void)state;
 	vx_cell_poly(dbl_cell, dbl_o, dbl_d, 0, k);
 	assert_int_equal(vx_cell_max(k, 0, 1, &tm, &fm), 1);
-	assert_true(fabs(tm - 2.0 / 3) <= 1e-15 && fabs(fm - 4) <= 1e-14);
+	assert_true(fabs(tm - 2.0 / 3) <= 1e-15 && fm <= 4 && fm >= 4 - 1e-13);
 	/* only the ends: t in [0, 0.5] peaks at 0.5 (f increasing there) */
 	assert_int_equal(vx_cell_max(k, 0, 0.5, &tm, &fm), 1);
-	assert_true(tm == 0.5 && fm == 27 * 0.25 * 0.5);
+	/* (ends other than t = 0 are rounded down: never above f there) */
+	assert_true(tm == 0.5 && fm <= 27 * 0.25 * 0.5 &&
+	    fm >= 27 * 0.25 * 0.5 - 1e-14);
 	/* ties: f = t^2 - t is 0 at both ends: smallest t */
 	{
 		double q[4] = { 0, -1, 1, 0 }, c0[4] = { 3, 0, 0, 0 };
 		assert_int_equal(vx_cell_max(q, 0, 1, &tm, &fm), 1);
 		assert_true(tm == 0 && fm == 0);
 		assert_int_equal(vx_cell_max(c0, -2, 5, &tm, &fm), 1);
-		assert_true(tm == -2 && fm == 3);
+		assert_true(tm == -2 && fm <= 3 && fm >= 3 - 1e-14);
 	}
 	for (int i = 0; i < 100; i++) {
 		ray_case rc;
@@ -1011,7 +1017,11 @@ cell_max(void **state)
 			}
 		}
 		scale = corner_scale(rc.c, 0);
-		if (fm < best - 1e-14L * scale) {
+		/* the value is rounded down by Horner's error bound, 2^-50
+		 * of the terms' magnitudes (vx_cell_poly_low) */
+		double at = fabs(tm), terms = fabs(k[0]) + at * (fabs(k[1]) +
+		    at * (fabs(k[2]) + at * fabs(k[3])));
+		if (fm < best - 1e-14L * scale - 0x1p-47 * terms) {
 			worse++;
 			fail_msg("case %d: max %.17g below sampled %.17Lg", i, fm, best);
 		}
@@ -1354,12 +1364,174 @@ normal_thresh_range(void **state)
 	}
 }
 
+/* Touches decided exactly: cubics whose coefficients are exact doubles,
+ * f = s A (t - r)^2 (t - q) + eps with dyadic r inside the segment, q
+ * beyond it, A = 2^e (e from -600 to 600) and eps = 0 or +-2^-j A (j from
+ * 8 to 52, where eps is still exact in k0: far below the old touch
+ * tolerance 2^-40), and the same along rays: the double-root cell (iso 4
+ * +- 4 2^-j, its cubic exact for the dyadic ray).  Oracle: the algebra:
+ * eps = 0 is a double root at r, a touch there; eps of the sign that
+ * lifts the extremum across zero gives two crossings around r, the first
+ * before it; the other sign keeps f off zero: a miss.  Every solver
+ * decides alike. */
+static void
+touch_exact(void **state)
+{
+	static const double rs[] = { 0.375, 0.5, 0.6875, 0.125 };
+	int slow = 0;
+
+	(void)state;
+	for (int e = -600; e <= 600; e += 40)
+		for (size_t ri = 0; ri < sizeof rs / sizeof rs[0]; ri++)
+			for (int s = -1; s <= 1; s += 2)
+				for (int j = 7; j <= 52; j++)
+					for (int es = -1; es <= 1; es += 2) {
+		/* j = 7: eps = 0; j >= 8: |eps| <= A / 256, below f's value
+		 * at the segment's ends (at least A / 64) */
+		double r = rs[ri], q = 2, A = ldexp(1, e);
+		double eps = j == 7 ? 0 : es * ldexp(A, -j);
+		double k[4], t, want;
+		unsigned ex = 0;
+
+		if (j == 7 && es > 0)
+			continue;
+		k[3] = s * A;
+		k[2] = -s * A * (2 * r + q);
+		k[1] = s * A * (r * r + 2 * r * q);
+		k[0] = -s * A * r * r * q + eps;
+		/* the construction is exact: k0 - eps recovers the product */
+		assert_true(k[0] - eps == -s * A * r * r * q);
+		double f0 = vx_cell_poly_eval(k, 0), f1 = vx_cell_poly_eval(k, 1);
+		/* s = +1: a local minimum at r of value eps (q beyond: f is
+		 * s A (t - r)^2 (t - q) with t - q < 0, so s = +1 is a
+		 * maximum); see which */
+		int maxat = s > 0;   /* (t - r)^2 (t - q) <= 0 near r */
+		want = eps == 0 ? VX_CELL_TOUCH : (maxat ? eps > 0 : eps < 0) ?
+		    VX_CELL_CROSS : VX_CELL_MISS;
+		for (int sv = 0; sv < VX_CELL_SOLVER_LAST; sv++) {
+			int got = vx_cell_first_root_x(k, 0, 1, f0, f1, sv, &t,
+			    NULL, &ex);
+			if (got != want)
+				fail_msg("e %d r %g s %d eps %d 2^-%d solver %d: %d, "
+				    "want %d", e, r, s, es, j, sv, got, (int)want);
+			if (got == VX_CELL_TOUCH && t != r)
+				fail_msg("touch at %.17g, want %.17g", t, r);
+			if (got == VX_CELL_CROSS && !(t <= r))
+				fail_msg("first crossing at %.17g after %g", t, r);
+		}
+		slow += ex > 0;
+	}
+	/* along rays: the double-root cell and its mirror image */
+	for (int j = 0; j <= 52; j++)
+		for (int es = -1; es <= 1; es += 2) {
+			static const float neg[8] = { 0, 0, 0, 0, 0, 0, 0, -27 };
+			double iso = 4 + (j == 0 ? 0 : es * ldexp(4, -j)), k[4], t;
+
+			if (j == 0 && es > 0)
+				continue;
+			for (int w = 0; w < 2; w++) {
+				const float *c = w ? neg : dbl_cell;
+				double is = w ? -iso : iso;
+				/* f = 27 t^2 (1 - t) - iso, its maximum 4 - iso at
+				 * 2/3; the mirror f = iso - 27 t^2 (1 - t), its
+				 * minimum iso - 4: both cross for iso < 4 */
+				int want = j == 0 ? VX_CELL_TOUCH : es < 0 ?
+				    VX_CELL_CROSS : VX_CELL_MISS;
+				vx_cell_poly(c, dbl_o, dbl_d, is, k);
+				int got = vx_cell_first_root(k, 0, 1, -is, -is,
+				    VX_CELL_EXACT, &t, NULL);
+				if (got != want)
+					fail_msg("cell %d iso 4 %+d 2^-%d: %d, want "
+					    "%d", w, es, j, got, want);
+				if (got == VX_CELL_TOUCH &&
+				    !(fabs(t - 2.0 / 3) <= 1e-15))
+					fail_msg("cell %d: touch at %.17g", w, t);
+			}
+		}
+	/* the filter leaves the exact path to the near-touches only */
+	assert_true(slow > 0);
+}
+
+/* vx_cell_max is never above the exact maximum of its cubic: the
+ * double-root cubic g(u) = 27 u^2 (1 - u) - 4 (maximum exactly 0 at u =
+ * 2/3, not a double: the critical point is rounded) under affine changes
+ * of variable u = al t + be (al = 1..9 odd times 2^-3..2^3, be = -1..1 in
+ * eighths) and scalings A = 2^-40..2^40, every coefficient exact; the
+ * double-root cell along dyadic rays; the maxima at the segment's ends.
+ * Oracle: the algebra (the maximum on u in [0, 1] is 0); and within 2^-47
+ * of the terms' magnitudes below it (Horner's bound, vx_cell_poly_low).
+ * Rounding put 77 of these up to 4.4e-16 A above 0 before. */
+static void
+cell_max_never_above(void **state)
+{
+	double k[4], tm, fm;
+	int n = 0;
+
+	(void)state;
+	for (int e = -40; e <= 40; e += 8)
+		for (int ai = 1; ai <= 9; ai += 2)
+			for (int ae = -3; ae <= 3; ae++)
+				for (int bi = -8; bi <= 8; bi++) {
+		double A = ldexp(1, e), al = ldexp(ai, ae), be = bi / 8.0;
+		double t0 = (0 - be) / al, t1 = (1 - be) / al;
+
+		/* A g(al t + be) expanded: exact (small integers times powers
+		 * of two) */
+		k[3] = A * -27 * al * al * al;
+		k[2] = A * (3 * -27 * al * al * be + 27 * al * al);
+		k[1] = A * (3 * -27 * al * be * be + 2 * 27 * al * be);
+		k[0] = A * (-27 * be * be * be + 27 * be * be - 4);
+		n++;
+		assert_int_equal(vx_cell_max(k, t0, t1, &tm, &fm), 1);
+		if (fm > 0)
+			fail_msg("A 2^%d al %g be %g: max %.17g above the exact 0",
+			    e, al, be, fm);
+		double at = fabs(tm), terms = fabs(k[0]) + at * (fabs(k[1]) +
+		    at * (fabs(k[2]) + at * fabs(k[3])));
+		if (!(fm >= -0x1p-47 * terms))
+			fail_msg("A 2^%d al %g be %g: max %.17g far below 0", e, al,
+			    be, fm);
+	}
+	assert_true(n > 6000);
+	/* the double-root cell along the line, and its parametrizations */
+	{
+		static const double os[4][3] = { { 0, 0, 1 }, { 1, 1, 0 },
+		    { -5, -5, 6 }, { 0, 0, 1 } };
+		static const double ds[4][3] = { { 1, 1, -1 }, { -1, -1, 1 },
+		    { 1, 1, -1 }, { 0.5, 0.5, -0.5 } };
+		static const double ts[4][2] = { { 0, 1 }, { 0, 1 }, { 5, 6 },
+		    { 0, 2 } };
+
+		for (int w = 0; w < 4; w++) {
+			vx_cell_poly(dbl_cell, os[w], ds[w], 4, k);
+			assert_int_equal(vx_cell_max(k, ts[w][0], ts[w][1], &tm,
+			    &fm), 1);
+			/* (t measured from 5 cells before the cell: terms
+			 * near 27 * 6^3, Horner's bound 2^-50 of that) */
+			if (!(fm <= 0 && fm >= -1e-10))
+				fail_msg("double-root cell %d: max %.17g", w, fm);
+		}
+	}
+	/* maxima at the ends: at t0 the value is k0 itself, exactly */
+	{
+		double q[4] = { 3, -1, 0, 0 };
+
+		assert_int_equal(vx_cell_max(q, 0, 1, &tm, &fm), 1);
+		assert_true(tm == 0 && fm == 3);
+		q[1] = 1;
+		assert_int_equal(vx_cell_max(q, 0, 1, &tm, &fm), 1);
+		assert_true(tm == 1 && fm <= 4 && fm >= 4 - 1e-14);
+	}
+}
+
 int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(double_root),
 		cmocka_unit_test(touches),
+		cmocka_unit_test(touch_exact),
+		cmocka_unit_test(cell_max_never_above),
 		cmocka_unit_test(triple_root),
 		cmocka_unit_test(degenerate_leading),
 		cmocka_unit_test(far_origin),

@@ -650,6 +650,241 @@ ties_smallest_t(void **state)
 	}
 }
 
+/* bilin: the multilinear interpolation of g's samples at index point p
+ * (each coordinate within the samples' range), in long double from the
+ * samples written out: a one-sample axis contributes its only sample. */
+static long double
+bilin(const vx_grid *g, const double p[3])
+{
+	long double sum = 0;
+	int64_t c[3];
+	long double l[3];
+
+	for (int a = 0; a < 3; a++) {
+		c[a] = g->dims[a] < 2 ? 0 : (int64_t)floor(p[a]);
+		if (g->dims[a] >= 2 && c[a] > g->dims[a] - 2)
+			c[a] = g->dims[a] - 2;
+		l[a] = g->dims[a] < 2 ? 0 : (long double)p[a] - c[a];
+	}
+	for (int i = 0; i < 8; i++) {
+		long double w = 1;
+		int64_t q[3];
+
+		for (int a = 0; a < 3; a++) {
+			int b = i >> a & 1;
+
+			if (g->dims[a] < 2 && b)
+				w = 0;
+			w *= b ? l[a] : 1 - l[a];
+			q[a] = c[a] + b;
+		}
+		if (w != 0)
+			sum += w * vx_grid_get(g, q[0], q[1], q[2]);
+	}
+	return sum;
+}
+
+/* Volumes with an axis of one sample have no cells: their MIP is the
+ * slice (or line, or point) itself.  A ray crossing it meets it at the one
+ * t where its coordinate on that axis is 0, and the value there is the
+ * bilinear (linear) interpolation of the samples (oracle: bilin, the
+ * weights written out); a ray inside the slice gets the maximum along it,
+ * never below a dense sampling and within 1e-9 of a fine one (oracle: the
+ * field along it); the queue's answer equals the exhaustive one bit for
+ * bit; rays beside a line or a point miss. */
+static void
+one_sample_axes(void **state)
+{
+	static const int64_t shapes[][3] = { { 7, 5, 1 }, { 6, 1, 4 },
+	    { 1, 5, 6 }, { 1, 1, 9 }, { 8, 1, 1 }, { 1, 1, 1 } };
+	vx_err e = { 0, "" };
+
+	(void)state;
+	for (size_t si = 0; si < sizeof shapes / sizeof shapes[0]; si++) {
+		const int64_t *n = shapes[si];
+		vx_grid g;
+		vx_macro m;
+		vx_mip_work w;
+		int crossed = 0, inside = 0;
+
+		make_random(&g, n, 40 + si, NULL);
+		build(&m, &g, 2, 2);
+		assert_int_equal(vx_mip_work_init(&w, &m, &e), 0);
+		for (int k = 0; k < 400; k++) {
+			double o[3], d[3], q[3], v, t, ve, te;
+			int flat = k % 4 == 3, hit, he;
+
+			/* aim at a point of the span (a sample point every
+			 * fifth ray), from a random direction */
+			for (int a = 0; a < 3; a++) {
+				q[a] = n[a] < 2 ? 0 : (k % 5 == 0 ?
+				    (double)(int64_t)(hash01(3, 3 * k + a) *
+				    (double)n[a]) : hash01(3, 3 * k + a) *
+				    (double)(n[a] - 1));
+				d[a] = hash01(4, 3 * k + a) - 0.5;
+			}
+			if (flat)    /* inside the span: no motion off it */
+				for (int a = 0; a < 3; a++)
+					if (n[a] < 2)
+						d[a] = 0;
+			if (d[0] == 0 && d[1] == 0 && d[2] == 0)
+				continue;
+			for (int a = 0; a < 3; a++)
+				o[a] = n[a] < 2 && (flat || d[a] == 0) ? 0 :
+				    q[a] - 20 * d[a];
+			hit = vx_mip_ray(&g, &m, &w, o, d, 0, INFINITY, k % 2,
+			    &v, &t, NULL);
+			he = vx_mip_ray_exhaustive(&g, o, d, 0, INFINITY, &ve,
+			    &te);
+			assert_int_equal(hit, he);
+			if (hit)
+				assert_true(v == ve && t == te);
+			if (!flat) {
+				int pin = 0;
+				double p[3];
+
+				for (int a = 0; a < 3; a++)
+					pin |= n[a] < 2 && d[a] != 0;
+				if (!pin)
+					continue;
+				/* the crossing: hit when every one-sample axis
+				 * is crossed at the same t and the point lies
+				 * in the span */
+				int want = 1;
+				double ts = NAN;
+
+				for (int a = 0; a < 3; a++)
+					if (n[a] < 2 && d[a] != 0) {
+						double ta = -o[a] / d[a];
+
+						want &= !(ts == ts) || ta == ts;
+						ts = ta;
+					} else if (n[a] < 2 && o[a] != 0)
+						want = 0;
+				for (int a = 0; a < 3 && want; a++) {
+					p[a] = n[a] < 2 ? 0 : o[a] + ts * d[a];
+					want &= p[a] >= 0 && p[a] <= n[a] - 1;
+				}
+				assert_int_equal(hit, want);
+				if (!hit)
+					continue;
+				crossed++;
+				assert_true(t == ts);
+				long double b = bilin(&g, p);
+				if (!(fabsl(v - b) <= 1e-12L * (fabsl(b) + 1)))
+					fail_msg("shape %zu ray %d: %.17g, bilinear "
+					    "%.17Lg", si, k, v, b);
+			} else if (hit) {
+				/* the span along the ray: dense sampling */
+				double best = -INFINITY, ta = 0;   /* tmin */
+				double tb = INFINITY;
+
+				inside++;
+				for (int a = 0; a < 3; a++) {
+					if (n[a] < 2 || d[a] == 0)
+						continue;
+					double t0 = -o[a] / d[a], t1 = ((double)
+					    (n[a] - 1) - o[a]) / d[a];
+					if (t0 > t1) {
+						double sw = t0;
+						t0 = t1;
+						t1 = sw;
+					}
+					ta = t0 > ta ? t0 : ta;
+					tb = t1 < tb ? t1 : tb;
+				}
+				for (int j = 0; j <= 4000; j++) {
+					double tt = ta + (tb - ta) * j / 4000, p[3];
+
+					for (int a = 0; a < 3; a++)
+						p[a] = n[a] < 2 ? 0 : o[a] + tt * d[a];
+					for (int a = 0; a < 3; a++) {
+						p[a] = p[a] < 0 ? 0 : p[a];
+						p[a] = p[a] > n[a] - 1 ? n[a] - 1 : p[a];
+					}
+					long double f = bilin(&g, p);
+					best = f > best ? (double)f : best;
+				}
+				if (!(v >= best - 1e-9 * fabs(best)))
+					fail_msg("shape %zu ray %d: %.17g below the "
+					    "sampled %.17g", si, k, v, best);
+				assert_true(v <= best + 1e-2 * (fabs(best) + 1));
+			}
+		}
+		/* each shape with a plane or a line sees crossings */
+		if (n[0] * n[1] * n[2] > 1)
+			assert_true(crossed > 0);
+		if (n[0] * n[1] * n[2] > 1)
+			assert_true(inside > 0);
+		vx_mip_work_free(&w);
+		vx_macro_free(&m);
+		vx_grid_free(&g);
+	}
+}
+
+/* MIP never above the exact maximum: a 2x2x2 volume holding the double-
+ * root cell less 4 (corners -4 ... 23, floats), whose field along the line
+ * (0,0,1) + u (1,1,-1) is exactly 27 u^2 (1 - u) - 4, maximum 0 at u = 2/3
+ * (oracle: the algebra); rays along it both ways, starting inside the
+ * cell at u = 1/8 .. 7/8 (so the cubic in t is the affine image u = be +
+ * al t), with al = 1..9 odd times 2^-3..2^3, the volume scaled by 2^-60
+ * .. 2^60.  The queue and the exhaustive walk give one value, never above
+ * 0 (7 of 490 rays were, by 4.4e-16, before) and within 1e-10 of it. */
+static void
+never_above_exact(void **state)
+{
+	int64_t dims[3] = { 2, 2, 2 };
+	vx_err e = { 0, "" };
+
+	(void)state;
+	for (int sc = -60; sc <= 60; sc += 30) {
+		vx_grid g;
+		vx_macro m;
+		vx_mip_work w;
+		double f = ldexp(1, sc);
+
+		assert_int_equal(vx_grid_alloc(&g, dims, VX_F32, NULL, &e), 0);
+		for (int i = 0; i < 8; i++)
+			vx_grid_set(&g, i & 1, i >> 1 & 1, i >> 2, ((i == 7 ? 27 :
+			    0) - 4) * f);
+		vx_grid_range(&g);
+		build(&m, &g, 1, 2);
+		assert_int_equal(vx_mip_work_init(&w, &m, &e), 0);
+		for (int ai = 1; ai <= 9; ai += 2)
+			for (int ae = -3; ae <= 3; ae++)
+				for (int bi = 1; bi <= 7; bi++)
+					for (int r = 0; r < 2; r++) {
+			double al = ldexp(ai, ae), be = bi / 8.0, o[3], d[3];
+			double v, t, ve, te;
+
+			for (int a = 0; a < 3; a++) {
+				double sg = a < 2 ? 1 : -1;   /* along (1,1,-1) */
+				double u0 = r ? 1 - be : be;
+
+				o[a] = (a < 2 ? 0 : 1) + sg * u0;
+				d[a] = (r ? -sg : sg) * al;
+			}
+			assert_int_equal(vx_mip_ray(&g, &m, &w, o, d, 0, INFINITY,
+			    1, &v, &t, NULL), 1);
+			assert_int_equal(vx_mip_ray_exhaustive(&g, o, d, 0,
+			    INFINITY, &ve, &te), 1);
+			assert_true(v == ve && t == te);
+			/* the segment holds u = 2/3 (maximum 0), or its
+			 * maximum is at the start u0: g(u0), exact */
+			double u0 = r ? 1 - be : be;
+			double want = (r ? u0 > 2.0 / 3 : u0 < 2.0 / 3) ? 0 :
+			    (27 * u0 * u0 * (1 - u0) - 4) * f;
+			if (!(v <= want && v >= want - 1e-10 * f))
+				fail_msg("scale 2^%d al %g be %g ray %d: %.17g "
+				    "(exact maximum %.17g)", sc, al, be, r, v,
+				    want);
+		}
+		vx_mip_work_free(&w);
+		vx_macro_free(&m);
+		vx_grid_free(&g);
+	}
+}
+
 static int
 same_f(float a, float b)
 {
@@ -765,6 +1000,8 @@ int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(never_above_exact),
+		cmocka_unit_test(one_sample_axes),
 		cmocka_unit_test(interior_maximum),
 		cmocka_unit_test(constant_volume_stops),
 		cmocka_unit_test(nonfinite),

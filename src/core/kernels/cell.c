@@ -3,6 +3,7 @@
 #include "vx_cell.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <string.h>
 
 static const vx_enum_name solver_names[] = {
@@ -126,15 +127,6 @@ eval3(const double k[4], double t, double *df, double *d2f)
 	return ((k[3] * t + k[2]) * t + k[1]) * t + k[0];
 }
 
-/* Sum of the terms' magnitudes at t: the scale of f's rounding error. */
-static inline double
-terms(const double k[4], double t)
-{
-	double a = fabs(t);
-
-	return fabs(k[0]) + a * (fabs(k[1]) + a * (fabs(k[2]) + a * fabs(k[3])));
-}
-
 double
 vx_cell_face_value(const float c[8], int axis, int side, double u, double v)
 {
@@ -205,6 +197,388 @@ crit_points(const double k[4], double t0, double t1, double r[2], int ext[2])
 	}
 	if (m == 2 && r[0] == r[1])
 		m = 1;
+	return m;
+}
+
+/* ---- exact signs of polynomials in doubles ----
+ * The touch and crossing decisions of vx_cell_first_root are signs of
+ * small polynomials in the cubic's coefficients and the segment's ends,
+ * all doubles.  Each is first evaluated in double with an error bound (the
+ * filter); only where the bound cannot decide is it evaluated exactly, in
+ * a binary big number (xnum), as robust geometric predicates do.
+ *
+ * The filter's bound.  A quantity q = sum of m terms c * x1 * ... * xp (c
+ * a small integer, p <= 4, m <= 5) evaluated term by term and summed in
+ * order has |fl(q) - q| <= gamma_n S with S the sum of the terms'
+ * magnitudes and n the roundings on the longest path: at most 4 for a term
+ * (3 products, and the constant's when it is not a power of 2) plus m - 1
+ * for the sum, n <= 8, gamma_8 < 2^-49.9; the computed S is at least
+ * (1 - gamma_8) S.  Gradual underflow adds at most 2^-1074 an operation,
+ * under 40 operations: 2^-1060 covers it.  So |fl(q)| > 2^-48 fl(S) +
+ * 2^-1060 proves sign(fl(q)) = sign(q); overflow (fl(S) not finite) never
+ * decides.
+ *
+ * The exact evaluation.  A term's factors are doubles: a product of four
+ * has its lowest bit at 2^-4296 or above and its highest below 2^4102, so
+ * a sum of five such spans under 8400 bits: XN_LIMBS limbs of 32 bits hold
+ * any of them. */
+
+#define XN_LIMBS 272
+
+typedef struct xnum {
+	int neg;                 /* the sign (0 for zero) */
+	int e;                   /* the exponent of limb 0's lowest bit */
+	int n;                   /* limbs used; 0 for zero */
+	uint32_t m[XN_LIMBS];    /* magnitude, least significant limb first */
+} xnum;
+
+/* xn_trim: drop zero limbs at the top, and at the bottom (raising e) */
+static void
+xn_trim(xnum *x)
+{
+	int lo = 0, i;
+
+	while (x->n > 0 && x->m[x->n - 1] == 0)
+		x->n--;
+	if (x->n == 0) {
+		x->neg = 0;
+		x->e = 0;
+		return;
+	}
+	while (lo < x->n && x->m[lo] == 0)
+		lo++;
+	if (lo > 0) {
+		for (i = lo; i < x->n; i++)
+			x->m[i - lo] = x->m[i];
+		x->n -= lo;
+		x->e += 32 * lo;
+	}
+}
+
+/* xn_set: the exact value of a finite double */
+static void
+xn_set(xnum *x, double v)
+{
+	uint64_t bits, mant;
+	int ex;
+
+	memcpy(&bits, &v, sizeof bits);
+	x->neg = (int)(bits >> 63);
+	ex = (int)(bits >> 52 & 0x7ff);
+	mant = bits & (((uint64_t)1 << 52) - 1);
+	if (ex == 0)
+		ex = 1;                       /* subnormal */
+	else
+		mant |= (uint64_t)1 << 52;
+	x->e = ex - 1075;
+	x->m[0] = (uint32_t)mant;
+	x->m[1] = (uint32_t)(mant >> 32);
+	x->n = 2;
+	xn_trim(x);
+}
+
+/* xn_mul: r = x * v, v a finite double (r may be x) */
+static void
+xn_mul(xnum *r, const xnum *x, double v)
+{
+	uint32_t out[XN_LIMBS];
+	xnum y;
+	int i, j, n;
+
+	xn_set(&y, v);
+	if (x->n == 0 || y.n == 0) {
+		r->n = 0;
+		r->neg = 0;
+		r->e = 0;
+		return;
+	}
+	n = x->n + y.n;
+	for (i = 0; i < n; i++)
+		out[i] = 0;
+	for (j = 0; j < y.n; j++) {
+		uint64_t carry = 0;
+
+		for (i = 0; i < x->n; i++) {
+			uint64_t t = (uint64_t)x->m[i] * y.m[j] + out[i + j] +
+			    carry;
+
+			out[i + j] = (uint32_t)t;
+			carry = t >> 32;
+		}
+		out[x->n + j] = (uint32_t)carry;
+	}
+	r->neg = x->neg ^ y.neg;
+	r->e = x->e + y.e;
+	r->n = n;
+	memcpy(r->m, out, (size_t)n * sizeof *out);
+	xn_trim(r);
+}
+
+/* xn_shifted: x's magnitude with its exponent lowered to e (<= x->e):
+ * out[0..*n); 0, or -1 beyond XN_LIMBS (never for sign_sum's terms: the
+ * bound above) */
+static int
+xn_shifted(const xnum *x, int e, uint32_t *out, int *n)
+{
+	int sh = x->e - e, q = sh / 32, r = sh % 32, i;
+
+	if (q + x->n + 2 > XN_LIMBS)
+		return -1;
+	for (i = 0; i < q; i++)
+		out[i] = 0;
+	out[q + x->n] = 0;
+	for (i = 0; i < x->n; i++)
+		out[q + i] = x->m[i] << r;
+	if (r > 0)
+		for (i = 0; i < x->n; i++)
+			out[q + i + 1] |= x->m[i] >> (32 - r);
+	*n = q + x->n + 1;
+	return 0;
+}
+
+/* xn_add: r += x (signed); 0, or -1 beyond XN_LIMBS */
+static int
+xn_add(xnum *r, const xnum *x)
+{
+	uint32_t a[XN_LIMBS], b[XN_LIMBS];
+	int na, nb, n, i, e, c;
+
+	if (x->n == 0)
+		return 0;
+	if (r->n == 0) {
+		*r = *x;
+		return 0;
+	}
+	e = r->e < x->e ? r->e : x->e;
+	if (xn_shifted(r, e, a, &na) != 0 || xn_shifted(x, e, b, &nb) != 0)
+		return -1;
+	n = na > nb ? na : nb;
+	for (i = na; i < n; i++)
+		a[i] = 0;
+	for (i = nb; i < n; i++)
+		b[i] = 0;
+	if (r->neg == x->neg) {
+		uint64_t carry = 0;
+
+		for (i = 0; i < n; i++) {
+			uint64_t t = (uint64_t)a[i] + b[i] + carry;
+
+			r->m[i] = (uint32_t)t;
+			carry = t >> 32;
+		}
+		r->m[n] = (uint32_t)carry;   /* n < XN_LIMBS: see above */
+		r->n = n + 1;
+	} else {
+		/* the larger magnitude minus the smaller, its sign */
+		for (c = 0, i = n - 1; i >= 0 && c == 0; i--)
+			c = a[i] > b[i] ? 1 : a[i] < b[i] ? -1 : 0;
+		if (c == 0) {
+			r->n = 0;
+			r->neg = 0;
+			r->e = 0;
+			return 0;
+		}
+		uint32_t *big = c > 0 ? a : b, *small = c > 0 ? b : a;
+		int64_t borrow = 0;
+
+		for (i = 0; i < n; i++) {
+			int64_t t = (int64_t)big[i] - small[i] - borrow;
+
+			borrow = t < 0;
+			r->m[i] = (uint32_t)(t + (borrow ? (int64_t)1 << 32 : 0));
+		}
+		r->neg = c > 0 ? r->neg : x->neg;
+		r->n = n;
+	}
+	r->e = e;
+	xn_trim(r);
+	return 0;
+}
+
+/* A term of a polynomial: c * x[0] * ... * x[np - 1]. */
+typedef struct term {
+	double c;
+	double x[4];
+	int np;
+} term;
+
+/* sign_sum: the exact sign (-1, 0, +1) of the sum of t[0..m), by the
+ * filter, else exactly; *exact counts the exact evaluations */
+static int
+sign_sum(const term *t, int m, unsigned *exact)
+{
+	double q = 0, S = 0;
+	int i, j;
+
+	for (i = 0; i < m; i++) {
+		double p = t[i].c;
+
+		for (j = 0; j < t[i].np; j++)
+			p *= t[i].x[j];
+		q += p;
+		S += fabs(p);
+	}
+	if (S <= 0x1p1000 && fabs(q) > 0x1p-48 * S + 0x1p-1060)
+		return q > 0 ? 1 : -1;
+	if (exact)
+		(*exact)++;
+	{
+		xnum acc, p;
+
+		acc.n = 0;
+		acc.neg = 0;
+		acc.e = 0;
+		for (i = 0; i < m; i++) {
+			xn_set(&p, t[i].c);
+			for (j = 0; j < t[i].np; j++)
+				xn_mul(&p, &p, t[i].x[j]);
+			if (xn_add(&acc, &p) != 0)   /* cannot happen */
+				return q > 0 ? 1 : q < 0 ? -1 : 0;
+		}
+		return acc.n == 0 ? 0 : acc.neg ? -1 : 1;
+	}
+}
+
+#define T1(c, a) { (c), { (a), 0, 0, 0 }, 1 }
+#define T2(c, a, b) { (c), { (a), (b), 0, 0 }, 2 }
+#define T3(c, a, b, d) { (c), { (a), (b), (d), 0 }, 3 }
+#define T4(c, a, b, d, e) { (c), { (a), (b), (d), (e) }, 4 }
+
+/* Exact critical points of the cubic f = a t^3 + b t^2 + c t + d (a = k3,
+ * b = k2, c = k1, d = k0) strictly inside (t0, t1), in order, with the
+ * exact sign of f at each.  With D1 = b^2 - 3 a c (f' = 3 a t^2 + 2 b t + c
+ * has discriminant 4 D1), E = 27 a^2 d - 9 a b c + 2 b^3 (27 a^2 f at the
+ * inflection -b / (3a)) and Delta = 18 abcd - 4 b^3 d + b^2 c^2 - 4 a c^3 -
+ * 27 a^2 d^2 (f's discriminant):
+ *   - a = 0: f' is linear; its zero -c / (2b) (b != 0) is inside when
+ *     -c - 2 b t0 and -c - 2 b t1 have the signs that say so, and f there
+ *     is (4 b d - c^2) / (4 b);
+ *   - D1 < 0: no critical point; D1 = 0: one, the inflection -b / (3a),
+ *     where f' has a double zero (no extremum), f there of E's sign;
+ *   - D1 > 0: two, r1 < r2.  Where a point x lies among them follows from
+ *     the signs of a f'(x) (positive outside [r1, r2]) and of a (3 a x +
+ *     b) (x against the inflection, their midpoint).  f(r1) f(r2) =
+ *     -Delta / (27 a^2), and the local maximum is the larger: Delta > 0
+ *     gives f(r1) of a's sign and f(r2) of the other; Delta < 0 gives both
+ *     E's sign (the inflection lies between them); Delta = 0 gives a
+ *     double root, at r1 when E a < 0 (it lies before the inflection by
+ *     E / (6 a D1)) and the other then of -a's sign, else at r2 and r1 of
+ *     a's sign (f = a (t - t_d)^2 (t - t_s), the other critical point
+ *     between t_d and t_s).
+ * r[] gets approximate positions (the stable quadratic formula, clamped
+ * into [t0, t1]) for the caller's brackets; sg[] the exact signs; ext[] 1
+ * for an extremum, 0 for the inflection.  Returns how many (0..2). */
+static int
+crit_exact(const double k[4], double t0, double t1, double r[2], int sg[2],
+    int ext[2], unsigned *exact)
+{
+	double a = k[3], b = k[2], c = k[1], d = k[0];
+	double x[2];
+	int m = 0, sa, i;
+
+	if (a == 0) {
+		if (b == 0)
+			return 0;
+		const term lo[2] = { T1(-1, c), T2(-2, b, t0) };
+		const term hi[2] = { T1(-1, c), T2(-2, b, t1) };
+		int sb = b > 0 ? 1 : -1;
+
+		if (sign_sum(lo, 2, exact) * sb <= 0 ||
+		    sign_sum(hi, 2, exact) * sb >= 0)
+			return 0;
+		const term v[2] = { T2(4, b, d), T2(-1, c, c) };
+
+		x[0] = -c / (2 * b);
+		r[0] = x[0] > t0 ? (x[0] < t1 ? x[0] : t1) : t0;
+		sg[0] = sign_sum(v, 2, exact) * sb;
+		ext[0] = 1;
+		return 1;
+	}
+	sa = a > 0 ? 1 : -1;
+	const term D1[2] = { T2(1, b, b), T2(-3, a, c) };
+	int s1 = sign_sum(D1, 2, exact);
+
+	if (s1 < 0)
+		return 0;
+	const term E[3] = { T3(27, a, a, d), T3(-9, a, b, c), T3(2, b, b, b) };
+	if (s1 == 0) {
+		const term lo[2] = { T1(-1, b), T2(-3, a, t0) };
+		const term hi[2] = { T1(-1, b), T2(-3, a, t1) };
+
+		if (sign_sum(lo, 2, exact) * sa <= 0 ||
+		    sign_sum(hi, 2, exact) * sa >= 0)
+			return 0;
+		x[0] = -b / (3 * a);
+		r[0] = x[0] > t0 ? (x[0] < t1 ? x[0] : t1) : t0;
+		sg[0] = sign_sum(E, 3, exact);
+		ext[0] = 0;
+		return 1;
+	}
+	/* where t0 and t1 lie: 0 before r1, 1 at r1, 2 between, 3 at r2,
+	 * 4 beyond r2 */
+	int pos[2];
+	for (i = 0; i < 2; i++) {
+		double t = i ? t1 : t0;
+		const term fp[3] = { T3(3, a, t, t), T2(2, b, t), T1(1, c) };
+		const term lin[2] = { T2(3, a, t), T1(1, b) };
+		int s = sign_sum(fp, 3, exact) * sa;
+		int w = sign_sum(lin, 2, exact) * sa;
+
+		pos[i] = s < 0 ? 2 : s > 0 ? (w < 0 ? 0 : 4) : (w < 0 ? 1 : 3);
+	}
+	int in1 = pos[0] == 0 && pos[1] >= 2, in2 = pos[0] <= 2 && pos[1] == 4;
+
+	if (!in1 && !in2)
+		return 0;
+	/* f at them */
+	const term Dl[5] = { T4(18, a, b, c, d), T4(-4, b, b, b, d),
+	    T4(1, b, b, c, c), T4(-4, a, c, c, c), T4(-27, a, a, d, d) };
+	int sD = sign_sum(Dl, 5, exact), v1, v2;
+
+	if (sD > 0) {
+		v1 = sa;
+		v2 = -sa;
+	} else if (sD < 0) {
+		v1 = v2 = sign_sum(E, 3, exact);
+	} else if (sign_sum(E, 3, exact) * sa < 0) {
+		v1 = 0;
+		v2 = -sa;
+	} else {
+		v1 = sa;
+		v2 = 0;
+	}
+	/* positions: the stable quadratic formula on f' (both roots, or the
+	 * inflection twice where rounding makes the discriminant negative) */
+	{
+		double A = 3 * a, B = 2 * b, w = 4 * A * c, disc = B * B - w;
+
+		if (fabs(disc) < 0x1p-20 * B * B)
+			disc = fma(B, B, -w) + fma(-4 * A, c, w);
+		if (disc > 0) {
+			double q = -0.5 * (B + copysign(sqrt(disc), B));
+
+			x[0] = q / A;
+			x[1] = c / q;
+		} else
+			x[0] = x[1] = -B / (2 * A);
+		if (!(x[0] <= x[1])) {
+			double t = x[0];
+			x[0] = x[1];
+			x[1] = t;
+		}
+		for (i = 0; i < 2; i++)
+			x[i] = x[i] > t0 ? (x[i] < t1 ? x[i] : t1) : t0;
+	}
+	if (in1) {
+		r[m] = x[0];
+		sg[m] = v1;
+		ext[m++] = 1;
+	}
+	if (in2) {
+		r[m] = x[1];
+		sg[m] = v2;
+		ext[m++] = 1;
+	}
 	return m;
 }
 
@@ -356,8 +730,15 @@ int
 vx_cell_first_root(const double k[4], double t0, double t1, double f0,
     double f1, int solver, double *t, int *iters)
 {
+	return vx_cell_first_root_x(k, t0, t1, f0, f1, solver, t, iters, NULL);
+}
+
+int
+vx_cell_first_root_x(const double k[4], double t0, double t1, double f0,
+    double f1, int solver, double *t, int *iters, unsigned *exact)
+{
 	double kk[4], r[2], p[4], v[4], tol, T;
-	int ext[2], m, i, n = 0;
+	int ext[2], sg[2], m, i, n = 0;
 
 	if (iters)
 		*iters = 0;
@@ -375,24 +756,27 @@ vx_cell_first_root(const double k[4], double t0, double t1, double f0,
 	normalize(kk, &f0, &f1);
 	/* t0, t1 finite: a plain max, no fmax call */
 	T = fabs(t0) > fabs(t1) ? fabs(t0) : fabs(t1);
-	/* a segment where f is provably monotone has no critical point */
-	m = monotone(kk, t0, t1, T) ? 0 : crit_points(kk, t0, t1, r, ext);
+	/* a segment where f is provably monotone has no critical point;
+	 * elsewhere their number, order and signs are exact (crit_exact) */
+	m = monotone(kk, t0, t1, T) ? 0 : crit_exact(kk, t0, t1, r, sg, ext,
+	    exact);
 	p[0] = t0;
 	v[0] = f0;
 	for (i = 0; i < m; i++) {
+		double f = vx_cell_poly_eval(kk, r[i]);
+
+		/* the value for the brackets' secant starts, of the exact
+		 * sign (a zero only where f is exactly zero) */
 		p[i + 1] = r[i];
-		v[i + 1] = vx_cell_poly_eval(kk, r[i]);
+		v[i + 1] = sg[i] == 0 ? 0 : (f > 0) == (sg[i] > 0) && f != 0 ?
+		    f : sg[i] * 0x1p-1074;
 	}
 	p[m + 1] = t1;
 	v[m + 1] = f1;
 	for (i = 0; i <= m; i++) {
-		/* a touch first: an extremum within tolerance of zero ends this
-		 * segment; if f also changes sign on the way, the crossing is
-		 * within the same rounding ambiguity of it (|t - t_c| about
-		 * sqrt(2 |f(t_c)| / |f''(t_c)|)), and the extremum is the
-		 * better answer for a true double root */
-		if (i + 1 <= m && ext[i] &&
-		    fabs(v[i + 1]) <= VX_CELL_TOUCH_TOL * terms(kk, p[i + 1])) {
+		/* a touch first: an extremum where f is exactly zero (a
+		 * double root) ends this segment */
+		if (i + 1 <= m && ext[i] && sg[i] == 0) {
 			*t = p[i + 1];
 			return VX_CELL_TOUCH;
 		}
@@ -426,6 +810,26 @@ vx_cell_first_root(const double k[4], double t0, double t1, double f0,
 	return VX_CELL_MISS;
 }
 
+int
+vx_cell_end_sign(const double k[4], double t0, double t1, double f0)
+{
+	double kk[4], r[2], g0 = 0, g1 = 0;
+	int sg[2], ext[2], m, i, last;
+
+	if (!(isfinite(k[0]) && isfinite(k[1]) && isfinite(k[2]) &&
+	    isfinite(k[3]) && isfinite(t0) && isfinite(t1) && isfinite(f0)) ||
+	    !(t0 < t1))
+		return 0;
+	memcpy(kk, k, sizeof kk);
+	normalize(kk, &g0, &g1);
+	last = f0 > 0 ? 1 : f0 < 0 ? -1 : 0;
+	m = crit_exact(kk, t0, t1, r, sg, ext, NULL);
+	for (i = 0; i < m; i++)
+		if (sg[i] != 0)
+			last = sg[i];
+	return last;
+}
+
 /* Proof of the vx_cell_sign_bound guarantee (u = 2^-53, gamma_n = n u /
  * (1 - n u); L = len; S = |k0| + |k1| L + |k2| L^2 + |k3| L^3 exactly).
  * 1. The Bernstein coefficients of f(t) on [0, L] (s = t / L, a_i = k_i L^i)
@@ -440,18 +844,16 @@ vx_cell_first_root(const double k[4], double t0, double t1, double f0,
  * 2. The test asks min |b_i computed| > 2^-38 S computed, all b_i of one
  *    sign; so the exact b_i, hence f on [0, L], have that sign with
  *    |f(t)| >= (2^-38 (1 - gamma_7) - 8 u) S > (2^-40 + 2^-48) S.
- * 3. vx_cell_first_root leaves k unscaled here (normalize acts only when
- *    some |k_i| >= 2^400 or all <= 2^-400, both excluded), evaluates f by
- *    Horner only at critical points r strictly inside (0, L), and there
- *    |fl(f(r)) - f(r)| <= gamma_6 terms(r) <= gamma_6 S < |f(r)|: the
- *    computed value has f's sign (and is not 0), and its magnitude exceeds
- *    (2^-40 + 2^-48 - gamma_6) S > VX_CELL_TOUCH_TOL (1 + gamma_6) S, which
- *    bounds the touch threshold VX_CELL_TOUCH_TOL * terms(r) as computed
- *    (terms(r) <= S as r < L).  So no critical point is a touch, every
- *    value in the sign sequence f0, f(c_1), ..., f1 has the same sign when
- *    f0 and f1 have it, and the result is a miss, whatever the solver (the
- *    solvers differ only after a bracket is found).  With L = 0 the result
- *    is a miss by the sign of f0 and f1 alone.
+ * 3. vx_cell_first_root's sign sequence takes, at each critical point r
+ *    strictly inside (0, L), the exact sign of the cubic k there
+ *    (crit_exact: exact for k as given, whatever scaling normalize
+ *    applies, as every sign it takes is of a homogeneous polynomial in
+ *    k): by step 2 that is f's sign on [0, L], never 0.  So no critical
+ *    point is a touch, every value in the sign sequence f0, f(c_1), ...,
+ *    f1 has the same sign when f0 and f1 have it, and the result is a
+ *    miss, whatever the solver (the solvers differ only after a bracket
+ *    is found).  With L = 0 the result is a miss by the sign of f0 and f1
+ *    alone.
  * 4. Gradual underflow adds at most 2^-1074 per operation, times at most
  *    L^3 <= 2^300: below 2^-760, while the margin left in step 2 is at least
  *    2^-41 S >= 2^-641 (S computed >= 2^-600 is required).  Overflow cannot
@@ -494,9 +896,10 @@ vx_cell_max(const double k[4], double t0, double t1, double *tmax,
 		bf = f;
 		bt = t1;
 	}
-	/* back to the caller's scale (the identity unless normalized) */
+	/* back to the caller's scale (the identity unless normalized),
+	 * rounded down: never above the exact maximum */
 	*tmax = bt;
-	*fmax = vx_cell_poly_eval(k, bt);
+	*fmax = vx_cell_poly_low(k, bt);
 	if (!isfinite(*fmax)) {
 		*tmax = 0;
 		*fmax = -INFINITY;

@@ -30,7 +30,12 @@ typedef struct iso_ctx {
 	const double *iso;       /* the isovalues, as given */
 	float fiso[VX_ISO_MAX];  /* each rounded to float, for the walk's
 	                            bracket tests (a superset: vx_iso.h) */
+	double pend[VX_ISO_MAX]; /* per isovalue: the t where the last cell
+	                            visited ended at a face value exactly
+	                            iso reached from above (a touch there if
+	                            the next cell leaves it upward), or NaN */
 	int niso;
+	unsigned exact;          /* signs decided exactly (the slow path) */
 	vx_iso_hit_fn fn;
 	void *ctx;
 	vx_iso_stats *st;
@@ -100,23 +105,24 @@ fill(vx_iso_hit *h, const iso_ctx *x, const vx_leaf_visit *v, double r,
 		h->p[a] = x->o[a] + h->t * x->d[a];
 }
 
-/* face_pos: the sign (1: >= iso, 0: < iso) of face_field - iso on face
- * (axis, side) from the face's four corners alone, when they decide it:
- * vx_cell_face_value clamps into their [min, max], and a difference of
- * doubles is >= 0 exactly when a >= b.  -1 when they straddle iso. */
+/* face_sgn: the sign (+1, -1) of face_field - iso on face (axis, side)
+ * from the face's four corners alone, when they decide it: all above iso
+ * or all below (vx_cell_face_value clamps into their [min, max], and a
+ * difference of doubles has the sign of a - b).  0 when they do not (one
+ * of them equals iso, or they straddle it). */
 static int
-face_pos(const float *c, int axis, int side, double iso)
+face_sgn(const float *c, int axis, int side, double iso)
 {
 	int base = side << axis, bu = 1 << other[axis][0];
 	int bv = 1 << other[axis][1];
 	double c00 = c[base], c10 = c[base | bu], c01 = c[base | bv];
 	double c11 = c[base | bu | bv];
 
-	if (c00 >= iso && c10 >= iso && c01 >= iso && c11 >= iso)
+	if (c00 > iso && c10 > iso && c01 > iso && c11 > iso)
 		return 1;
 	if (c00 < iso && c10 < iso && c01 < iso && c11 < iso)
-		return 0;
-	return -1;
+		return -1;
+	return 0;
 }
 
 /* ends: the field at the segment's entry (0) and exit (1), computed once,
@@ -141,18 +147,22 @@ end_field(ends *E, const iso_ctx *x, const vx_leaf_visit *v, int w)
 	return E->e[w];
 }
 
-/* end_pos: pos(end_field - iso), from the face corners when they decide. */
+/* end_sgn: the sign (+1, 0, -1) of end_field - iso, from the face
+ * corners when they decide. */
 static int
-end_pos(ends *E, const iso_ctx *x, const vx_leaf_visit *v, int w,
+end_sgn(ends *E, const iso_ctx *x, const vx_leaf_visit *v, int w,
     double iso)
 {
 	int axis = w ? v->exit_axis : v->entry_axis;
-	int p = -1;
+	int p = 0;
+	double f;
 
 	if (axis >= 0 && !E->have[w])
-		p = face_pos(v->c, axis, w ? v->exit_side : v->entry_side, iso);
-	if (p < 0)
-		p = end_field(E, x, v, w) - iso >= 0;
+		p = face_sgn(v->c, axis, w ? v->exit_side : v->entry_side, iso);
+	if (p == 0) {
+		f = end_field(E, x, v, w) - iso;
+		p = f > 0 ? 1 : f < 0 ? -1 : 0;
+	}
 	return p;
 }
 
@@ -179,7 +189,7 @@ static const double onehot[4][3] = {
 	{ 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }
 };
 
-/* ends_certain: 1 when both end values minus iso (end_pos: face values,
+/* ends_certain: 1 when both end values minus iso (end_sgn: face values,
  * or the trilinear where an end lies inside the cell) certainly have the
  * signs of k0 and of k's value at len, the cubic's own ends, so that a
  * grazed cell (vx_cell_sign_bound) needs neither face.  Notation: u =
@@ -224,9 +234,9 @@ static const double onehot[4][3] = {
  *    room for the roundings of e itself.  Where |k0| and |b3| exceed
  *    their bounds, the end values minus iso are nonzero and of k0's and
  *    b3's signs, which vx_cell_sign_bound's nonzero answer says are its
- *    own (its b0 is k0, its b3 is b3).  end_pos is the sign of the end
- *    value minus iso (face_pos answers only where the corners decide it),
- *    so the answer is that of end_pos at both ends.  Overflow or NaN
+ *    own (its b0 is k0, its b3 is b3).  end_sgn is the sign of the end
+ *    value minus iso (face_sgn answers only where the corners decide it),
+ *    so the answer is that of end_sgn at both ends.  Overflow or NaN
  *    anywhere fails the test. */
 static inline int
 ends_certain(const iso_ctx *x, const vx_leaf_visit *v, const double ol[3],
@@ -256,9 +266,10 @@ ends_certain(const iso_ctx *x, const vx_leaf_visit *v, const double ol[3],
 }
 
 /* no_root: nonzero when vx_cell_first_root(k, 0, len, f0, f1, any solver)
- * is certainly a miss (vx_cell_sign_bound, and both ends of that sign:
- * from the cubic where ends_certain vouches for it (2), else from the
- * faces (1)), so the call and perhaps the end values can be skipped. */
+ * is certainly a miss and neither end value is exactly iso (no touch on
+ * a face either): vx_cell_sign_bound, and both ends strictly of that
+ * sign, from the cubic where ends_certain vouches for it (2), else from
+ * the faces (1); so the call and perhaps the end values can be skipped. */
 static int
 no_root(ends *E, const iso_ctx *x, const vx_leaf_visit *v,
     const double ol[3], const double k[4], double len, double iso)
@@ -270,8 +281,35 @@ no_root(ends *E, const iso_ctx *x, const vx_leaf_visit *v,
 		return 0;
 	if (!x->tr->face_ends && ends_certain(x, v, ol, len, k[0], b3, iso))
 		return 2;
-	sg = sg > 0;
-	return end_pos(E, x, v, 0, iso) == sg && end_pos(E, x, v, 1, iso) == sg;
+	return end_sgn(E, x, v, 0, iso) == sg && end_sgn(E, x, v, 1, iso) == sg;
+}
+
+/* emit: hit (local root r, surface s, kind, entering) of leaf v: appended
+ * to out[*nh], or (out NULL) handed to the hit function at once, whose
+ * nonzero value is returned */
+static inline int
+emit(iso_ctx *x, const vx_leaf_visit *v, double r, int s, int kind,
+    int entering, vx_iso_hit *out, int *nh, uint64_t *c0)
+{
+	vx_iso_stats *st = x->st;
+	vx_iso_hit h;
+	int rc;
+
+	if (out != NULL) {
+		fill(&out[(*nh)++], x, v, r, s, kind, entering);
+		return 0;
+	}
+	fill(&h, x, v, r, s, kind, entering);
+	if (st) {
+		st->hits++;
+		if (st->timing)
+			st->cyc_isect += vx_cycles() - *c0;
+	}
+	if ((rc = x->fn(x->ctx, &h)) != 0)
+		return rc;
+	if (st && st->timing)
+		*c0 = vx_cycles();
+	return 0;
 }
 
 /* iso_roots: the roots of isovalue s in leaf v, in order of t (ol, len:
@@ -286,8 +324,12 @@ iso_roots(ends *E, iso_ctx *x, const vx_leaf_visit *v, const double ol[3],
 {
 	vx_iso_stats *st = x->st;
 	double iso = x->iso[s], sa = 0, fa, f1, r, k[4];
-	int n, kind, rc, nr;
+	int n, kind, rc, nr, touch0;
 
+	/* a touch pending at this cell's entry (the face the last cell
+	 * ended on); only this cell can claim it */
+	touch0 = x->pend[s] == v->t0;
+	x->pend[s] = NAN;
 	if (!(v->lo <= iso && iso <= v->hi))
 		return 0;
 	vx_cell_poly(v->c, ol, x->d, iso, k);
@@ -301,33 +343,38 @@ iso_roots(ends *E, iso_ctx *x, const vx_leaf_visit *v, const double ol[3],
 	}
 	fa = end_field(E, x, v, 0) - iso;
 	f1 = end_field(E, x, v, 1) - iso;
+	/* the face touch: f came down to exactly iso at the entry face
+	 * (the last cell's end) and does not cross it here (the field is
+	 * not iso all along: a plateau at iso is inside, no touch) */
+	touch0 = touch0 && fa == 0 && (k[0] != 0 || k[1] != 0 || k[2] != 0 ||
+	    k[3] != 0);
 	for (n = 0; n < MAXROOTS; n++) {
 		if (st)
 			st->roots++;
-		kind = vx_cell_first_root(k, sa, len, fa, f1, x->tr->solver, &r,
-		    NULL);
+		kind = vx_cell_first_root_x(k, sa, len, fa, f1, x->tr->solver,
+		    &r, NULL, &x->exact);
+		if (touch0) {
+			touch0 = 0;
+			/* leaving downward at the face is the crossing this
+			 * cell claims anyway; upward, f only touched iso */
+			if (!(kind == VX_CELL_CROSS && r == 0) &&
+			    (rc = emit(x, v, 0, s, VX_CELL_TOUCH, 0, out, nh,
+			    c0)) != 0)
+				return rc;
+		}
 		if (kind == VX_CELL_MISS || (n > 0 && !(r > sa)))
 			break;
-		if (out != NULL)
-			fill(&out[(*nh)++], x, v, r, s, kind, fa < 0);
-		else {
-			vx_iso_hit h;
-
-			fill(&h, x, v, r, s, kind, fa < 0);
-			if (st) {
-				st->hits++;
-				if (st->timing)
-					st->cyc_isect += vx_cycles() - *c0;
-			}
-			if ((rc = x->fn(x->ctx, &h)) != 0)
-				return rc;
-			if (st && st->timing)
-				*c0 = vx_cycles();
-		}
+		if ((rc = emit(x, v, r, s, kind, fa < 0, out, nh, c0)) != 0)
+			return rc;
 		sa = r;
 		if (kind == VX_CELL_CROSS)
 			fa = fa >= 0 ? -1.0 : 1.0;
 	}
+	/* this cell ends exactly at iso, reached from above with no hit
+	 * left on the way: the next cell decides whether that is a touch */
+	if (f1 == 0 && n < MAXROOTS && kind == VX_CELL_MISS &&
+	    vx_cell_end_sign(k, sa, len, fa) > 0)
+		x->pend[s] = v->t1;
 	return 0;
 }
 
@@ -336,7 +383,7 @@ visit(void *vctx, const vx_leaf_visit *v)
 {
 	iso_ctx *x = vctx;
 	vx_iso_stats *st = x->st;
-	vx_iso_hit hits[VX_ISO_MAX * MAXROOTS];
+	vx_iso_hit hits[VX_ISO_MAX * (MAXROOTS + 1)];   /* + a face touch */
 	double ol[3], len;
 	ends E = { { 0, 0 }, { 0, 0 } };
 	uint64_t c0 = 0;
@@ -400,8 +447,11 @@ iso_start(iso_ctx *x, const vx_iso_tracer *tr, const double o[3],
 	x->d = d;
 	x->iso = iso;
 	x->niso = niso > VX_ISO_MAX ? VX_ISO_MAX : niso;
-	for (s = 0; s < x->niso; s++)
+	for (s = 0; s < x->niso; s++) {
 		x->fiso[s] = (float)iso[s];
+		x->pend[s] = NAN;
+	}
+	x->exact = 0;
 	x->fn = fn;
 	x->ctx = ctx;
 	x->st = st;
@@ -418,18 +468,23 @@ vx_iso_trace(const vx_iso_tracer *tr, const double o[3], const double d[3],
     void *ctx, vx_iso_stats *st)
 {
 	iso_ctx x;
+	int rc;
 
 	if (!iso_start(&x, tr, o, d, iso, niso, fn, ctx, st))
 		return 0;
 	if (tr->flat || tr->m == NULL)
-		return vx_macro_traverse_flat(tr->m, tr->g, o, d, tmin, tmax,
+		rc = vx_macro_traverse_flat(tr->m, tr->g, o, d, tmin, tmax,
 		    x.fiso, x.niso, visit, &x, st ? &st->trav : NULL);
-	if (tr->mask != NULL)
-		return vx_macro_traverse_masked(tr->m, tr->g, tr->mask, o, d,
+	else if (tr->mask != NULL)
+		rc = vx_macro_traverse_masked(tr->m, tr->g, tr->mask, o, d,
 		    tmin, tmax, x.fiso, x.niso, visit, &x, st ? &st->trav :
 		    NULL);
-	return vx_macro_traverse(tr->m, tr->g, o, d, tmin, tmax, x.fiso,
-	    x.niso, visit, &x, st ? &st->trav : NULL);
+	else
+		rc = vx_macro_traverse(tr->m, tr->g, o, d, tmin, tmax, x.fiso,
+		    x.niso, visit, &x, st ? &st->trav : NULL);
+	if (st)
+		st->exact += x.exact;
+	return rc;
 }
 
 int
@@ -439,14 +494,18 @@ vx_iso_trace_boxes(const vx_iso_tracer *tr, const double o[3],
     vx_iso_hit_fn fn, void *ctx, vx_iso_stats *st)
 {
 	iso_ctx x;
+	int rc;
 
 	if (tr->flat || tr->m == NULL || tr->m->nlev < 1)
 		return vx_iso_trace(tr, o, d, 0, INFINITY, iso, niso, fn, ctx,
 		    st);
 	if (!iso_start(&x, tr, o, d, iso, niso, fn, ctx, st))
 		return 0;
-	return vx_macro_traverse_boxes(tr->m, tr->g, tr->mask, box, ix, nbox,
+	rc = vx_macro_traverse_boxes(tr->m, tr->g, tr->mask, box, ix, nbox,
 	    pk, o, d, x.fiso, x.niso, visit, &x, st ? &st->trav : NULL);
+	if (st)
+		st->exact += x.exact;
+	return rc;
 }
 
 static int

@@ -31,6 +31,7 @@
 #define VX_CELL_H
 
 #include <math.h>
+#include <stdint.h>
 
 #include "vx_enum.h"
 
@@ -49,14 +50,6 @@ typedef enum vx_cell_solver {
 #define VX_CELL_NEUBAUER_ITERS 3
 /* Iteration cap of VX_CELL_EXACT (bisection alone needs at most ~60). */
 #define VX_CELL_MAXITER 100
-/* Touch tolerance: a critical point t_c of f inside (t0, t1) with
- * |f(t_c)| <= VX_CELL_TOUCH_TOL * (|k0| + |k1 t_c| + |k2| t_c^2 + |k3| |t_c|^3)
- * counts as a hit at t_c.  2^-40 (about 9.1e-13): over 1000 times Horner's
- * rounding bound for a cubic (6u times that sum), so a true double root is
- * never lost to rounding, and far below anything visible.  Relative to the
- * terms, so scaling values and iso by 2^k changes no decision. */
-#define VX_CELL_TOUCH_TOL 0x1p-40
-
 /* Return values of vx_cell_first_root. */
 enum {
 	VX_CELL_MISS = 0,
@@ -150,13 +143,21 @@ vx_cell_face_value_fin(const float c[8], int axis, int side, double u,
  * Bernstein coefficients beyond a margin rounding cannot close, so that
  * most hits skip the square root and divisions) decides: the first
  * segment whose ends differ in sign holds the
- * first crossing (f is monotone there, so exactly one).  An extremum whose
- * |f| is within VX_CELL_TOUCH_TOL (see there) ending a segment at or before
- * that one is a touch, reported at the extremum, even when rounding puts f
- * slightly across zero there (the crossing is then within sqrt(2 |f(c)| /
- * |f''(c)|) of it: the root is that ill-conditioned anyway, and for a true
- * double root the extremum is the exact answer).  An inflection where f'
- * has a double zero (e.g. a triple root) is no touch.  A leading
+ * first crossing (f is monotone there, so exactly one).  The critical
+ * points' number, order and the sign of f at each are exact for the
+ * cubic k as given (its coefficients and t0, t1 taken as exact numbers):
+ * signs of small polynomials in them (the discriminants of f and f', f'(t0),
+ * f'(t1), f at the inflection), each evaluated in double with a proven
+ * error bound and, where the bound cannot decide, exactly in binary big
+ * numbers (cell.c; vx_cell_first_root_x counts those).  So an extremum
+ * where f is exactly zero ending a segment at or before that one is a
+ * touch, reported at the extremum (approximated to rounding: the stable
+ * quadratic formula), and one where f misses zero by any amount is none:
+ * no exact touch is missed and no near-miss is a hit; where f crosses
+ * zero beside an extremum by any amount, the two crossings are found.
+ * Touches exactly at t0 or t1 (on a cell face) are the caller's: see
+ * vx_iso.h.  An inflection where f' has a double zero (e.g. a triple
+ * root) is no touch.  A leading
  * coefficient that is zero or tiny needs no special case.  The bracket is
  * then refined by `solver`:
  *   VX_CELL_EXACT: Halley steps (cubically convergent, from the secant
@@ -196,6 +197,23 @@ vx_cell_face_value_fin(const float c[8], int axis, int side, double u,
  * refinement (0 for a touch or a miss). */
 int vx_cell_first_root(const double k[4], double t0, double t1, double f0,
     double f1, int solver, double *t, int *iters);
+
+/* vx_cell_first_root_x: vx_cell_first_root, adding to *exact (when not
+ * NULL) the number of signs its filter could not decide and that were
+ * evaluated exactly (the slow path; --stats and the benchmarks count it). */
+int vx_cell_first_root_x(const double k[4], double t0, double t1, double f0,
+    double f1, int solver, double *t, int *iters, unsigned *exact);
+
+/* vx_cell_end_sign: the sign of f (coefficients k) just before t1, on
+ * (t1 - e, t1) for every small e > 0, where f0 is the caller's value at
+ * t0 (its sign only) and no root of f lies in (t0, t1) but at critical
+ * points: the last nonzero one of f0's sign and the exact signs of f at
+ * the critical points strictly inside (t0, t1) (f is monotone between
+ * them).  For a caller whose segment ends at a zero of f (a face value
+ * exactly 0) and that found no hit on it: +1 when f came down to that
+ * zero from above, -1 from below, 0 when f is zero all along (or input is
+ * not finite, or t0 >= t1). */
+int vx_cell_end_sign(const double k[4], double t0, double t1, double f0);
 
 /* vx_cell_sign_bound: a cheap, exact early-out for vx_cell_first_root on
  * [0, len] (t measured from the entry point, as in the typical use above).
@@ -250,13 +268,45 @@ vx_cell_sign_bound_b3(const double k[4], double len, double *b3)
 	return 0;
 }
 
+/* vx_cell_poly_low: a lower bound of the cubic k's exact value at t (k
+ * and t taken as exact): k[0] itself at t == 0 (Horner is exact there),
+ * else Horner's value less its error bound, 2^-50 times the terms'
+ * magnitudes (over gamma_6 of them, Higham's bound for degree 3) plus
+ * 2^-1067 (gradual underflow), and then the next double below (the
+ * subtraction's own rounding): never above k's value at t, at most a few
+ * units of Horner's rounding below it.  For finite k and t. */
+static inline double
+vx_cell_poly_low(const double k[4], double t)
+{
+	union { double d; uint64_t u; } v;
+	double a = fabs(t);
+
+	if (t == 0)
+		return k[0];
+	v.d = ((k[3] * t + k[2]) * t + k[1]) * t + k[0];
+	v.d -= 0x1p-50 * (fabs(k[0]) + a * (fabs(k[1]) + a * (fabs(k[2]) +
+	    a * fabs(k[3])))) + 0x1p-1067;
+	if (v.d > 0)
+		v.u--;
+	else if (v.d < 0)
+		v.u++;
+	else
+		v.d = -0x1p-1074;
+	return v.d;
+}
+
 /* vx_cell_max: the exact maximum of the cubic k on [t0, t1]: the larger of
  * the ends and the critical points inside (stable quadratic formula), ties
  * broken by the smallest t.  Returns 1 and sets *tmax, *fmax; returns 0 (no
  * value: *tmax = 0, *fmax = -INFINITY) if any input is not finite or
  * t0 > t1.  For maximum-intensity projection pass iso = 0 to vx_cell_poly
  * and, as above, measure t from the cell's entry point.  The value is that
- * of the computed cubic (the ends are not replaced by face values). */
+ * of the computed cubic (the ends are not replaced by face values) at
+ * *tmax, rounded down (vx_cell_poly_low): never above the cubic's exact
+ * maximum on [t0, t1], whatever rounding did to the choice of *tmax (a
+ * maximum reached at an interior critical point is approximated from
+ * below), and below it by at most the rounding of the candidates'
+ * values (a few units of 2^-50 times the terms' magnitudes). */
 int vx_cell_max(const double k[4], double t0, double t1, double *tmax,
     double *fmax);
 

@@ -1,5 +1,5 @@
 /* vx_iso.h: rays against the isosurfaces of a volume: the macrocell
- * traversal (vx_macro.h) feeding the trilinear cell kernel (vx_cell.h).
+ * traversal (vx_macrowalk.h) feeding the trilinear cell kernel (vx_cell.h).
  * One query serves primary rays, shadow rays, transparent layers and, later,
  * the bakes' path-traced bounces.
  *
@@ -12,7 +12,18 @@
  * (vx_cell_face_value), so two cells sharing a face agree on its sign bit for
  * bit; a sign change (f >= iso counts as inside) is claimed by exactly one
  * cell.  Where the segment starts or ends inside a cell, the trilinear value
- * is used.  Cells with a non-finite corner have no surface. */
+ * is used.  Cells with a non-finite corner have no surface.
+ *
+ * Touches.  Inside a cell a touch (f reaching iso at an extremum without
+ * crossing it) is decided exactly (vx_cell_first_root).  On a face, edge
+ * or vertex between cells, where the shared face value is exactly iso:
+ * f coming down to iso from above and leaving upward is one touch hit, at
+ * that t, claimed by the cell the ray enters there (the one before only
+ * notes it); from below it is the entry and the exit at that t (the cell
+ * before claims the one, the cell after the other), as any crossing
+ * through a face.  A stretch where f equals iso along the ray is inside
+ * (f >= iso): no touch there.  A face value that misses iso by any amount
+ * is no touch. */
 #ifndef VX_ISO_H
 #define VX_ISO_H
 
@@ -30,7 +41,7 @@ typedef struct vx_iso_tracer {
 	int flat;                /* 1: ignore the hierarchy (benchmarks, tests) */
 	int solver;              /* vx_cell_solver */
 	vx_cellmask *mask;       /* NULL, or m's cell mask for the isovalues
-	                            traced (vx_macro.h): the same hits,
+	                            traced (vx_cellmask.h): the same hits,
 	                            fewer samples read */
 	int face_ends;           /* 1: a grazed cell's end values always
 	                            from its faces, never certified from its
@@ -57,6 +68,9 @@ typedef struct vx_iso_stats {
 	                            the cubic's sign bound */
 	uint64_t certified;      /* of those, settled without the face
 	                            values (the cubic vouched for its ends) */
+	uint64_t exact;          /* signs the cell kernel's filter could not
+	                            decide, evaluated exactly (its slow
+	                            path: near-touches) */
 	uint64_t hits;           /* hits reported */
 	uint64_t nonfinite;      /* cells skipped for a non-finite corner */
 	uint64_t cyc_isect;      /* clock ticks inside the cell kernel (only

@@ -473,44 +473,17 @@ cells_walk_t(mip_ctx *x, double ta, double tb, const int64_t clo[3],
 	}
 }
 
-static void
-cells_u8(mip_ctx *x, double ta, double tb, const int64_t clo[3],
-    const int64_t chi[3])
-{
-	cells_walk_t(x, ta, tb, clo, chi, VX_U8);
-}
-
-static void
-cells_u16(mip_ctx *x, double ta, double tb, const int64_t clo[3],
-    const int64_t chi[3])
-{
-	cells_walk_t(x, ta, tb, clo, chi, VX_U16);
-}
-
-static void
-cells_i16(mip_ctx *x, double ta, double tb, const int64_t clo[3],
-    const int64_t chi[3])
-{
-	cells_walk_t(x, ta, tb, clo, chi, VX_I16);
-}
-
-static void
-cells_f32(mip_ctx *x, double ta, double tb, const int64_t clo[3],
-    const int64_t chi[3])
-{
-	cells_walk_t(x, ta, tb, clo, chi, VX_F32);
-}
-
 /* cells: the walk over data cells clo..chi of [ta, tb]. */
 static void
 cells(mip_ctx *x, double ta, double tb, const int64_t clo[3],
     const int64_t chi[3])
 {
+	/* cells_walk_t made for each sample type */
 	switch (x->g->type) {
-	case VX_U8: cells_u8(x, ta, tb, clo, chi); break;
-	case VX_U16: cells_u16(x, ta, tb, clo, chi); break;
-	case VX_I16: cells_i16(x, ta, tb, clo, chi); break;
-	default: cells_f32(x, ta, tb, clo, chi); break;
+	case VX_U8: cells_walk_t(x, ta, tb, clo, chi, VX_U8); break;
+	case VX_U16: cells_walk_t(x, ta, tb, clo, chi, VX_U16); break;
+	case VX_I16: cells_walk_t(x, ta, tb, clo, chi, VX_I16); break;
+	default: cells_walk_t(x, ta, tb, clo, chi, VX_F32); break;
 	}
 }
 
@@ -548,6 +521,159 @@ children(const vx_macro *m, int l, const int32_t c[3], int64_t lo[3],
 	}
 }
 
+/* ---- volumes with an axis of one sample (no cells) ----
+ * The samples span a plane, a line or a point, and the field there is the
+ * bilinear (linear) interpolation of its neighbouring samples: the slice
+ * itself.  A ray with d nonzero along a one-sample axis meets that span at
+ * one t, and its maximum is the field there; a ray inside the span (o and
+ * d zero along every one-sample axis) crosses cells of the other axes, and
+ * its maximum is vx_mip.h's rule over them (each cell's cubic maximum,
+ * clamped into its corners' range, the smallest t among equal values). */
+
+/* flat_cell: the corners of cell c (flat: its one-sample axes duplicated)
+ * with their range; 0 when one is not finite */
+static int
+flat_cell(const vx_grid *g, const int64_t c[3], float v[8], float *lo,
+    float *hi)
+{
+	int i, a;
+
+	for (i = 0; i < 8; i++) {
+		int64_t q[3];
+
+		for (a = 0; a < 3; a++)
+			q[a] = c[a] + (g->dims[a] >= 2 ? (i >> a & 1) : 0);
+		v[i] = (float)vx_grid_get(g, q[0], q[1], q[2]);
+	}
+	if (!vx_cell_finite(v))
+		return 0;
+	*lo = *hi = v[0];
+	for (i = 1; i < 8; i++) {
+		*lo = v[i] < *lo ? v[i] : *lo;
+		*hi = v[i] > *hi ? v[i] : *hi;
+	}
+	return 1;
+}
+
+/* flat_index: the cell holding coordinate p along an axis of n >= 1
+ * samples, floor(p) in [0, n - 2] (0 for n == 1; NaN: 0), clamped before
+ * the conversion */
+static int64_t
+flat_index(double p, int64_t n)
+{
+	double f = floor(p);
+
+	return n < 2 || !(f >= 0) ? 0 : f >= (double)(n - 2) ? n - 2 :
+	    (int64_t)f;
+}
+
+static int
+flat_ray(const vx_grid *g, const double o[3], const double d[3], double tmin,
+    double tmax, double *vmax, double *tmaxp)
+{
+	double ts = NAN, ta = tmin, tb = tmax, best = 0, tbest = 0;
+	int a, found = 0, pinned = 0;
+	int64_t c[3];
+	float v[8], lo, hi;
+
+	for (a = 0; a < 3; a++) {
+		if (g->dims[a] >= 2)
+			continue;
+		if (d[a] != 0) {
+			double t = -o[a] / d[a];
+
+			/* two one-sample axes crossed at different t: the ray
+			 * passes beside the line or point */
+			if (pinned && !(t == ts))
+				return 0;
+			ts = t;
+			pinned = 1;
+		} else if (o[a] != 0)
+			return 0;
+	}
+	if (pinned) {
+		double l[3], f;
+
+		if (!(ts >= tmin && ts <= tmax))
+			return 0;
+		for (a = 0; a < 3; a++) {
+			double p = g->dims[a] >= 2 ? o[a] + ts * d[a] : 0;
+
+			if (!(p >= 0 && p <= (double)(g->dims[a] - 1)))
+				return 0;
+			c[a] = flat_index(p, g->dims[a]);
+			l[a] = p - (double)c[a];
+		}
+		if (!flat_cell(g, c, v, &lo, &hi))
+			return 0;
+		f = vx_cell_trilinear(v, l);
+		*vmax = f > hi ? hi : f < lo ? lo : f;
+		*tmaxp = ts;
+		return 1;
+	}
+	/* inside the span: clip to it, then cell by cell along the axes the
+	 * ray moves on (crossing times of their integer planes in order) */
+	for (a = 0; a < 3; a++) {
+		double t0, t1;
+
+		if (g->dims[a] < 2 || d[a] == 0) {
+			if (!(o[a] >= 0 && o[a] <= (double)(g->dims[a] - 1)))
+				return 0;
+			continue;
+		}
+		t0 = (0 - o[a]) / d[a];
+		t1 = ((double)(g->dims[a] - 1) - o[a]) / d[a];
+		if (t0 > t1) {
+			double s = t0;
+			t0 = t1;
+			t1 = s;
+		}
+		ta = t0 > ta ? t0 : ta;
+		tb = t1 < tb ? t1 : tb;
+	}
+	if (!(ta <= tb) || !isfinite(ta) || !isfinite(tb))
+		return 0;
+	for (double t0 = ta;;) {
+		double t1 = tb, tm, ol[3], k[4], tt, fm;
+
+		/* the next integer plane after t0 on each moving axis */
+		for (a = 0; a < 3; a++) {
+			double p, q, tp;
+
+			if (g->dims[a] < 2 || d[a] == 0)
+				continue;
+			p = o[a] + t0 * d[a];
+			q = d[a] > 0 ? floor(p) + 1 : ceil(p) - 1;
+			tp = (q - o[a]) / d[a];
+			if (!(tp > t0))     /* rounding: the plane after */
+				tp = ((q + (d[a] > 0 ? 1 : -1)) - o[a]) / d[a];
+			t1 = tp < t1 ? tp : t1;
+		}
+		if (!(t1 > t0))     /* no progress (extreme o, d): the rest */
+			t1 = tb;
+		tm = t0 + 0.5 * (t1 - t0);
+		for (a = 0; a < 3; a++)
+			c[a] = g->dims[a] >= 2 ? flat_index(o[a] + tm * d[a],
+			    g->dims[a]) : 0;
+		if (flat_cell(g, c, v, &lo, &hi)) {
+			for (a = 0; a < 3; a++)
+				ol[a] = (o[a] + t0 * d[a]) - (double)c[a];
+			vx_cell_poly(v, ol, d, 0, k);
+			if (vx_cell_max(k, 0, t1 - t0, &tt, &fm))
+				clamp_fold(fm, t0 + tt, lo, hi, &best, &tbest,
+				    &found);
+		}
+		if (!(t1 < tb))
+			break;
+		t0 = t1;
+	}
+	if (!found)
+		return 0;
+	*vmax = best;
+	*tmaxp = tbest;
+	return 1;
+}
+
 int
 vx_mip_ray(const vx_grid *g, const vx_macro *m, vx_mip_work *w,
     const double o[3], const double d[3], double tmin, double tmax,
@@ -563,6 +689,8 @@ vx_mip_ray(const vx_grid *g, const vx_macro *m, vx_mip_work *w,
 	*tmaxp = INFINITY;
 	if (st)
 		st->rays++;
+	if (g->dims[0] < 2 || g->dims[1] < 2 || g->dims[2] < 2)
+		return flat_ray(g, o, d, tmin, tmax, vmax, tmaxp);
 	if (n[0] < 1 || n[1] < 1 || n[2] < 1 || !clip(n, o, d, &ta, &tb))
 		return 0;
 	memset(&x, 0, sizeof x);
@@ -671,6 +799,8 @@ vx_mip_ray_exhaustive(const vx_grid *g, const double o[3],
 
 	*vmax = -INFINITY;
 	*tmaxp = INFINITY;
+	if (g->dims[0] < 2 || g->dims[1] < 2 || g->dims[2] < 2)
+		return flat_ray(g, o, d, tmin, tmax, vmax, tmaxp);
 	for (a = 0; a < 3; a++) {
 		n[a] = g->dims[a] - 1;
 		hi[a] = n[a] - 1;

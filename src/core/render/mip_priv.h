@@ -201,7 +201,7 @@ max0(const double k[4], double t1, double *tm, double *fm)
 	if (f > bf)
 		bt = t1;
 	*tm = bt;
-	*fm = horner(k, bt);
+	*fm = vx_cell_poly_low(k, bt);
 	if (!isfinite(*fm)) {
 		*tm = 0;
 		*fm = -INFINITY;

@@ -325,6 +325,7 @@ add_local(void *ctx, void *lp, int t)
 	st->roots += is->roots;
 	st->bounded += is->bounded;
 	st->certified += is->certified;
+	st->exact += is->exact;
 	st->hits += is->hits + ts->hits;
 	st->leaves += ts->leaves;
 	st->entries += ts->entries;

@@ -21,9 +21,11 @@
  * and no NaN result.
  *
  * The result is fixed by a rule, not by the order of the work: each cell
- * on the ray gives the exact maximum of its cubic on its segment, clamped
- * into the range of its 8 corners (the trilinear field never leaves it;
- * rounding in the cubic could), with the smallest t where it is reached;
+ * on the ray gives the exact maximum of its cubic on its segment, rounded
+ * down (vx_cell_max: never above the cubic's exact maximum, below it by at
+ * most Horner's error bound), clamped into the range of its 8 corners (the
+ * trilinear field never leaves it; rounding in the cubic could), with the
+ * smallest t where it is reached;
  * the ray's result is the largest of these values and, among cells that
  * reach it, the smallest t.  A cell or macrocell is skipped only when its
  * maximum is below the best value, or equal to it with a segment starting
@@ -31,7 +33,24 @@
  * whatever the order of the work: for any hierarchy, layout, thread count,
  * last-t bound, for the queue and for the column walk (rays along an axis:
  * the axis-aligned views, integer samples: no queue, see mip.c), and
- * equal to vx_mip_ray_exhaustive's.  */
+ * equal to vx_mip_ray_exhaustive's.
+ *
+ * Bounds.  So the value is never above the exact maximum of the computed
+ * cubics, and never above the field's exact maximum where they are exact
+ * (samples, ray origin and direction whose arithmetic is exact in double);
+ * elsewhere their coefficients are within rounding of the field's: at most
+ * 2^-39 of the cell's largest |corner| (the analysis of iso.c's
+ * ends_certain, iso 0, W < 1024), the bound on how far above the field's
+ * maximum the value can be.
+ *
+ * A volume with an axis of one sample (dims 1 there) has no cells: its
+ * samples span a plane, line or point, the field there is their bilinear
+ * (linear) interpolation, and a ray with d nonzero along a one-sample axis
+ * meets it at the one t where that coordinate is 0 (two such axes must
+ * agree on t exactly, else a miss): the value is the field there.  A ray
+ * inside the span (o and d zero on every one-sample axis) gets the rule
+ * above over the cells of the other axes.  The hierarchy m is not used
+ * for such volumes; the result is the same for vx_mip_ray_exhaustive.  */
 #ifndef VX_MIP_H
 #define VX_MIP_H
 

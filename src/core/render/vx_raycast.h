@@ -49,7 +49,7 @@ typedef struct vx_raycast_opts {
 	                            walks the boxes it enters, leaf by leaf
 	                            inside each (same picture whatever the
 	                            edge: for measuring it) */
-	int no_cellmask;         /* 1: no cell mask (vx_macro.h): the walk
+	int no_cellmask;         /* 1: no cell mask (vx_cellmask.h): the walk
 	                            reads every stepped leaf's samples (same
 	                            picture, for measuring the mask) */
 	vx_cellmask *mask_keep;  /* NULL (a mask per render), or a mask the
@@ -93,6 +93,9 @@ typedef struct vx_raycast_stats {
 	                                    cubic's sign bound, and of them
 	                                    those settled without the face
 	                                    values (vx_iso_stats) */
+	uint64_t exact;                  /* signs the cell kernel's filter
+	                                    left undecided, evaluated exactly
+	                                    (vx_iso_stats) */
 	uint64_t leaves, entries;        /* meshes: leaf lists searched, and
 	                                    their entries scanned */
 	int mesh;                        /* 1: the source was a mesh */
