@@ -35,7 +35,7 @@ static const vx_enum_name side_names[] = {
 static const vx_enum sides = { "side", side_names, "?", 0 };
 
 typedef struct opts {
-	const char *in, *out, *scene, *name, *merge;
+	const char *in, *out, *name, *merge;
 	int stats, explain, dry, fresh, all, zlevel, fixed, lazy;
 	int has_bounces, bounces, has_range, has_first, has_samples, high;
 	vx_irr_store store;
@@ -44,31 +44,21 @@ typedef struct opts {
 	uint32_t first;
 	long threads;
 	vx_bake_opts b;
-	int nset;
-	const char *set_name[64], *set_val[64];
+	tool_scene_opts so;      /* --scene and the scene options */
 } opts;
-
-static void
-add_set(opts *o, const char *name, const char *val)
-{
-	if (o->nset >= 64)
-		tool_fail(VX_EUSAGE, "too many scene options");
-	o->set_name[o->nset] = name;
-	o->set_val[o->nset++] = val;
-}
 
 static void
 parse(opts *o, int argc, char **argv)
 {
-	enum { O_SCENE = 256, O_SET, O_LIGHT, O_LIGHTS, O_EFFECTS, O_ISO,
-	    O_NAME, O_SCALE, O_SAMPLES, O_TARGET, O_ROUND, O_MIN, O_BOUNCES,
+	enum { O_NAME = 256, O_SCALE, O_SAMPLES, O_TARGET, O_ROUND, O_MIN, O_BOUNCES,
 	    O_OFFSET, O_SEED, O_FIRST, O_RANGE, O_MARGIN, O_ALL, O_MERGE,
 	    O_FRESH, O_HALF, O_FINAL, O_FIXED, O_STATS, O_EXPLAIN, O_SIDE,
 	    O_LAZY };
 	static const struct option lo[] = {
-		{ "scene", 1, 0, O_SCENE }, { "set", 1, 0, O_SET },
-		{ "light", 1, 0, O_LIGHT }, { "lights", 1, 0, O_LIGHTS },
-		{ "effects", 1, 0, O_EFFECTS }, { "iso", 1, 0, O_ISO },
+		{ "scene", 1, 0, TOOL_O_SCENE }, { "set", 1, 0, TOOL_O_SET },
+		{ "light", 1, 0, TOOL_O_LIGHT },
+		{ "lights", 1, 0, TOOL_O_LIGHTS },
+		{ "effects", 1, 0, TOOL_O_EFFECTS }, { "iso", 1, 0, TOOL_O_ISO },
 		{ "name", 1, 0, O_NAME }, { "scale", 1, 0, O_SCALE },
 		{ "samples", 1, 0, O_SAMPLES },
 		{ "target-error", 1, 0, O_TARGET }, { "round", 1, 0, O_ROUND },
@@ -88,7 +78,6 @@ parse(opts *o, int argc, char **argv)
 	int ch;
 
 	memset(o, 0, sizeof *o);
-	o->in = "-";
 	o->out = "-";
 	o->fixed = VX_IRR_FIXED;
 	o->seed = 1;
@@ -97,12 +86,6 @@ parse(opts *o, int argc, char **argv)
 	vx_bake_opts_init(&o->b);
 	while ((ch = getopt_long(argc, argv, ":j:o:nz:", lo, NULL)) != -1) {
 		switch (ch) {
-		case O_SCENE: o->scene = optarg; break;
-		case O_SET: add_set(o, "set", optarg); break;
-		case O_LIGHT: add_set(o, "light", optarg); break;
-		case O_LIGHTS: add_set(o, "lights", optarg); break;
-		case O_EFFECTS: add_set(o, "effects", optarg); break;
-		case O_ISO: add_set(o, "iso", optarg); break;
 		case O_NAME: o->name = optarg; break;
 		case O_SCALE:
 			o->b.scale = tool_parse_double("--scale", optarg, 1e-3,
@@ -176,7 +159,8 @@ parse(opts *o, int argc, char **argv)
 			o->threads = tool_parse_long("-j", optarg, 0, 1024);
 			break;
 		default:
-			tool_opt_other(ch, usage, argv);
+			if (!tool_scene_opt(&o->so, ch, optarg, usage))
+				tool_opt_other(ch, usage, argv);
 		}
 	}
 	o->in = tool_opt_input(argc, argv, usage);
@@ -265,7 +249,7 @@ main(int argc, char **argv)
 	vx_stream_init(&st);
 	tool_read_stream(&st, o.in);
 	vx_scene_init(&s);
-	tool_scene_load(&s, o.scene, &st, o.nset, o.set_name, o.set_val);
+	tool_scene_opts_load(&s, &o.so, &st);
 	vx_grid_init(&g);
 	if (vx_grid_view_stream(&g, &st, o.name ? o.name : (s.volume[0] ?
 	    s.volume : NULL), &gidx, &e) != 0)

@@ -46,10 +46,8 @@ parse_args(opts *o, int argc, char **argv)
 	int ch;
 
 	memset(o, 0, sizeof *o);
-	o->in = "-";
 	o->out = "-";
 	o->levels = -1;
-	opterr = 0;
 	while ((ch = getopt_long(argc, argv, ":j:o:", lo, NULL)) != -1) {
 		switch (ch) {
 		case 'L':
@@ -78,20 +76,11 @@ parse_args(opts *o, int argc, char **argv)
 		case 'o':
 			o->out = optarg;
 			break;
-		case 'h':
-			printf("usage: %s\n", usage);
-			exit(tool_finish());
-		case ':':
-			tool_usage_fail(usage, "%s needs a value", argv[optind - 1]);
 		default:
-			tool_usage_fail(usage, "unknown option '%s'",
-			    argv[optind - 1]);
+			tool_opt_other(ch, usage, argv);
 		}
 	}
-	if (argc - optind > 1)
-		tool_usage_fail(usage, "at most one input");
-	if (argc - optind == 1)
-		o->in = argv[optind];
+	o->in = tool_opt_input(argc, argv, usage);
 }
 
 /* find_owned: the index of the MCEL (TLEF) chunk of volume (mesh) `name`,

@@ -27,26 +27,24 @@ static const char usage[] =
     "    [STREAM|-]";
 
 typedef struct opts {
-	const char *in, *out, *scene, *name, *depth;
+	const char *in, *out, *name, *depth;
 	int bits, stats, explain, dry, hdr, zlevel, lastt, exhaustive, persp;
 	int has_window;
 	double window[2];
 	vx_colormap cmap;
 	long threads;
-	int nset;
-	const char *set_name[32], *set_val[32];
+	tool_scene_opts so;      /* --scene, --size, --view, --fov */
 } opts;
 
 static void
 parse(opts *o, int argc, char **argv)
 {
-	enum { O_SCENE = 256, O_SIZE, O_VIEW, O_PERSP, O_FOV, O_NAME, O_WINDOW,
-	    O_CMAP, O_BITS, O_NOLAST, O_EXH, O_STATS, O_EXPLAIN, O_HDR,
-	    O_DEPTH };
+	enum { O_PERSP = 256, O_NAME, O_WINDOW, O_CMAP, O_BITS, O_NOLAST,
+	    O_EXH, O_STATS, O_EXPLAIN, O_HDR, O_DEPTH };
 	static const struct option lo[] = {
-		{ "scene", 1, 0, O_SCENE }, { "size", 1, 0, O_SIZE },
-		{ "view", 1, 0, O_VIEW }, { "perspective", 0, 0, O_PERSP },
-		{ "fov", 1, 0, O_FOV }, { "name", 1, 0, O_NAME },
+		{ "scene", 1, 0, TOOL_O_SCENE }, { "size", 1, 0, TOOL_O_SIZE },
+		{ "view", 1, 0, TOOL_O_VIEW }, { "perspective", 0, 0, O_PERSP },
+		{ "fov", 1, 0, TOOL_O_FOV }, { "name", 1, 0, O_NAME },
 		{ "window", 1, 0, O_WINDOW }, { "colormap", 1, 0, O_CMAP },
 		{ "bits", 1, 0, O_BITS }, { "no-last-t", 0, 0, O_NOLAST },
 		{ "exhaustive", 0, 0, O_EXH }, { "stats", 0, 0, O_STATS },
@@ -58,28 +56,17 @@ parse(opts *o, int argc, char **argv)
 	int c;
 
 	memset(o, 0, sizeof *o);
-	o->in = o->out = "-";
+	o->out = "-";
 	o->bits = 8;
 	o->lastt = 1;
 	o->zlevel = 1;
 	o->cmap = VX_COLORMAP_GRAY;
-	while ((c = getopt_long(argc, argv, "o:j:nhz:", lo, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, ":o:j:nhz:", lo, NULL)) != -1) {
 		switch (c) {
 		case 'o': o->out = optarg; break;
 		case 'z': o->zlevel = (int)tool_parse_long("-z", optarg, 0, 9); break;
 		case 'j': o->threads = tool_parse_long("-j", optarg, 0, 4096); break;
 		case 'n': o->dry = o->explain = 1; break;
-		case 'h':
-			printf("usage: %s\n", usage);
-			exit(0);
-		case O_SCENE: o->scene = optarg; break;
-		case O_SIZE: case O_VIEW: case O_FOV:
-			if (o->nset == 32)
-				tool_fail(VX_EUSAGE, "too many options");
-			o->set_name[o->nset] = c == O_SIZE ? "size" :
-			    c == O_VIEW ? "view" : "fov";
-			o->set_val[o->nset++] = optarg;
-			break;
 		case O_PERSP: o->persp = 1; break;
 		case O_NAME: o->name = optarg; break;
 		case O_WINDOW:
@@ -106,14 +93,11 @@ parse(opts *o, int argc, char **argv)
 		case O_HDR: o->hdr = 1; break;
 		case O_DEPTH: o->depth = optarg; break;
 		default:
-			tool_usage_fail(usage, "option '%s' is unknown or lacks its value",
-			    argv[optind - 1]);
+			if (!tool_scene_opt(&o->so, c, optarg, usage))
+				tool_opt_other(c, usage, argv);
 		}
 	}
-	if (optind < argc)
-		o->in = argv[optind++];
-	if (optind < argc)
-		tool_usage_fail(usage, "too many arguments");
+	o->in = tool_opt_input(argc, argv, usage);
 }
 
 static void
@@ -164,13 +148,15 @@ main(int argc, char **argv)
 	vx_stream_init(&st);
 	tool_read_stream(&st, o.in);
 	vx_scene_init(&s);
-	tool_scene_load(&s, o.scene, &st, 0, NULL, NULL);
-	if (o.scene == NULL && vx_stream_find(&st, VX_CHUNK_SCENE, 0) < 0)
+	/* an orthographic camera unless a scene says otherwise, then the
+	 * options */
+	tool_scene_load(&s, o.so.file, &st, 0, NULL, NULL);
+	if (o.so.file == NULL && vx_stream_find(&st, VX_CHUNK_SCENE, 0) < 0)
 		s.camera.projection = VX_ORTHOGRAPHIC;
 	if (o.persp)
 		s.camera.projection = VX_PERSPECTIVE;
-	for (i = 0; i < o.nset; i++)
-		if (vx_scene_option(&s, o.set_name[i], o.set_val[i], &e) != 0)
+	for (i = 0; i < o.so.n; i++)
+		if (vx_scene_option(&s, o.so.name[i], o.so.val[i], &e) != 0)
 			tool_fail_err(&e);
 	if (vx_grid_view_stream(&g, &st, o.name, &gi, &e) != 0) {
 		/* no such volume, but a tet mesh: say so */

@@ -34,41 +34,30 @@ static const char usage[] =
     "        [--lazy] [--lazy-save STREAM] [--spp N] [-o OUT] [STREAM|-]";
 
 typedef struct opts {
-	const char *in, *out, *scene, *name, *depth, *normals;
+	const char *in, *out, *name, *depth, *normals;
 	int hdr, zlevel, bits, stats, explain, dry, flat, aa, solver, nomask;
 	int nobin, binblock, lazy, spp;
 	const char *lazy_save;
 	long threads;
 	double exposure;
 	int ortho;
-	/* scene options in command-line order: (name, value) */
-	int nset;
-	const char *set_name[64], *set_val[64];
+	tool_scene_opts so;       /* --scene and the scene options */
 } opts;
-
-static void
-add_set(opts *o, const char *name, const char *val)
-{
-	if (o->nset == 64)
-		tool_fail(VX_EUSAGE, "too many scene options");
-	o->set_name[o->nset] = name;
-	o->set_val[o->nset++] = val;
-}
 
 static void
 parse(opts *o, int argc, char **argv)
 {
-	enum { O_SCENE = 256, O_ISO, O_SIZE, O_VIEW, O_ORTHO, O_FOV, O_LIGHT,
-	    O_LIGHTS, O_EFFECTS, O_BG, O_SET, O_NAME, O_SOLVER, O_FLAT, O_AA,
-	    O_STATS, O_EXPLAIN, O_HDR, O_BITS, O_EXPOSURE, O_DEPTH, O_NORMALS,
+	enum { O_ORTHO = 256, O_NAME, O_SOLVER, O_FLAT, O_AA, O_STATS,
+	    O_EXPLAIN, O_HDR, O_BITS, O_EXPOSURE, O_DEPTH, O_NORMALS,
 	    O_NOMASK, O_NOBIN, O_BINBLOCK, O_LAZY, O_LAZYSAVE, O_SPP };
 	static const struct option lo[] = {
-		{ "scene", 1, 0, O_SCENE }, { "iso", 1, 0, O_ISO },
-		{ "size", 1, 0, O_SIZE }, { "view", 1, 0, O_VIEW },
-		{ "ortho", 0, 0, O_ORTHO }, { "fov", 1, 0, O_FOV },
-		{ "light", 1, 0, O_LIGHT }, { "lights", 1, 0, O_LIGHTS },
-		{ "effects", 1, 0, O_EFFECTS }, { "background", 1, 0, O_BG },
-		{ "set", 1, 0, O_SET }, { "name", 1, 0, O_NAME },
+		{ "scene", 1, 0, TOOL_O_SCENE }, { "iso", 1, 0, TOOL_O_ISO },
+		{ "size", 1, 0, TOOL_O_SIZE }, { "view", 1, 0, TOOL_O_VIEW },
+		{ "ortho", 0, 0, O_ORTHO }, { "fov", 1, 0, TOOL_O_FOV },
+		{ "light", 1, 0, TOOL_O_LIGHT }, { "lights", 1, 0, TOOL_O_LIGHTS },
+		{ "effects", 1, 0, TOOL_O_EFFECTS },
+		{ "background", 1, 0, TOOL_O_BG },
+		{ "set", 1, 0, TOOL_O_SET }, { "name", 1, 0, O_NAME },
 		{ "solver", 1, 0, O_SOLVER }, { "flat", 0, 0, O_FLAT },
 		{ "no-cellmask", 0, 0, O_NOMASK },
 		{ "no-binning", 0, 0, O_NOBIN },
@@ -86,32 +75,18 @@ parse(opts *o, int argc, char **argv)
 	int c;
 
 	memset(o, 0, sizeof *o);
-	o->in = "-";
 	o->out = "-";
 	o->bits = 8;
 	o->aa = 1;
 	o->zlevel = 1;
 	o->solver = VX_CELL_EXACT;
-	while ((c = getopt_long(argc, argv, "o:j:nhz:", lo, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, ":o:j:nhz:", lo, NULL)) != -1) {
 		switch (c) {
 		case 'o': o->out = optarg; break;
 		case 'z': o->zlevel = (int)tool_parse_long("-z", optarg, 0, 9); break;
 		case 'j': o->threads = tool_parse_long("-j", optarg, 0, 4096); break;
 		case 'n': o->dry = o->explain = 1; break;
-		case 'h':
-			printf("usage: %s\n", usage);
-			exit(0);
-		case O_SCENE: o->scene = optarg; break;
-		case O_ISO: add_set(o, "iso", optarg); break;
-		case O_SIZE: add_set(o, "size", optarg); break;
-		case O_VIEW: add_set(o, "view", optarg); break;
 		case O_ORTHO: o->ortho = 1; break;
-		case O_FOV: add_set(o, "fov", optarg); break;
-		case O_LIGHT: add_set(o, "light", optarg); break;
-		case O_LIGHTS: add_set(o, "lights", optarg); break;
-		case O_EFFECTS: add_set(o, "effects", optarg); break;
-		case O_BG: add_set(o, "background", optarg); break;
-		case O_SET: add_set(o, "set", optarg); break;
 		case O_NAME: o->name = optarg; break;
 		case O_SOLVER:
 			if ((o->solver = vx_cell_solver_parse(optarg)) < 0)
@@ -145,21 +120,18 @@ parse(opts *o, int argc, char **argv)
 		case O_DEPTH: o->depth = optarg; break;
 		case O_NORMALS: o->normals = optarg; break;
 		default:
-			tool_usage_fail(usage, "option '%s' is unknown or lacks its value",
-			    argv[optind - 1]);
+			if (!tool_scene_opt(&o->so, c, optarg, usage))
+				tool_opt_other(c, usage, argv);
 		}
 	}
-	if (optind < argc)
-		o->in = argv[optind++];
-	if (optind < argc)
-		tool_usage_fail(usage, "too many arguments");
+	o->in = tool_opt_input(argc, argv, usage);
 }
 
 /* load_scene: the stream's scene, replaced by --scene, then the options. */
 static void
 load_scene(vx_scene *s, const opts *o, const vx_stream *st)
 {
-	tool_scene_load(s, o->scene, st, o->nset, o->set_name, o->set_val);
+	tool_scene_opts_load(s, &o->so, st);
 	if (o->ortho)
 		s->camera.projection = VX_ORTHOGRAPHIC;
 }

@@ -154,6 +154,12 @@ raycast --iso 0.5 --set "illumination irradiance" --size 33x33 --hdr \
     "$T/h.vx" > "$T/rh.vx"
 check_close "--half: radiance within 2^-11 of 0.8" \
     "$(px img "$T/rh.vx" color 16 16 0)" 0.8 4e-4
+# a final store draws only baked texels: the texels of a stored brick that
+# nobody asked for are not read as E = 0 (tricubic reads 4^3 around)
+raycast --iso 0.5 --set "illumination irradiance interpolation tricubic" \
+    --size 33x33 --hdr "$T/h.vx" > "$T/rht.vx"
+check_close "--half, tricubic: radiance within 2^-11 of 0.8" \
+    "$(px img "$T/rht.vx" color 12 18 1)" 0.8 4e-4
 expect_fail "a final bake cannot be resumed" 65 "final" \
     bake-irr --light sky --iso 0.5 --side high --bounces 2 "$T/h.vx"
 

@@ -28,9 +28,16 @@ big_window(const uint8_t *d, size_t n)
 			if ((size_t)(d + n - p) < 20)
 				break;
 			memcpy(b, p + 4, 16);
-			if (((int64_t)b[2] - b[0] + 1) * ((int64_t)b[3] - b[1] + 1) >
-			    ((int64_t)1 << 20))
-				return 1;
+			{
+				/* each side is below 2^33: compare them before
+				 * their product can overflow */
+				int64_t w = (int64_t)b[2] - b[0] + 1;
+				int64_t h = (int64_t)b[3] - b[1] + 1;
+
+				if (w > ((int64_t)1 << 20) || h > ((int64_t)1 << 20) ||
+				    (w > 0 && h > 0 && w * h > ((int64_t)1 << 20)))
+					return 1;
+			}
 		}
 	}
 	return 0;

@@ -631,6 +631,11 @@ vx_irr_finalize(vx_irrvol *v, vx_irr_store store, vx_err *e)
 		    vx_irr_store_name(v->store), vx_irr_store_name(store));
 	}
 	vx_irr_finish(v);
+	/* a texel without samples is not drawn from a final store: it keeps
+	 * no count, so its wanted bit goes */
+	for (size_t t = 0; t < v->nslot * VX_IRR_BRICK3; t++)
+		if (v->acc[t].count == 0)
+			v->flags[t] &= ~(uint32_t)VX_TEXEL_WANTED;
 	free(v->acc);
 	v->acc = NULL;
 	v->store = store;

@@ -181,7 +181,10 @@ vx_irr_usable(const vx_irrvol *v, int64_t s)
 
 	if (f & (VX_TEXEL_FLAT | VX_TEXEL_NAN))
 		return 0;
-	return v->store != VX_IRR_ACCUM || v->acc[s].count > 0;
+	/* a final store keeps the wanted bit only on texels that were baked
+	 * (vx_irr_finalize) */
+	return v->store != VX_IRR_ACCUM ? (f & VX_TEXEL_WANTED) != 0 :
+	    v->acc[s].count > 0;
 }
 
 /* ---- lookup ---- */

@@ -199,6 +199,38 @@ put_header(const nrrd_geom *g, FILE *f, const vx_nrrd_opts *o)
 	fputc('\n', f);
 }
 
+/* begin: the header, then the body's sink; on failure row is freed. */
+static int
+begin(const nrrd_geom *geom, FILE *f, const vx_nrrd_opts *o, sink *s,
+    void *row, vx_err *e)
+{
+	int rc;
+
+	errno = 0;
+	put_header(geom, f, o);
+	if (ferror(f))
+		rc = vx_err_set(e, VX_EIO, "write: %s",
+		    errno ? strerror(errno) : "stream error");
+	else if ((rc = sink_open(s, f, o->gzip, o->level, e)) == 0)
+		return 0;
+	free(row);
+	return rc;
+}
+
+/* finish: close the sink (rc: the body's writes so far), free row, and
+ * check that everything reached f. */
+static int
+finish(sink *s, FILE *f, void *row, int rc, vx_err *e)
+{
+	if (sink_close(s, rc == 0, e) != 0 && rc == 0)
+		rc = e ? e->code : VX_EIO;
+	free(row);
+	if (rc == 0 && (fflush(f) != 0 || ferror(f)))
+		rc = vx_err_set(e, VX_EIO, "write: %s",
+		    errno ? strerror(errno) : "stream error");
+	return rc;
+}
+
 /* ---- body ---- */
 
 /* row_le: samples (0..nx-1, y, z) of g as little-endian bytes into buf. */
@@ -246,27 +278,12 @@ vx_export_nrrd_opts(const vx_grid *g, FILE *f, const vx_nrrd_opts *o,
 		geom.spacing[a] = g->spacing[a];
 		geom.origin[a] = g->origin[a];
 	}
-	errno = 0;
-	put_header(&geom, f, o);
-	if (ferror(f)) {
-		free(row);
-		return vx_err_set(e, VX_EIO, "write: %s",
-		    errno ? strerror(errno) : "stream error");
-	}
-	if ((rc = sink_open(&s, f, o->gzip, o->level, e)) != 0) {
-		free(row);
+	if ((rc = begin(&geom, f, o, &s, row, e)) != 0)
 		return rc;
-	}
 	for (z = 0; z < g->dims[2] && rc == 0; z++)
 		for (y = 0; y < g->dims[1] && rc == 0; y++)
 			rc = sink_write(&s, row, row_le(g, y, z, row), e);
-	if (sink_close(&s, rc == 0, e) != 0 && rc == 0)
-		rc = e ? e->code : VX_EIO;
-	free(row);
-	if (rc == 0 && (fflush(f) != 0 || ferror(f)))
-		rc = vx_err_set(e, VX_EIO, "write: %s",
-		    errno ? strerror(errno) : "stream error");
-	return rc;
+	return finish(&s, f, row, rc, e);
 }
 
 int
@@ -353,28 +370,13 @@ irr_export(const vx_irrvol *v, const vx_grid *g, int flags, int bytes,
 	}
 	if ((row = vx_malloc((size_t)v->dims[0] * per, e)) == NULL)
 		return VX_ENOMEM;
-	errno = 0;
-	put_header(&geom, f, o);
-	if (ferror(f)) {
-		free(row);
-		return vx_err_set(e, VX_EIO, "write: %s",
-		    errno ? strerror(errno) : "stream error");
-	}
-	if ((rc = sink_open(&s, f, o->gzip, o->level, e)) != 0) {
-		free(row);
+	if ((rc = begin(&geom, f, o, &s, row, e)) != 0)
 		return rc;
-	}
 	for (int64_t k = 0; k < v->dims[2] && rc == 0; k++)
 		for (int64_t j = 0; j < v->dims[1] && rc == 0; j++)
 			rc = sink_write(&s, row, irr_row_le(v, flags, bytes, j,
 			    k, row), e);
-	if (sink_close(&s, rc == 0, e) != 0 && rc == 0)
-		rc = e ? e->code : VX_EIO;
-	free(row);
-	if (rc == 0 && (fflush(f) != 0 || ferror(f)))
-		rc = vx_err_set(e, VX_EIO, "write: %s",
-		    errno ? strerror(errno) : "stream error");
-	return rc;
+	return finish(&s, f, row, rc, e);
 }
 
 int

@@ -1084,7 +1084,7 @@ vx_cellmask_build(vx_cellmask *k, const vx_macro *m, const vx_grid *g,
 	k->words = words;
 	k->ready = 1;
 	if (!lazy) {
-		int nt = threads(nthreads);
+		int nt = vx_par_threads(nthreads);
 
 		(void)nt;
 #ifdef _OPENMP

@@ -261,7 +261,7 @@ vx_macro_build(vx_macro *m, const vx_grid *g, int nlev, const int sizes[][3],
     int nthreads, vx_err *e)
 {
 	int64_t n[3];
-	int a, l, rc, nt = threads(nthreads);
+	int a, l, rc, nt = vx_par_threads(nthreads);
 
 	leaf_dims(g, n);
 	if ((rc = vx_macro_setup(m, n, nlev, sizes, 0, e)) != 0)
@@ -313,7 +313,7 @@ vx_macro_build_explicit(vx_macro *m, const int64_t n[3],
     const float *leaf_mm, int nlev, const int sizes[][3], int nthreads,
     vx_err *e)
 {
-	int l, rc, nt = threads(nthreads);
+	int l, rc, nt = vx_par_threads(nthreads);
 
 	if ((rc = vx_macro_setup(m, n, nlev, sizes, 1, e)) != 0)
 		return rc;

@@ -11,13 +11,10 @@
 #include <stdint.h>
 #include <string.h>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include "vx_cellmask.h"
 #include "vx_grid.h"
 #include "vx_macro.h"
+#include "vx_par.h"
 
 /* ncells: level l's cell count */
 static inline size_t
@@ -25,19 +22,6 @@ ncells(const vx_macro *m, int l)
 {
 	return (size_t)m->dims[l][0] * (size_t)m->dims[l][1] *
 	    (size_t)m->dims[l][2];
-}
-
-/* threads: the thread count a call's nthreads asks for (<= 0: OpenMP's
- * default) */
-static inline int
-threads(int nthreads)
-{
-#ifdef _OPENMP
-	return nthreads > 0 ? nthreads : omp_get_max_threads();
-#else
-	(void)nthreads;
-	return 1;
-#endif
 }
 
 /* brackets: the walk's test, lo <= v <= hi for one of vals (every range

@@ -1,5 +1,5 @@
 /* vx_iso.h: rays against the isosurfaces of a volume: the macrocell
- * traversal (vx_macro.h) feeding the trilinear cell kernel (vx_cell.h).
+ * traversal (vx_macrowalk.h) feeding the trilinear cell kernel (vx_cell.h).
  * One query serves primary rays, shadow rays, transparent layers and, later,
  * the bakes' path-traced bounces.
  *
@@ -41,7 +41,7 @@ typedef struct vx_iso_tracer {
 	int flat;                /* 1: ignore the hierarchy (benchmarks, tests) */
 	int solver;              /* vx_cell_solver */
 	vx_cellmask *mask;       /* NULL, or m's cell mask for the isovalues
-	                            traced (vx_macro.h): the same hits,
+	                            traced (vx_cellmask.h): the same hits,
 	                            fewer samples read */
 	int face_ends;           /* 1: a grazed cell's end values always
 	                            from its faces, never certified from its

@@ -330,21 +330,28 @@ bins_fill(vx_bins *B, vx_par *team, const vx_camera *cam,
 	return 0;
 }
 
-void
-vx_bins_drop(vx_bins *B)
+/* lists_free: the bins' entries freed (their pointers NULL) */
+static void
+lists_free(vx_bins *B)
 {
-	free(B->off);
-	free(B->pix);
-	free(B->box);
 	free(B->list);
 	free(B->lb);
 	free(B->mk);
-	B->off = NULL;
-	B->pix = NULL;
-	B->box = NULL;
 	B->list = NULL;
 	B->lb = NULL;
 	B->mk = NULL;
+}
+
+void
+vx_bins_drop(vx_bins *B)
+{
+	lists_free(B);
+	free(B->off);
+	free(B->pix);
+	free(B->box);
+	B->off = NULL;
+	B->pix = NULL;
+	B->box = NULL;
 }
 
 void
@@ -605,12 +612,7 @@ vx_bins_build(vx_bins *B, const vx_camera *cam, const vx_grid *g,
 		B->block = C.sub;
 		B->nboxes = n;
 		B->nwhole = nwhole;
-		free(B->list);
-		free(B->lb);
-		free(B->mk);
-		B->list = NULL;
-		B->lb = NULL;
-		B->mk = NULL;
+		lists_free(B);
 		if ((rc = bins_fill(B, &team, cam, box, n, e)) != 1 || !C.sub)
 			break;
 		C.sub = 0;   /* too many entries: whole macrocells */

@@ -473,44 +473,17 @@ cells_walk_t(mip_ctx *x, double ta, double tb, const int64_t clo[3],
 	}
 }
 
-static void
-cells_u8(mip_ctx *x, double ta, double tb, const int64_t clo[3],
-    const int64_t chi[3])
-{
-	cells_walk_t(x, ta, tb, clo, chi, VX_U8);
-}
-
-static void
-cells_u16(mip_ctx *x, double ta, double tb, const int64_t clo[3],
-    const int64_t chi[3])
-{
-	cells_walk_t(x, ta, tb, clo, chi, VX_U16);
-}
-
-static void
-cells_i16(mip_ctx *x, double ta, double tb, const int64_t clo[3],
-    const int64_t chi[3])
-{
-	cells_walk_t(x, ta, tb, clo, chi, VX_I16);
-}
-
-static void
-cells_f32(mip_ctx *x, double ta, double tb, const int64_t clo[3],
-    const int64_t chi[3])
-{
-	cells_walk_t(x, ta, tb, clo, chi, VX_F32);
-}
-
 /* cells: the walk over data cells clo..chi of [ta, tb]. */
 static void
 cells(mip_ctx *x, double ta, double tb, const int64_t clo[3],
     const int64_t chi[3])
 {
+	/* cells_walk_t made for each sample type */
 	switch (x->g->type) {
-	case VX_U8: cells_u8(x, ta, tb, clo, chi); break;
-	case VX_U16: cells_u16(x, ta, tb, clo, chi); break;
-	case VX_I16: cells_i16(x, ta, tb, clo, chi); break;
-	default: cells_f32(x, ta, tb, clo, chi); break;
+	case VX_U8: cells_walk_t(x, ta, tb, clo, chi, VX_U8); break;
+	case VX_U16: cells_walk_t(x, ta, tb, clo, chi, VX_U16); break;
+	case VX_I16: cells_walk_t(x, ta, tb, clo, chi, VX_I16); break;
+	default: cells_walk_t(x, ta, tb, clo, chi, VX_F32); break;
 	}
 }
 

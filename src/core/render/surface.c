@@ -384,9 +384,8 @@ lambert_irr(const vx_material *m, const double alb[3], const double E[3],
 }
 
 /* path_traced: Lambert under the mean of pt_samples estimates of the
- * irradiance at h (vx_gi), lit from the eye's side (out of line: the
- * local lights' path stays as it is) */
-static __attribute__((noinline)) void
+ * irradiance at h (vx_gi), lit from the eye's side */
+static inline void
 path_traced(const vx_surfaces *S, const vx_hit *h, const vx_material *m,
     const double alb[3], double col[3], vx_surf_stats *st)
 {
@@ -422,7 +421,7 @@ path_traced(const vx_surfaces *S, const vx_hit *h, const vx_material *m,
 
 /* baked: Lambert under the irradiance volume's value at h; with irr_need,
  * the texels the lookup reads reported, and black */
-static __attribute__((noinline)) void
+static inline void
 baked(const vx_surfaces *S, const vx_hit *h, const vx_material *m,
     const double alb[3], double col[3], vx_surf_stats *st)
 {
@@ -440,6 +439,25 @@ baked(const vx_surfaces *S, const vx_hit *h, const vx_material *m,
 	lambert_irr(m, alb, E, col);
 }
 
+/* irradiance_shade: vx_surf_shade under an irradiance, path-traced or
+ * baked, as the plan says (out of line: the local lights' path keeps its
+ * registers) */
+static __attribute__((noinline)) void
+irradiance_shade(const vx_surfaces *S, const vx_hit *h, double col[3],
+    vx_surf_stats *st)
+{
+	int k = S->surf[h->iso];
+	const vx_material *m = &S->s->surface[k].m;
+	double alb[3];
+
+	albedo(S, k, h->P, alb);
+	if (S->p->pathtrace)
+		path_traced(S, h, m, alb, col, st);
+	else
+		baked(S, h, m, alb, col, st);
+	st->shaded++;
+}
+
 void
 vx_surf_shade(const vx_surfaces *S, const vx_hit *h, const double dw[3],
     double col[3], vx_surf_stats *st)
@@ -451,6 +469,10 @@ vx_surf_shade(const vx_surfaces *S, const vx_hit *h, const double dw[3],
 	const double *n = h->n, *P = h->P;
 	double V[3] = { 0, 0, 0 }, alb[3], amb[3];
 
+	if (p->pathtrace || p->irradiance) {
+		irradiance_shade(S, h, col, st);
+		return;
+	}
 	/* the view direction only for a highlight (its square root and
 	 * divisions are in each hit's chain of dependent operations) */
 	if (p->specular && m->ks > 0) {
@@ -459,14 +481,6 @@ vx_surf_shade(const vx_surfaces *S, const vx_hit *h, const double dw[3],
 		normalize3(V);
 	}
 	albedo(S, k, P, alb);
-	if (p->pathtrace || p->irradiance) {
-		if (p->pathtrace)
-			path_traced(S, h, m, alb, col, st);
-		else
-			baked(S, h, m, alb, col, st);
-		st->shaded++;
-		return;
-	}
 	for (a = 0; a < 3; a++) {
 		amb[a] = s->ambient[a] * s->ambient_intensity;
 		col[a] = amb[a] * alb[a];

@@ -49,7 +49,7 @@ typedef struct vx_raycast_opts {
 	                            walks the boxes it enters, leaf by leaf
 	                            inside each (same picture whatever the
 	                            edge: for measuring it) */
-	int no_cellmask;         /* 1: no cell mask (vx_macro.h): the walk
+	int no_cellmask;         /* 1: no cell mask (vx_cellmask.h): the walk
 	                            reads every stepped leaf's samples (same
 	                            picture, for measuring the mask) */
 	vx_cellmask *mask_keep;  /* NULL (a mask per render), or a mask the

@@ -595,6 +595,34 @@ tool_threads(long j)
 #endif
 }
 
+int
+tool_scene_opt(tool_scene_opts *so, int c, const char *val,
+    const char *usage)
+{
+	static const char *const names[] = { "set", "iso", "size", "view",
+	    "fov", "light", "lights", "effects", "background" };
+
+	if (c == TOOL_O_SCENE) {
+		so->file = val;
+		return 1;
+	}
+	if (c < TOOL_O_SET || c > TOOL_O_BG)
+		return 0;
+	if (so->n == TOOL_SCENE_MAXSET)
+		tool_usage_fail(usage, "more than %d scene options",
+		    TOOL_SCENE_MAXSET);
+	so->name[so->n] = names[c - TOOL_O_SET];
+	so->val[so->n++] = val;
+	return 1;
+}
+
+void
+tool_scene_opts_load(vx_scene *s, const tool_scene_opts *so,
+    const vx_stream *st)
+{
+	tool_scene_load(s, so->file, st, so->n, so->name, so->val);
+}
+
 /* scene_paths: a relative file name in a scene file names a file beside
  * the scene: prefix the scene's directory (formats/scene.md). */
 static void

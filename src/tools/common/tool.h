@@ -38,6 +38,29 @@ _Noreturn void tool_fail_err(const vx_err *e);
 _Noreturn void tool_usage_fail(const char *usage, const char *fmt, ...)
 	__attribute__((format(printf, 2, 3)));
 
+/* The scene options the renderers, bakers and vscene share, by
+ * vx_scene_option's names, kept in command-line order and applied after
+ * the scene is loaded (tool_scene_load).  A program lists those it takes
+ * in its getopt_long table with the codes TOOL_O_* and gives every option
+ * its own switch does not take to tool_scene_opt first. */
+enum {
+	TOOL_O_SCENE = 0x4000,   /* --scene FILE */
+	TOOL_O_SET, TOOL_O_ISO, TOOL_O_SIZE, TOOL_O_VIEW, TOOL_O_FOV,
+	TOOL_O_LIGHT, TOOL_O_LIGHTS, TOOL_O_EFFECTS, TOOL_O_BG
+};
+#define TOOL_SCENE_MAXSET 64
+typedef struct tool_scene_opts {
+	const char *file;        /* --scene, or NULL */
+	int n;
+	const char *name[TOOL_SCENE_MAXSET], *val[TOOL_SCENE_MAXSET];
+} tool_scene_opts;
+
+/* tool_scene_opt: record scene option c (a TOOL_O_* code) with value val;
+ * returns 0, recording nothing, for any other c.  More than
+ * TOOL_SCENE_MAXSET options: a usage error. */
+int tool_scene_opt(tool_scene_opts *so, int c, const char *val,
+    const char *usage);
+
 /* Option value parsers: exit 64 with "name: --opt: why" on bad input. */
 double tool_parse_double(const char *opt, const char *s, double lo, double hi);
 long tool_parse_long(const char *opt, const char *s, long lo, long hi);
@@ -100,6 +123,10 @@ int tool_finish(void);
 struct vx_scene;
 void tool_scene_load(struct vx_scene *s, const char *file, const vx_stream *st,
     int n, const char *const *names, const char *const *vals);
+
+/* tool_scene_opts_load: tool_scene_load with so's file and options. */
+void tool_scene_opts_load(struct vx_scene *s, const tool_scene_opts *so,
+    const vx_stream *st);
 
 /* tool_write_pfm: write img to path as a PFM, atomically; exits on error. */
 struct vx_image;
