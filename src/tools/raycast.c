@@ -324,12 +324,8 @@ lazy_bake(vx_irrvol *irr, int have, vx_scene *s, const vx_grid *g,
 
 				if (!x.need[t])
 					continue;
-				if (vx_irr_want_brick(irr, (size_t)(i / VX_IRR_BRICK +
-				    irr->bdims[0] * (j / VX_IRR_BRICK +
-				    irr->bdims[1] * (k / VX_IRR_BRICK))), &e) != 0)
+				if ((q = vx_irr_want_texel(irr, i, j, k, &e)) < 0)
 					tool_fail_err(&e);
-				q = vx_irr_texel(irr, i, j, k);
-				irr->flags[q] |= VX_TEXEL_WANTED;
 				if (irr->acc[q].count > 0 || (irr->acc[q].flags &
 				    (VX_TEXEL_FLAT | VX_TEXEL_NAN))) {
 					x.need[t] = 0;    /* baked already */

@@ -131,13 +131,6 @@ want(vx_irrvol *v, int64_t i, int64_t j, int64_t k)
 		v->flags[s] |= VX_TEXEL_WANTED;
 }
 
-static size_t
-brick_of(const vx_irrvol *v, int64_t i, int64_t j, int64_t k)
-{
-	return (size_t)(i / VX_IRR_BRICK + v->bdims[0] * (j / VX_IRR_BRICK +
-	    v->bdims[1] * (k / VX_IRR_BRICK)));
-}
-
 /* what the plan's parallel pass reads and writes */
 typedef struct plan_ctx {
 	const vx_irrvol *v;
@@ -248,12 +241,10 @@ vx_bake_plan(vx_irrvol *v, const vx_grid *g, const vx_bake_opts *o,
 					if (x >= v->dims[0] || y >= v->dims[1] ||
 					    z >= v->dims[2])
 						continue;
-					if ((rc = vx_irr_want_brick(v,
-					    brick_of(v, x, y, z), e)) != 0) {
+					if (vx_irr_want_texel(v, x, y, z, e) < 0) {
 						free(cellw);
-						return rc;
+						return e->code;
 					}
-					want(v, x, y, z);
 				}
 			}
 	free(cellw);

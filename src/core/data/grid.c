@@ -821,3 +821,44 @@ vx_index_to_world_normal(const vx_grid *g, const double i[3], double w[3])
 		w[k] = i[k] / g->spacing[k];
 	vx_unit3(w);
 }
+
+static inline double
+lerp(double a, double b, double s)
+{
+	return a + (b - a) * s;
+}
+
+double
+vx_grid_trilinear(const vx_grid *g, const double pin[3])
+{
+	double p[3], l[3], e0, e1, e2, e3;
+	int64_t i[3];
+	float c[8];
+	int a;
+
+	for (a = 0; a < 3; a++) {
+		double hi = (double)(g->dims[a] - 1);
+
+		p[a] = pin[a];
+		if (!(p[a] >= 0))
+			p[a] = 0;
+		if (p[a] > hi)
+			p[a] = hi;
+		i[a] = (int64_t)p[a];
+		if (i[a] > g->dims[a] - 2)
+			i[a] = g->dims[a] - 2;
+		if (i[a] < 0)
+			i[a] = 0;
+		l[a] = p[a] - (double)i[a];
+		if (g->dims[a] == 1)
+			l[a] = 0;
+	}
+	/* a dimension of 1 has no cells: fetch with x+1 clamped by the guard
+	 * entry of the offset tables */
+	vx_grid_cell(g, i[0], i[1], i[2], c);
+	e0 = lerp(c[0], c[1], l[0]);
+	e1 = lerp(c[2], c[3], l[0]);
+	e2 = lerp(c[4], c[5], l[0]);
+	e3 = lerp(c[6], c[7], l[0]);
+	return lerp(lerp(e0, e1, l[1]), lerp(e2, e3, l[1]), l[2]);
+}

@@ -2,6 +2,7 @@
  * accumulators, interpolation, merging, and the IRRV chunk
  * (formats/irradiance.md). */
 #include "vx_irrvol.h"
+#include "vx_bspline.h"
 #include "vx_half.h"
 
 #include <math.h>
@@ -178,6 +179,25 @@ vx_irr_want_brick(vx_irrvol *v, size_t b, vx_err *e)
 	return 0;
 }
 
+int64_t
+vx_irr_want_texel(vx_irrvol *v, int64_t i, int64_t j, int64_t k, vx_err *e)
+{
+	int64_t s;
+
+	if (i < 0 || j < 0 || k < 0 || i >= v->dims[0] || j >= v->dims[1] ||
+	    k >= v->dims[2]) {
+		vx_err_set(e, VX_EINTERNAL, "texel %lld %lld %lld outside the "
+		    "lattice", (long long)i, (long long)j, (long long)k);
+		return -1;
+	}
+	if (vx_irr_want_brick(v, (size_t)(i / VX_IRR_BRICK + v->bdims[0] *
+	    (j / VX_IRR_BRICK + v->bdims[1] * (k / VX_IRR_BRICK))), e) != 0)
+		return -1;
+	s = vx_irr_texel(v, i, j, k);
+	v->flags[s] |= VX_TEXEL_WANTED;
+	return s;
+}
+
 void
 vx_irr_texel_point(const vx_irrvol *v, int64_t i, int64_t j, int64_t k,
     double p[3])
@@ -325,55 +345,12 @@ vx_irr_finish(vx_irrvol *v)
 		vx_irr_acc_mean(&v->acc[s], v->fixed, m);
 		for (int c = 0; c < 3; c++)
 			v->mean[3 * s + c] = (float)m[c];
-		v->flags[s] = v->acc[s].flags;
+		v->flags[s] = v->acc[s].flags |
+		    (v->acc[s].count > 0 ? VX_TEXEL_SAMPLED : 0);
 	}
 }
 
 /* ---- lookup ---- */
-
-double
-vx_grid_trilinear(const vx_grid *g, const double p[3])
-{
-	int64_t i0[3];
-	double f[3], c[8];
-
-	for (int a = 0; a < 3; a++) {
-		double u = p[a], hi = (double)(g->dims[a] - 1);
-
-		if (!(u > 0))
-			u = 0;
-		if (u > hi)
-			u = hi;
-		i0[a] = (int64_t)floor(u);
-		if (i0[a] > g->dims[a] - 2)
-			i0[a] = g->dims[a] - 2;
-		if (i0[a] < 0)
-			i0[a] = 0;
-		f[a] = u - (double)i0[a];
-	}
-	for (int k = 0; k < 8; k++) {
-		int64_t x = i0[0] + (k & 1), y = i0[1] + ((k >> 1) & 1),
-		    z = i0[2] + ((k >> 2) & 1);
-
-		if (x >= g->dims[0])
-			x = g->dims[0] - 1;
-		if (y >= g->dims[1])
-			y = g->dims[1] - 1;
-		if (z >= g->dims[2])
-			z = g->dims[2] - 1;
-		c[k] = vx_grid_get(g, x, y, z);
-	}
-	{
-		double x00 = c[0] + f[0] * (c[1] - c[0]);
-		double x10 = c[2] + f[0] * (c[3] - c[2]);
-		double x01 = c[4] + f[0] * (c[5] - c[4]);
-		double x11 = c[6] + f[0] * (c[7] - c[6]);
-		double y0 = x00 + f[1] * (x10 - x00);
-		double y1 = x01 + f[1] * (x11 - x01);
-
-		return y0 + f[2] * (y1 - y0);
-	}
-}
 
 /* lattice coordinates of p: base texel (floor, clamped so base+1 is inside
  * where the axis has two texels) and fraction */
@@ -397,17 +374,6 @@ lattice_coord(const vx_irrvol *v, const double p[3], int64_t b[3],
 		if (f[a] > 1)
 			f[a] = 1;
 	}
-}
-
-static void
-bspline(double t, double w[4])
-{
-	double t2 = t * t, t3 = t2 * t, s = 1 - t;
-
-	w[0] = s * s * s / 6;
-	w[1] = (3 * t3 - 6 * t2 + 4) / 6;
-	w[2] = (-3 * t3 + 3 * t2 + 3 * t + 1) / 6;
-	w[3] = t3 / 6;
 }
 
 int
@@ -458,7 +424,7 @@ vx_irr_lookup(const vx_irrvol *v, const double p[3], vx_irr_interp m,
 		double w[3][4];
 
 		for (int a = 0; a < 3; a++)
-			bspline(f[a], w[a]);
+			vx_bspline_weights(f[a], w[a], 0);
 		for (int z = 0; z < 4; z++)
 			for (int y = 0; y < 4; y++)
 				for (int x = 0; x < 4; x++) {
@@ -634,8 +600,8 @@ vx_irr_finalize(vx_irrvol *v, vx_irr_store store, vx_err *e)
 	/* a texel without samples is not drawn from a final store: it keeps
 	 * no count, so its wanted bit goes */
 	for (size_t t = 0; t < v->nslot * VX_IRR_BRICK3; t++)
-		if (v->acc[t].count == 0)
-			v->flags[t] &= ~(uint32_t)VX_TEXEL_WANTED;
+		v->flags[t] &= ~(uint32_t)(VX_TEXEL_SAMPLED |
+		    (v->acc[t].count == 0 ? VX_TEXEL_WANTED : 0));
 	free(v->acc);
 	v->acc = NULL;
 	v->store = store;
@@ -739,7 +705,8 @@ vx_irr_to_chunk(const vx_irrvol *v, int zlevel, vx_chunk *c, vx_err *e)
 				vx_put_le64(q + 32, a->sq[0]);
 				vx_put_le64(q + 40, a->sq[1]);
 			} else if (v->store == VX_IRR_F32) {
-				vx_put_le32(q, v->flags[t]);
+				vx_put_le32(q, v->flags[t] &
+				    ~(uint32_t)VX_TEXEL_SAMPLED);
 				for (int ch = 0; ch < 3; ch++) {
 					uint32_t u;
 
@@ -1009,6 +976,7 @@ from_chunk(vx_irrvol *v, const vx_chunk *c, vx_err *e)
 				}
 				v->flags[t] = v->store == VX_IRR_F32 ?
 				    vx_le32(q) : (uint32_t)(q[0] | q[1] << 8);
+				v->flags[t] &= ~(uint32_t)VX_TEXEL_SAMPLED;
 			}
 		}
 	}

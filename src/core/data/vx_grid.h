@@ -115,6 +115,11 @@ double vx_grid_get_index(const vx_grid *g, size_t i);
 void vx_grid_cell(const vx_grid *g, int64_t x, int64_t y, int64_t z,
     float c[8]);
 
+/* vx_grid_trilinear: the trilinear value at index-space point p, clamped
+ * into the volume (an axis of one sample contributes its sample); NaN
+ * where a corner it weighs is not finite. */
+double vx_grid_trilinear(const vx_grid *g, const double p[3]);
+
 /* vx_grid_range: compute vmin/vmax over the real (unpadded) samples,
  * ignoring NaN and infinities; sets has_range (0 if no finite sample). */
 void vx_grid_range(vx_grid *g);

@@ -53,7 +53,11 @@ enum {
 	VX_TEXEL_OVERFLOW = 1u << 3,   /* an accumulator saturated: the mean is
 	                                  a lower bound (use fewer samples or
 	                                  fewer fixed-point bits) */
-	VX_TEXEL_WANTED   = 1u << 4    /* asked for by the bake's band */
+	VX_TEXEL_WANTED   = 1u << 4,   /* asked for by the bake's band */
+	VX_TEXEL_SAMPLED  = 1u << 31   /* in memory only (flags[], never
+	                                  stored): the accumulators hold
+	                                  samples (set by vx_irr_finish), so a
+	                                  lookup reads no accumulator */
 };
 
 typedef enum vx_irr_store {
@@ -128,6 +132,11 @@ int vx_irr_setup(vx_irrvol *v, const vx_grid *g, uint32_t vcrc, double s,
  * (count 0, flags 0).  Idempotent.  Not thread-safe: allocate every brick
  * before a parallel bake. */
 int vx_irr_want_brick(vx_irrvol *v, size_t b, vx_err *e);
+/* vx_irr_want_texel: store texel (i,j,k)'s brick (vx_irr_want_brick) and
+ * mark the texel VX_TEXEL_WANTED; returns its storage index, or -1 with e
+ * set (VX_ENOMEM; VX_EINTERNAL outside the lattice). */
+int64_t vx_irr_want_texel(vx_irrvol *v, int64_t i, int64_t j, int64_t k,
+    vx_err *e);
 /* vx_irr_reserve: grow the storage for at least n bricks at once (saves
  * reallocations); optional. */
 int vx_irr_reserve(vx_irrvol *v, size_t n, vx_err *e);
@@ -169,8 +178,8 @@ void vx_irr_acc_merge(vx_irr_acc *a, const vx_irr_acc *b);
 void vx_irr_acc_mean(const vx_irr_acc *a, int fixed, double rgb[3]);
 double vx_irr_acc_relerr(const vx_irr_acc *a, int fixed);
 
-/* vx_irr_finish: derive mean[] and flags[] from the accumulators (ACCUM
- * store); a no-op for final stores. */
+/* vx_irr_finish: derive mean[] and flags[] (VX_TEXEL_SAMPLED included)
+ * from the accumulators (ACCUM store); a no-op for final stores. */
 void vx_irr_finish(vx_irrvol *v);
 
 /* vx_irr_usable: 1 if storage index s holds an irradiance to draw. */
@@ -183,8 +192,8 @@ vx_irr_usable(const vx_irrvol *v, int64_t s)
 		return 0;
 	/* a final store keeps the wanted bit only on texels that were baked
 	 * (vx_irr_finalize) */
-	return v->store != VX_IRR_ACCUM ? (f & VX_TEXEL_WANTED) != 0 :
-	    v->acc[s].count > 0;
+	return (f & (v->store != VX_IRR_ACCUM ? VX_TEXEL_WANTED :
+	    VX_TEXEL_SAMPLED)) != 0;
 }
 
 /* ---- lookup ---- */
@@ -210,10 +219,6 @@ int vx_irr_lookup(const vx_irrvol *v, const double p[3], vx_irr_interp m,
 typedef void (*vx_irr_need_fn)(void *ctx, int64_t i, int64_t j, int64_t k);
 void vx_irr_reach(const vx_irrvol *v, const double p[3], vx_irr_interp m,
     vx_irr_need_fn fn, void *ctx);
-
-/* vx_grid_trilinear: the volume's trilinear value at index-space point p
- * (clamped into the volume; NaN where a corner is not finite). */
-double vx_grid_trilinear(const vx_grid *g, const double p[3]);
 
 /* ---- merging ---- */
 

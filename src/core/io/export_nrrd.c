@@ -311,7 +311,8 @@ irr_row_le(const vx_irrvol *v, int flags, int bytes, int64_t j, int64_t k,
 		int64_t s = vx_irr_texel(v, i, j, k);
 
 		if (flags) {
-			uint32_t x = s >= 0 ? v->flags[s] : 0;
+			uint32_t x = s >= 0 ? v->flags[s] &
+			    ~(uint32_t)VX_TEXEL_SAMPLED : 0;
 
 			for (int b = 0; b < bytes; b++)
 				buf[n++] = (unsigned char)(x >> (8 * b));
@@ -355,10 +356,13 @@ irr_export(const vx_irrvol *v, const vx_grid *g, int flags, int bytes,
 		uint32_t lim = bytes == 1 ? 0xffu : 0xffffffffu;
 		size_t n = v->nslot * VX_IRR_BRICK3;
 
-		for (size_t t = 0; t < n; t++)
-			if (v->flags[t] > lim)
+		for (size_t t = 0; t < n; t++) {
+			uint32_t x = v->flags[t] & ~(uint32_t)VX_TEXEL_SAMPLED;
+
+			if (x > lim)
 				return vx_err_set(e, VX_EDATA, "flags 0x%x do not "
-				    "fit in 8 bits", (unsigned)v->flags[t]);
+				    "fit in 8 bits", (unsigned)x);
+		}
 	}
 	geom.content = v->volume;
 	geom.type = !flags ? "float" : bytes == 1 ? "uint8" : "uint32";

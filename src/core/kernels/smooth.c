@@ -1,22 +1,8 @@
 /* smooth.c: the B-spline-smoothed gradient (vx_smooth.h). */
 #include "vx_smooth.h"
+#include "vx_bspline.h"
 
 #include <math.h>
-
-void
-vx_bspline_weights(double t, double w[4], double dw[4])
-{
-	double s = 1 - t, t2 = t * t;
-
-	w[0] = s * s * s / 6;
-	w[1] = (3 * t2 * t - 6 * t2 + 4) / 6;
-	w[2] = (-3 * t2 * t + 3 * t2 + 3 * t + 1) / 6;
-	w[3] = t2 * t / 6;
-	dw[0] = -s * s / 2;
-	dw[1] = 1.5 * t2 - 2 * t;
-	dw[2] = -1.5 * t2 + t + 0.5;
-	dw[3] = t2 / 2;
-}
 
 int
 vx_bspline_gradient(const vx_grid *g, const double p[3], double grad[3])

@@ -20,8 +20,5 @@ enum {
  * p, in index units (value per sample spacing); returns VX_SMOOTH_* bits. */
 int vx_bspline_gradient(const vx_grid *g, const double p[3], double grad[3]);
 
-/* vx_bspline_weights: the four weights of samples floor(u)-1 .. floor(u)+2
- * at fraction t in [0, 1], and their derivatives. */
-void vx_bspline_weights(double t, double w[4], double dw[4]);
 
 #endif

@@ -173,22 +173,24 @@ offset(const vx_gi *gi, const double pi[3], const double n[3], double eps,
 		o[a] = pi[a] + eps * ni[a];
 }
 
+/* visible: nothing blocks world direction w up to dist from o (a surface
+ * point already moved off its surface by offset) */
 static int
-visible(const vx_gi *gi, const double pi[3], const double n[3],
-    const double w[3], double dist, double iso, int high, vx_gi_stats *st)
+visible(const vx_gi *gi, const double o[3], const double w[3], double dist,
+    double iso, int high, vx_gi_stats *st)
 {
-	double o[3], d[3];
+	double d[3];
 	first_ctx x;
 
-	offset(gi, pi, n, gi->eps, o);
 	vx_world_to_index_dir(gi->g, w, d);
 	if (st)
 		st->shadow_rays++;
 	return !trace(gi, o, d, dist, iso, high, &x, st);
 }
 
-void
-vx_gi_direct(const vx_gi *gi, const double pw[3], const double pi[3],
+/* direct: vx_gi_direct with the shadow rays' start o (pi offset) */
+static void
+direct(const vx_gi *gi, const double pw[3], const double o[3],
     const double n[3], double iso, int high, double rgb[3], vx_gi_stats *st)
 {
 	rgb[0] = rgb[1] = rgb[2] = 0;
@@ -215,11 +217,21 @@ vx_gi_direct(const vx_gi *gi, const double pw[3], const double pi[3],
 		cs = vx_dot3(n, L);
 		if (!(cs > 0))
 			continue;
-		if (l->shadows && !visible(gi, pi, n, L, dist, iso, high, st))
+		if (l->shadows && !visible(gi, o, L, dist, iso, high, st))
 			continue;
 		for (int a = 0; a < 3; a++)
 			rgb[a] += l->rgb[a] * sc * cs;
 	}
+}
+
+void
+vx_gi_direct(const vx_gi *gi, const double pw[3], const double pi[3],
+    const double n[3], double iso, int high, double rgb[3], vx_gi_stats *st)
+{
+	double o[3];
+
+	offset(gi, pi, n, gi->eps, o);
+	direct(gi, pw, o, n, iso, high, rgb, st);
 }
 
 static double
@@ -240,10 +252,13 @@ vertex(const vx_gi *gi, const double pw[3], const double pi[3],
 	double u[2], lw[3], w[3], t[3], b[3], cs, o[3], di[3];
 	first_ctx x;
 
+	/* every ray of this vertex starts from the same point off its
+	 * surface */
+	offset(gi, pi, n, gi->eps, o);
 	if (D != NULL)
 		memcpy(E, D, 3 * sizeof *E);
 	else
-		vx_gi_direct(gi, pw, pi, n, iso, high, E, st);
+		direct(gi, pw, o, n, iso, high, E, st);
 	vx_onb(n, t, b);
 	/* the environment, importance-sampled, MIS against the cosine */
 	if (gi->has_env && gi->env_mis) {
@@ -253,8 +268,7 @@ vertex(const vx_gi *gi, const double pw[3], const double pi[3],
 		pdf = gi->env.sample(gi->env.ctx, u, w, rgb);
 		cs = vx_dot3(n, w);
 		if (pdf > 0 && cs > 0 && (rgb[0] > 0 || rgb[1] > 0 ||
-		    rgb[2] > 0) && visible(gi, pi, n, w, INFINITY, iso, high,
-		    st)) {
+		    rgb[2] > 0) && visible(gi, o, w, INFINITY, iso, high, st)) {
 			double wt = power(pdf, cs / PI) * cs / pdf;
 
 			for (int a = 0; a < 3; a++)
@@ -268,7 +282,6 @@ vertex(const vx_gi *gi, const double pw[3], const double pi[3],
 	vx_onb_to_world(n, t, b, lw, w);
 	vx_unit3(w);
 	cs = vx_dot3(n, w);
-	offset(gi, pi, n, gi->eps, o);
 	vx_world_to_index_dir(gi->g, w, di);
 	if (st)
 		st->rays++;

@@ -191,32 +191,10 @@ normalize3(double a[3])
 static inline double
 sample(const vx_grid *g, const double w[3])
 {
-	double p[3], l[3];
-	int64_t i[3];
-	float c[8];
-	int a;
+	double p[3];
 
 	vx_world_to_index(g, w, p);
-	for (a = 0; a < 3; a++) {
-		double hi = (double)(g->dims[a] - 1);
-
-		if (!(p[a] >= 0))
-			p[a] = 0;
-		if (p[a] > hi)
-			p[a] = hi;
-		i[a] = (int64_t)p[a];
-		if (i[a] > g->dims[a] - 2)
-			i[a] = g->dims[a] - 2;
-		if (i[a] < 0)
-			i[a] = 0;
-		l[a] = p[a] - (double)i[a];
-		if (g->dims[a] == 1)
-			l[a] = 0;
-	}
-	/* a dimension of 1 has no cells: fetch with x+1 clamped by the guard
-	 * entry of the offset tables */
-	vx_grid_cell(g, i[0], i[1], i[2], c);
-	return vx_cell_trilinear(c, l);
+	return vx_grid_trilinear(g, p);
 }
 
 typedef struct shadow_ctx {
