@@ -1,0 +1,180 @@
+/* tf.c: transfer-function containers (vx_tf.h). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vx_tf.h"
+
+void
+vx_tf_init(vx_tf *tf)
+{
+	memset(tf, 0, sizeof *tf);
+}
+
+void
+vx_tf_list_free(vx_tf_list *l)
+{
+	free(l->x);
+	free(l->y);
+	memset(l, 0, sizeof *l);
+}
+
+void
+vx_tf_free(vx_tf *tf)
+{
+	vx_tf_list_free(&tf->color);
+	vx_tf_list_free(&tf->opacity);
+	vx_tf_list_free(&tf->transport);
+	vx_tf_list_free(&tf->surface);
+	vx_tf_list_free(&tf->gradient);
+	free(tf->rgba);
+	vx_tf_init(tf);
+}
+
+static int
+unit(double y)
+{
+	return y >= 0.0 && y <= 1.0;       /* false for NaN */
+}
+
+int
+vx_tf_list_set(vx_tf_list *l, int n, int dim, const double *x,
+    const double *y, vx_err *e)
+{
+	double *nx, *ny;
+
+	if (n < 1 || n > VX_TF_MAX_POINTS)
+		return vx_err_set(e, VX_EDATA, "%d control points (1 to %d)",
+		    n, VX_TF_MAX_POINTS);
+	if (dim != 1 && dim != 3)
+		return vx_err_set(e, VX_EDATA, "%d values per point (1 or 3)",
+		    dim);
+	for (int i = 0; i < n; i++) {
+		if (!isfinite(x[i]))
+			return vx_err_set(e, VX_EDATA, "point %d: abscissa is "
+			    "not finite", i + 1);
+		if (i > 0 && x[i] < x[i - 1])
+			return vx_err_set(e, VX_EDATA, "point %d: abscissa %.17g "
+			    "is less than the one before it (%.17g)", i + 1,
+			    x[i], x[i - 1]);
+		for (int c = 0; c < dim; c++)
+			if (!unit(y[dim * i + c]))
+				return vx_err_set(e, VX_EDATA, "point %d: value "
+				    "%.17g is outside [0, 1]", i + 1,
+				    y[dim * i + c]);
+	}
+	nx = vx_malloc((size_t)n * sizeof *nx, e);
+	ny = nx ? vx_malloc((size_t)n * (size_t)dim * sizeof *ny, e) : NULL;
+	if (ny == NULL) {
+		free(nx);
+		return VX_ENOMEM;
+	}
+	memcpy(nx, x, (size_t)n * sizeof *nx);
+	memcpy(ny, y, (size_t)n * (size_t)dim * sizeof *ny);
+	vx_tf_list_free(l);
+	l->n = n;
+	l->dim = dim;
+	l->x = nx;
+	l->y = ny;
+	return 0;
+}
+
+void
+vx_tf_list_eval(const vx_tf_list *l, double t, double *out)
+{
+	int lo = 0, hi = l->n;     /* find the last i with x[i] <= t */
+	const double *a, *b;
+	double f;
+
+	if (!(t >= l->x[0])) {     /* below, or NaN */
+		memcpy(out, l->y, (size_t)l->dim * sizeof *out);
+		return;
+	}
+	while (hi - lo > 1) {
+		int mid = lo + (hi - lo) / 2;
+
+		if (l->x[mid] <= t)
+			lo = mid;
+		else
+			hi = mid;
+	}
+	a = l->y + (size_t)l->dim * (size_t)lo;
+	if (lo == l->n - 1) {
+		memcpy(out, a, (size_t)l->dim * sizeof *out);
+		return;
+	}
+	b = a + l->dim;            /* x[lo] <= t < x[lo + 1] */
+	f = (t - l->x[lo]) / (l->x[lo + 1] - l->x[lo]);
+	for (int c = 0; c < l->dim; c++)
+		out[c] = a[c] + f * (b[c] - a[c]);
+}
+
+int
+vx_tf_table_set(vx_tf *tf, const int size[2], const double vrange[2],
+    const double grange[2], const float *rgba, vx_err *e)
+{
+	size_t n;
+	float *t;
+
+	for (int a = 0; a < 2; a++)
+		if (size[a] < 1 || size[a] > VX_TF_MAX_TABLE)
+			return vx_err_set(e, VX_EDATA, "table axis %d has %d "
+			    "cells (1 to %d)", a, size[a], VX_TF_MAX_TABLE);
+	if (!isfinite(vrange[0]) || !isfinite(vrange[1]) ||
+	    !(vrange[0] < vrange[1]))
+		return vx_err_set(e, VX_EDATA, "table value range [%g, %g] is "
+		    "empty or not finite", vrange[0], vrange[1]);
+	if (!isfinite(grange[0]) || !isfinite(grange[1]) ||
+	    !(grange[0] < grange[1]))
+		return vx_err_set(e, VX_EDATA, "table gradient range [%g, %g] "
+		    "is empty or not finite", grange[0], grange[1]);
+	n = 4 * (size_t)size[0] * (size_t)size[1];
+	for (size_t i = 0; i < n; i++)
+		if (!unit(rgba[i]))
+			return vx_err_set(e, VX_EDATA, "table cell %zu: value "
+			    "%g is outside [0, 1]", i / 4, (double)rgba[i]);
+	if ((t = vx_malloc(n * sizeof *t, e)) == NULL)
+		return VX_ENOMEM;
+	memcpy(t, rgba, n * sizeof *t);
+	free(tf->rgba);
+	tf->rgba = t;
+	tf->has_table = 1;
+	for (int a = 0; a < 2; a++) {
+		tf->size[a] = size[a];
+		tf->vrange[a] = vrange[a];
+		tf->grange[a] = grange[a];
+	}
+	return 0;
+}
+
+static int
+dim_ok(const vx_tf_list *l, int dim, const char *name, vx_err *e)
+{
+	if (l->n > 0 && l->dim != dim)
+		return vx_err_set(e, VX_EDATA, "the %s list has %d values per "
+		    "point, not %d", name, l->dim, dim);
+	return 0;
+}
+
+int
+vx_tf_check(const vx_tf *tf, vx_err *e)
+{
+	int rc;
+
+	if ((rc = dim_ok(&tf->color, 3, "color", e)) != 0 ||
+	    (rc = dim_ok(&tf->opacity, 1, "opacity", e)) != 0 ||
+	    (rc = dim_ok(&tf->transport, 3, "transport", e)) != 0 ||
+	    (rc = dim_ok(&tf->surface, 1, "surface", e)) != 0 ||
+	    (rc = dim_ok(&tf->gradient, 1, "gradient", e)) != 0)
+		return rc;
+	if (tf->has_table && (tf->color.n > 0 || tf->opacity.n > 0))
+		return vx_err_set(e, VX_EDATA, "a 2D table and a color or "
+		    "opacity list: give one or the other");
+	if (!tf->has_table && tf->opacity.n == 0)
+		return vx_err_set(e, VX_EDATA, "no opacity: the transfer "
+		    "function needs an opacity list or a 2D table");
+	if (!isfinite(tf->ref_step) || tf->ref_step < 0)
+		return vx_err_set(e, VX_EDATA, "reference step %g is negative "
+		    "or not finite", tf->ref_step);
+	return 0;
+}
