@@ -1,0 +1,39 @@
+/* vx_tfimport.h: transfer functions from the files users already have
+ * (formats/transfer.md, "Imports"):
+ *   paraview  ParaView's colour-map/opacity JSON (the preset array written
+ *             by "Save presets": RGBPoints, Points, ColorSpace, ...)
+ *   slicer    3D Slicer's volume property: the .vp text file (scalar
+ *             opacity, gradient opacity, colour transfer function) and the
+ *             .vp.json form
+ *   miter     teem miter's txf: a NRRD whose first axis holds RGBA (or A)
+ *             over a value axis and optionally a gradient-magnitude axis
+ * Every reader is bounded (a file of at most VX_TF_FILE_MAX bytes, at most
+ * VX_TF_MAX_POINTS points per list, VX_TF_MAX_TABLE cells per table axis)
+ * and refuses malformed input with one message naming what and where. */
+#ifndef VX_TFIMPORT_H
+#define VX_TFIMPORT_H
+
+#include "vx_enum.h"
+#include "vx_err.h"
+#include "vx_tf.h"
+
+#define VX_TF_FILE_MAX ((size_t)64 << 20)   /* bytes */
+
+typedef enum vx_tf_format {
+	VX_TF_FORMAT_UNKNOWN = 0,
+	VX_TF_FORMAT_AUTO,        /* by content (then by the name's suffix) */
+	VX_TF_FORMAT_PARAVIEW,
+	VX_TF_FORMAT_SLICER,      /* .vp or .vp.json */
+	VX_TF_FORMAT_MITER,
+	VX_TF_FORMAT_LAST
+} vx_tf_format;
+
+extern const vx_enum vx_tf_format_enum;   /* auto paraview slicer miter */
+
+/* vx_tf_import: read the file at path in format fmt into tf (initialized
+ * by the call; on error tf is left empty).  Errors: VX_ENOINPUT (cannot
+ * open), VX_EDATA (malformed or unsupported: the message says what),
+ * VX_ENOMEM, VX_EIO. */
+int vx_tf_import(const char *path, vx_tf_format fmt, vx_tf *tf, vx_err *e);
+
+#endif
