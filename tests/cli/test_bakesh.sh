@@ -131,6 +131,20 @@ bake-sh --iso 0.5 --side high --order 5 --half -n "$T/s.vx" 2>"$T/ex"
 check "--explain: bytes a texel in memory and in the stream" \
     grep -q "f16 SH order 5 (25 coefficients x 1 channel): 104 bytes a texel in memory (52 in the stream)" "$T/ex"
 check "vinfo names the transfer volume" sh -c "vinfo '$T/b3.vx' | grep -q 'SH transfer volume: order 3, 1 channel'"
+vwrite --chunk SHTV -o "$T/t.nrrd" "$T/b3.vx"
+check_eq "vwrite: NRRD of 9 coefficients a texel (kind list), 2272 usable texels with c0 = pi Y00" \
+    "$(python3 - "$T/t.nrrd" <<'PY'
+import struct, sys
+d = open(sys.argv[1], 'rb').read()
+head, body = d.split(b'\n\n', 1)
+h = dict(l.split(': ', 1) for l in head.decode().split('\n')[1:] if ': ' in l)
+n = len(body) // 4
+v = struct.unpack('<%df' % n, body)
+c0 = [v[i] for i in range(0, n, 9)]
+print(h['sizes'], h['kinds'].split()[0],
+      sum(1 for x in c0 if abs(x - 0.886226925) < 1e-6))
+PY
+)" "9 32 32 32 list 2272"
 expect_fail "illumination sh without a transfer volume" 65 "no SH transfer volume" \
     raycast --iso 0.5 --light sky --set "illumination sh" "$T/s.vx"
 expect_fail "illumination sh without lighting" 64 "no SH lighting" \
