@@ -222,7 +222,7 @@ print_stats(const vx_bake_stats *bs, const vx_irrvol *v, int nthr)
 	    nthr == 1 ? "" : "s");
 	fprintf(stderr, "bake-irr: time: plan %.3f s, bake %.3f s; storage "
 	    "%s, %zu bytes per texel, %zu bricks of %d^3, %.1f MB\n",
-	    bs->plan_s, bs->bake_s, vx_irr_store_name(v->store),
+	    bs->plan_s, bs->bake_s, vx_enum_str(&vx_irr_store_enum, v->store),
 	    vx_irr_texel_bytes(v->store), v->nslot, VX_IRR_BRICK,
 	    (double)vx_irr_bytes(v) / 1e6);
 }
@@ -310,7 +310,7 @@ main(int argc, char **argv)
 				tool_fail(VX_EDATA, "the stream's irradiance volume "
 				    "is final (%s): it cannot take more samples "
 				    "(use --fresh to bake anew)",
-				    vx_irr_store_name(old.store));
+				    vx_enum_str(&vx_irr_store_enum, old.store));
 			if (o.has_first && o.first != old.first)
 				tool_fail(VX_EUSAGE, "--first-sample %u: the "
 				    "stream's bake starts at %u", o.first,
@@ -367,7 +367,7 @@ main(int argc, char **argv)
 		    (unsigned long long)bs.wanted, o.b.all ? "every texel" :
 		    "cells whose values meet the isovalue band",
 		    (double)vx_irr_bytes(&v) / 1e6,
-		    vx_irr_store_name(o.store));
+		    vx_enum_str(&vx_irr_store_enum, o.store));
 		fprintf(stderr, "bake-irr: plan: %d delta light%s (shadow rays "
 		    "%s), %s, %s; %d bounce%s; normals from the B-spline-"
 		    "smoothed gradient, start %g voxels along them\n",

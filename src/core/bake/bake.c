@@ -430,7 +430,7 @@ vx_bake_run(vx_irrvol *v, const vx_gi *gi, const vx_grid *g,
 
 	if (v->store != VX_IRR_ACCUM)
 		return vx_err_set(e, VX_EUSAGE, "a final (%s) bake cannot take "
-		    "more samples", vx_irr_store_name(v->store));
+		    "more samples", vx_enum_str(&vx_irr_store_enum, v->store));
 	/* the wanted texels, in brick order then texel order */
 	for (size_t s = 0; s < v->nslot * VX_IRR_BRICK3; s++)
 		nt += (v->flags[s] & VX_TEXEL_WANTED) != 0;

@@ -12,18 +12,6 @@ static const vx_enum_name solver_names[] = {
 };
 const vx_enum vx_cell_solver_enum = { "solver", solver_names, "unknown", 0 };
 
-const char *
-vx_cell_solver_name(int solver)
-{
-	return vx_enum_str(&vx_cell_solver_enum, solver);
-}
-
-int
-vx_cell_solver_parse(const char *s)
-{
-	return vx_enum_val(&vx_cell_solver_enum, s);
-}
-
 int
 vx_cell_finite(const float c[8])
 {

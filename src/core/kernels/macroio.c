@@ -55,7 +55,7 @@ vx_macro_to_chunk(const vx_macro *m, int zlevel, vx_chunk *c, vx_err *e)
 	    (long long)m->vdims[0], (long long)m->vdims[1],
 	    (long long)m->vdims[2])) ||
 	    (rc = vx_hdr_set(&h, "volume-type", e, "%s",
-	    vx_type_name(m->vtype))) ||
+	    vx_enum_str(&vx_type_enum, m->vtype))) ||
 	    (rc = vx_hdr_set(&h, "volume-crc32", e, "%08x",
 	    (unsigned)m->vcrc)) ||
 	    (m->has_vchunk_crc && (rc = vx_hdr_set(&h, "volume-chunk-crc32",
@@ -228,7 +228,8 @@ vx_macro_from_chunk(vx_macro *m, const vx_chunk *c, vx_err *e)
 			}
 		memcpy(m->vdims, vd, sizeof vd);
 		if ((v = vx_hdr_get(&h, "volume-type")) == NULL ||
-		    (m->vtype = vx_type_parse(v)) == VX_TYPE_UNKNOWN) {
+		    (m->vtype = (vx_type)vx_enum_val(&vx_type_enum, v)) ==
+		    VX_TYPE_UNKNOWN) {
 			rc = vx_err_set(e, VX_EDATA, "volume-type '%.20s' unknown",
 			    v ? v : "");
 			goto out;

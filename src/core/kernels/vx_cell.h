@@ -75,11 +75,8 @@ enum {
 };
 
 /* The solvers' names (vx_enum.h): "exact", "neubauer", "linear"; -1 and
- * "unknown" for the others.  vx_cell_solver_name, vx_cell_solver_parse:
- * shorthands for vx_enum_str and vx_enum_val on vx_cell_solver_enum. */
+ * "unknown" for the others. */
 extern const vx_enum vx_cell_solver_enum;
-const char *vx_cell_solver_name(int solver);
-int vx_cell_solver_parse(const char *s);
 
 /* vx_cell_finite: 1 if all eight corners are finite, else 0.  A cell with a
  * NaN or infinite corner has no surface: callers skip it (the functions
