@@ -112,9 +112,7 @@ parse(opts *o, int argc, char **argv)
 		case O_EXPLAIN: o->explain = 1; break;
 		case O_HDR: o->hdr = 1; break;
 		case O_BITS:
-			o->bits = (int)tool_parse_long("--bits", optarg, 8, 16);
-			if (o->bits != 8 && o->bits != 16)
-				tool_usage_fail(usage, "--bits: 8 or 16");
+			o->bits = tool_parse_bits(optarg);
 			break;
 		case O_EXPOSURE:
 			o->exposure = tool_parse_double("--exposure", optarg, -64, 64);

@@ -177,6 +177,16 @@ tool_parse_long(const char *opt, const char *s, long lo, long hi)
 	return (long)v;
 }
 
+int
+tool_parse_bits(const char *s)
+{
+	long v = tool_parse_long("--bits", s, 8, 16);
+
+	if (v != 8 && v != 16)
+		tool_fail(VX_EUSAGE, "--bits: 8 or 16");
+	return (int)v;
+}
+
 void
 tool_parse_doubles(const char *opt, const char *s, double *out, int n)
 {
