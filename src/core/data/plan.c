@@ -373,9 +373,10 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 		vx_plan_add(p, "illumination", VX_PLAN_UNSUPPORTED, 0,
 		    "SH lookup (order %d) not supported by raycast yet: lights "
 		    "evaluated at each hit", s->sh_order);
-	if (s->ntf_opacity > 0 || s->ntf_color > 0)
+	if (s->ntf_opacity > 0 || s->ntf_color > 0 || s->ntf_transport > 0 ||
+	    s->ntf_surface > 0 || s->ntf_gradient > 0 || s->tf_file[0] != '\0')
 		vx_plan_add(p, "transfer function", VX_PLAN_OFF, 0, "for direct "
-		    "volume rendering: not used by raycast");
+		    "volume rendering (dvr): not used by raycast");
 	if (s->has_medium)
 		vx_plan_add(p, "medium", VX_PLAN_OFF, 0, "for direct volume "
 		    "rendering: not used by raycast");
