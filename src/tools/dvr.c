@@ -242,8 +242,15 @@ main(int argc, char **argv)
 		tool_fail_err(&e);
 	if (o.stats)
 		print_stats(&ds);
-	if (o.pfm)
-		tool_write_pfm(o.pfm, &color);
+	if (o.pfm) {
+		/* linear RGB over the background: what a PFM can hold */
+		vx_image flat;
+
+		if (vx_image_flatten(&flat, &color, 1, s.background, &e) != 0)
+			tool_fail_err(&e);
+		tool_write_pfm(o.pfm, &flat);
+		vx_image_free(&flat);
+	}
 	if (o.hdr) {
 		static const char *const consumed[] = { VX_CHUNK_VOLUME,
 		    VX_CHUNK_MACRO, VX_CHUNK_SCENE, VX_CHUNK_IMAGE, NULL };

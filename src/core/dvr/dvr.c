@@ -1,5 +1,6 @@
 /* dvr.c: direct volume rendering by half-angle slicing (vx_dvr.h). */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -744,6 +745,7 @@ vx_dvr_render(const vx_scene *s, const vx_dvr_decide *d, const vx_tf *tf,
 	}
 	if ((rc = vx_image_alloc(out, f.W, f.H, 4, e)) != 0)
 		goto done;
+	snprintf(out->name, sizeof out->name, "color");
 	np = (size_t)f.W * (size_t)f.H;
 	f.eye = vx_malloc(np * sizeof *f.eye, e);
 	f.acc = vx_malloc(np * 4 * sizeof *f.acc, e);

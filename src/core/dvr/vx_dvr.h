@@ -144,7 +144,8 @@ typedef struct vx_dvr_stats {
 
 /* vx_dvr_render: the picture of g through tf as scene s says (camera
  * resolved, d from vx_dvr_plan), into out (RGBA, linear radiance
- * premultiplied by coverage 1 - transmittance; allocated here).  m: g's
+ * premultiplied by coverage 1 - transmittance; allocated here, named
+ * "color").  m: g's
  * hierarchy for empty-space skipping, or NULL.  st may be NULL.  Errors:
  * VX_EDATA, VX_ENOMEM. */
 int vx_dvr_render(const vx_scene *s, const vx_dvr_decide *d, const vx_tf *tf,
