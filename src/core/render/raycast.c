@@ -456,6 +456,7 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	S.sf.timing = o->timing;
 	S.sf.irr = o->irr;
 	S.sf.irr_interp = o->irr_interp;
+	S.sf.shl = o->shl;
 	S.sf.irr_need = o->irr_need;
 	S.sf.irr_need_ctx = o->irr_need_ctx;
 	S.sf.gi = o->gi;

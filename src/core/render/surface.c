@@ -397,6 +397,34 @@ path_traced(const vx_surfaces *S, const vx_hit *h, const vx_material *m,
 	st->gi_rays += gs.rays + gs.shadow_rays;
 }
 
+/* sh_irradiance: E at h from the SH transfer volume and the lighting
+ * (Wyman et al. eq. 9): the interpolated transfer vector dotted with the
+ * lighting, per channel; negative sums (ringing) are clamped to 0 */
+static void
+sh_irradiance(const vx_surfaces *S, const vx_hit *h, double E[3],
+    vx_surf_stats *st)
+{
+	const vx_irrvol *v = S->irr;
+	int nn = v->sh_order * v->sh_order;
+	double t[VX_IRR_MAX_COMP];
+
+	E[0] = E[1] = E[2] = 0;
+	if (!vx_irr_lookup(v, h->pi, S->irr_interp, S->g, S->isod[h->iso],
+	    t)) {
+		st->irr_missing++;
+		return;
+	}
+	for (int c = 0; c < 3; c++) {
+		const double *tc = t + (v->channels == 3 ? c * nn : 0);
+		const double *lc = S->shl + c * nn;
+		double sum = 0;
+
+		for (int i = 0; i < nn; i++)
+			sum += lc[i] * tc[i];
+		E[c] = sum > 0 ? sum : 0;
+	}
+}
+
 /* baked: Lambert under the irradiance volume's value at h; with irr_need,
  * the texels the lookup reads reported, and black */
 static inline void
@@ -411,7 +439,9 @@ baked(const vx_surfaces *S, const vx_hit *h, const vx_material *m,
 		col[0] = col[1] = col[2] = 0;
 		return;
 	}
-	if (!vx_irr_lookup(S->irr, h->pi, S->irr_interp, S->g,
+	if (S->irr->sh_order > 0) {
+		sh_irradiance(S, h, E, st);
+	} else if (!vx_irr_lookup(S->irr, h->pi, S->irr_interp, S->g,
 	    S->isod[h->iso], E))
 		st->irr_missing++;
 	lambert_irr(m, alb, E, col);
