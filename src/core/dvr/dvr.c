@@ -57,8 +57,12 @@ vx_dvr_plan(const vx_scene *s, const vx_tf *tf, const vx_dvr_opts *o,
 	d->g = s->has_medium && s->phase == VX_PHASE_HENYEY_GREENSTEIN ?
 	    s->phase_g : 0;
 
+	vx_plan_add(p, "eye rays", VX_PLAN_ON, 1, "one through each pixel "
+	    "centre, sampled where it crosses each slice");
 	if (d->light_buffer)
-		vx_plan_add(p, "light buffer", VX_PLAN_ON, 0, "%dx%d texels, "
+		vx_plan_add(p, "light buffer", VX_PLAN_ON, (double)o->light_size *
+		    o->light_size / ((double)s->camera.w * s->camera.h),
+		    "%dx%d texels (a light ray each), "
 		    "driven by light %d (%s)", o->light_size, o->light_size,
 		    d->driver + 1, vx_enum_str(&vx_light_type_enum,
 		    s->light[d->driver].type));
@@ -290,6 +294,7 @@ typedef struct frame {
 	const vx_dvr_geom *geo;
 	const uint8_t *clear;     /* per level-1 macrocell, or NULL */
 	vx_phase_table phase;
+	int class_g;              /* classification needs the gradient */
 	int W, H;                 /* eye image */
 	int LW;                   /* light buffer edge */
 	ray *eye, *lray;
@@ -406,15 +411,20 @@ gradient(const vx_grid *g, const double p[3], double grad[3])
 }
 
 /* sample: classification of the sample at index point p; *grad gets the
- * gradient when the frame computes it. */
+ * gradient when classification looks at its magnitude (a table or a
+ * gradient list: *has_grad 1); else the caller computes it if it needs
+ * the normal. */
 static void
-sample(const frame *f, const double p[3], vx_tf_sample *c, double grad[3])
+sample(const frame *f, const double p[3], vx_tf_sample *c, double grad[3],
+    int *has_grad)
 {
 	double v = vx_grid_trilinear(f->g, p), gm = 0;
 
-	if (f->d->gradient) {
+	*has_grad = 0;
+	if (f->class_g) {
 		gradient(f->g, p, grad);
 		gm = sqrt(vx_dot3(grad, grad));
+		*has_grad = 1;
 	}
 	vx_tf_classify(f->tf, v, gm, c);
 }
@@ -557,6 +567,7 @@ eye_rows(void *ctx, void *local, const vx_par_block *b)
 			float *acc = f->acc + 4 * i;
 			double w[3], p[3], grad[3] = { 0, 0, 0 }, rad[3], a;
 			vx_tf_sample c;
+			int hg;
 
 			if (k < r->k0 || k >= r->k1)
 				continue;
@@ -566,9 +577,11 @@ eye_rows(void *ctx, void *local, const vx_par_block *b)
 				ls->eye_skip++;
 				continue;
 			}
-			sample(f, p, &c, grad);
+			sample(f, p, &c, grad, &hg);
 			if (c.alpha <= 0)
 				continue;
+			if (!hg && f->d->surface && c.surface > 0)
+				gradient(f->g, p, grad);
 			a = vx_tf_correct(c.alpha, r->ratio);
 			radiance(f, w, r->d, &c, grad, rad);
 			if (btf) {
@@ -628,6 +641,7 @@ light_rows(void *ctx, void *local, const vx_par_block *b)
 			float *o = f->next + 4 * i;
 			double w[3], p[3], grad[3] = { 0, 0, 0 }, a, tr[3], bl[3];
 			vx_tf_sample c;
+			int hg;
 
 			memcpy(o, in, 4 * sizeof *o);
 			if (k < r->k0 || k >= r->k1)
@@ -638,7 +652,7 @@ light_rows(void *ctx, void *local, const vx_par_block *b)
 				ls->light_skip++;
 				continue;
 			}
-			sample(f, p, &c, grad);
+			sample(f, p, &c, grad, &hg);
 			if (c.alpha <= 0 && c.transport[0] >= 1 &&
 			    c.transport[1] >= 1 && c.transport[2] >= 1)
 				continue;
@@ -736,6 +750,7 @@ vx_dvr_render(const vx_scene *s, const vx_dvr_decide *d, const vx_tf *tf,
 	f.H = s->camera.h;
 	f.LW = d->light_buffer ? o->light_size : 0;
 	f.blur_tan = tan(o->blur_angle * M_PI / 360);
+	f.class_g = d->gradient && (tf->has_table || tf->gradient.n > 0);
 	vx_phase_table_hg(&f.phase, d->g);
 	if (m != NULL && !o->no_skip && m->nlev >= 1 && !m->explicit_leaves &&
 	    g->dims[0] > 1 && g->dims[1] > 1 && g->dims[2] > 1) {
