@@ -293,11 +293,16 @@ typedef struct frame {
 	const vx_dvr_opts *o;
 	const vx_dvr_geom *geo;
 	const uint8_t *clear;     /* per level-1 macrocell, or NULL */
+	size_t *mcoff[3];         /* data cell -> its macrocell's linear
+	                             index share, per axis */
+	double dir[256][2];       /* the blur's directions: cos, sin */
 	vx_phase_table phase;
 	int class_g;              /* classification needs the gradient */
 	int W, H;                 /* eye image */
 	int LW;                   /* light buffer edge */
 	ray *eye, *lray;
+	int32_t *ek, *lk;         /* k0, k1 of each eye and light ray,
+	                             compact: every slice reads them all */
 	float *acc;               /* eye: r g b, and T (front to back) or A */
 	float *cur, *next;        /* light: D, Ir, Ig, Ib per texel */
 	int k;                    /* the slice being drawn */
@@ -371,11 +376,13 @@ at(const frame *f, const ray *r, int k, double w[3], double p[3])
 	}
 }
 
-/* skip: 1 when index point p lies in a clear level-1 macrocell. */
+/* skip: 1 when index point p lies in a clear level-1 macrocell (the
+ * data cell holding p, clamped into the volume, looked up per axis in
+ * mcoff: the macrocell's share of its linear index). */
 static int
 skip(const frame *f, const double p[3])
 {
-	int64_t c[3];
+	size_t c = 0;
 
 	if (f->clear == NULL)
 		return 0;
@@ -388,10 +395,9 @@ skip(const frame *f, const double p[3])
 			i = n - 1;
 		else
 			i = (int64_t)p[a];
-		c[a] = i / f->m->width[1][a];
+		c += f->mcoff[a][i];
 	}
-	return f->clear[c[0] + f->m->dims[1][0] * (c[1] + f->m->dims[1][1] *
-	    c[2])];
+	return f->clear[c];
 }
 
 /* gradient: the world gradient at index point p (central differences of
@@ -569,7 +575,7 @@ eye_rows(void *ctx, void *local, const vx_par_block *b)
 			vx_tf_sample c;
 			int hg;
 
-			if (k < r->k0 || k >= r->k1)
+			if (k < f->ek[2 * i] || k >= f->ek[2 * i + 1])
 				continue;
 			ls->eye++;
 			at(f, r, k, w, p);
@@ -608,15 +614,23 @@ blur(const frame *f, int x, int y, double rad, double out[3])
 	uint64_t stream = (uint64_t)y * (uint64_t)f->LW + (uint64_t)x;
 
 	out[0] = out[1] = out[2] = 0;
-	for (int j = 0; j < ns; j++) {
-		double u1 = vx_rng_uniform(f->o->seed, stream, (uint64_t)f->k,
-		    (uint32_t)(2 * j));
-		double u2 = vx_rng_uniform(f->o->seed, stream, (uint64_t)f->k,
-		    (uint32_t)(2 * j + 1));
-		double r = rad * sqrt(u1), phi = 2 * M_PI * u2, b[4];
+	uint64_t h = 0;
 
-		light_at(f, f->cur, x + 0.5 + r * cos(phi),
-		    y + 0.5 + r * sin(phi), b);
+	for (int j = 0; j < ns; j++) {
+		double u1, r, b[4];
+		const double *d;
+
+		/* one hash gives two points: four 16-bit numbers, ample for a
+		 * jitter within a few texels */
+		if (j % 2 == 0)
+			h = vx_rng_hash(f->o->seed, stream, (uint64_t)f->k,
+			    (uint32_t)(j / 2));
+		u1 = ((double)(h & 0xffff) + 0.5) / 65536;
+		d = f->dir[(h >> 16) & 0xff];     /* one of 256 directions */
+		h >>= 32;
+		r = rad * sqrt(u1);
+
+		light_at(f, f->cur, x + 0.5 + r * d[0], y + 0.5 + r * d[1], b);
 		out[0] += b[1];
 		out[1] += b[2];
 		out[2] += b[3];
@@ -643,8 +657,13 @@ light_rows(void *ctx, void *local, const vx_par_block *b)
 			vx_tf_sample c;
 			int hg;
 
-			memcpy(o, in, 4 * sizeof *o);
-			if (k < r->k0 || k >= r->k1)
+			/* outside its slices a texel's value stays: both
+			 * buffers hold it once copied at k1 (never in place) */
+			if (k < f->lk[2 * i] || k > f->lk[2 * i + 1])
+				continue;
+			if (o != in)
+				memcpy(o, in, 4 * sizeof *o);
+			if (k == f->lk[2 * i + 1])
 				continue;
 			ls->light++;
 			at(f, r, k, w, p);
@@ -750,6 +769,10 @@ vx_dvr_render(const vx_scene *s, const vx_dvr_decide *d, const vx_tf *tf,
 	f.H = s->camera.h;
 	f.LW = d->light_buffer ? o->light_size : 0;
 	f.blur_tan = tan(o->blur_angle * M_PI / 360);
+	for (int i = 0; i < 256; i++) {
+		f.dir[i][0] = cos(2 * M_PI * (i + 0.5) / 256);
+		f.dir[i][1] = sin(2 * M_PI * (i + 0.5) / 256);
+	}
 	f.class_g = d->gradient && (tf->has_table || tf->gradient.n > 0);
 	vx_phase_table_hg(&f.phase, d->g);
 	if (m != NULL && !o->no_skip && m->nlev >= 1 && !m->explicit_leaves &&
@@ -757,14 +780,28 @@ vx_dvr_render(const vx_scene *s, const vx_dvr_decide *d, const vx_tf *tf,
 		f.m = m;
 		if ((f.clear = clear_cells(m, tf, e)) == NULL)
 			return VX_ENOMEM;
+		for (int a = 0; a < 3; a++) {
+			size_t sd = a == 0 ? 1 : a == 1 ? (size_t)m->dims[1][0] :
+			    (size_t)m->dims[1][0] * (size_t)m->dims[1][1];
+			int64_t n = g->dims[a] - 1;
+
+			if ((f.mcoff[a] = vx_malloc((size_t)n *
+			    sizeof *f.mcoff[a], e)) == NULL) {
+				rc = VX_ENOMEM;
+				goto done;
+			}
+			for (int64_t i = 0; i < n; i++)
+				f.mcoff[a][i] = (size_t)(i / m->width[1][a]) * sd;
+		}
 	}
 	if ((rc = vx_image_alloc(out, f.W, f.H, 4, e)) != 0)
 		goto done;
 	snprintf(out->name, sizeof out->name, "color");
 	np = (size_t)f.W * (size_t)f.H;
 	f.eye = vx_malloc(np * sizeof *f.eye, e);
+	f.ek = vx_malloc(np * 2 * sizeof *f.ek, e);
 	f.acc = vx_malloc(np * 4 * sizeof *f.acc, e);
-	if (f.eye == NULL || f.acc == NULL) {
+	if (f.eye == NULL || f.ek == NULL || f.acc == NULL) {
 		rc = VX_ENOMEM;
 		goto done;
 	}
@@ -776,6 +813,8 @@ vx_dvr_render(const vx_scene *s, const vx_dvr_decide *d, const vx_tf *tf,
 
 			vx_camera_ray(&s->camera, x + 0.5, y + 0.5, r->o, r->d);
 			ray_setup(r, &geo, lo, hi);
+			f.ek[2 * i] = r->k0;
+			f.ek[2 * i + 1] = r->k1;
 			f.acc[4 * i] = f.acc[4 * i + 1] = f.acc[4 * i + 2] = 0;
 			f.acc[4 * i + 3] = geo.back_to_front ? 0 : 1;
 		}
@@ -784,9 +823,14 @@ vx_dvr_render(const vx_scene *s, const vx_dvr_decide *d, const vx_tf *tf,
 		const vx_light *l = &s->light[d->driver];
 
 		f.lray = vx_malloc(nl * sizeof *f.lray, e);
+		f.lk = vx_malloc(nl * 2 * sizeof *f.lk, e);
 		f.cur = vx_malloc(nl * 4 * sizeof *f.cur, e);
-		f.next = vx_malloc(nl * 4 * sizeof *f.next, e);
-		if (f.lray == NULL || f.cur == NULL || f.next == NULL) {
+		/* the blur reads neighbours: two buffers (ping-pong); the
+		 * direct attenuation alone updates in place */
+		f.next = d->scatter ? vx_malloc(nl * 4 * sizeof *f.next, e) :
+		    f.cur;
+		if (f.lray == NULL || f.lk == NULL || f.cur == NULL ||
+		    f.next == NULL) {
 			rc = VX_ENOMEM;
 			goto done;
 		}
@@ -797,8 +841,12 @@ vx_dvr_render(const vx_scene *s, const vx_dvr_decide *d, const vx_tf *tf,
 				vx_camera_ray(&geo.light, x + 0.5, y + 0.5,
 				    f.lray[i].o, f.lray[i].d);
 				ray_setup(&f.lray[i], &geo, lo, hi);
-				f.cur[4 * i] = f.cur[4 * i + 1] = 1;
-				f.cur[4 * i + 2] = f.cur[4 * i + 3] = 1;
+				f.lk[2 * i] = f.lray[i].k0;
+				f.lk[2 * i + 1] = f.lray[i].k1;
+				for (int c = 0; c < 4; c++) {
+					f.cur[4 * i + c] = 1;
+					f.next[4 * i + c] = 1;
+				}
 			}
 		f.lpoint = geo.light.projection == VX_PERSPECTIVE;
 		if (f.lpoint)
@@ -857,9 +905,14 @@ done:
 	free(f.eye);
 	free(f.acc);
 	free(f.lray);
+	if (f.next != f.cur)
+		free(f.next);
 	free(f.cur);
-	free(f.next);
+	free(f.ek);
+	free(f.lk);
 	free((void *)f.clear);
+	for (int a = 0; a < 3; a++)
+		free(f.mcoff[a]);
 	st->seconds = vx_par_seconds() - t0;
 	return rc;
 }
