@@ -7,15 +7,17 @@
 #   unshaded       effects none: no light buffer
 #   shadows        effects volumetric-shadows: the light buffer
 #   shadows+scat   effects volumetric-shadows scattering: the blur too
-# each RUNS times, interleaved round by round; the median of the rendering
-# time dvr --stats reports (reading the stream and building macrocells
-# excluded).  A markdown table on standard output.
+# each RUNS times, interleaved round by round; the median and the minimum
+# of the rendering time dvr --stats reports (reading the stream and
+# building macrocells excluded; on a shared machine the minimum is the
+# closer to the unloaded time).  A markdown table on standard output.
 #
 #   sh dvrbench.sh BIN_DIR RUNS THREADS
 set -eu
 BIN=${1:-../../bin}
 RUNS=${2:-5}
 NT=${3:-$(nproc)}
+SIZE=${SIZE:-512x512}
 DATA=${DATA:-/work/shared/data}
 CH2=/usr/share/mricron/templates/ch2.nii.gz
 [ -r "$CH2" ] || CH2=$DATA/ch2_mri_181x217x181_uint8.nii.gz
@@ -25,7 +27,7 @@ trap 'rm -rf "$W"' EXIT
 S=$(dirname "$0")/../scenes/head-dvr.scn
 grep -v '^transfer surface' "$S" > "$W/head.scn"
 run() {   # run NAME EFFECTS: one render, its seconds appended to W/NAME
-	"$BIN/dvr" --scene "$W/head.scn" --size 512x512 -j "$NT" --stats \
+	"$BIN/dvr" --scene "$W/head.scn" --size "$SIZE" -j "$NT" --stats \
 	    --effects "$2" -o /dev/null "$W/ch2.vx" 2>&1 |
 	    sed -n 's/^dvr: [0-9]* slices, .*, \([0-9.]*\) s$/\1/p' >> "$W/$1"
 }
@@ -37,9 +39,18 @@ while [ "$i" -lt "$RUNS" ]; do
 	i=$((i + 1))
 done
 med() { sort -n "$W/$1" | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
-u=$(med unshaded); s=$(med shadows); c=$(med scat)
-echo "| dvr, ch2 MRI head 512x512, $NT threads, median of $RUNS | seconds | over unshaded |"
-echo "| --- | --- | --- |"
-echo "| unshaded (effects none) | $u | |"
-awk -v u="$u" -v s="$s" 'BEGIN { printf "| volumetric shadows | %s | %+.0f%% |\n", s, 100 * (s / u - 1) }'
-awk -v u="$u" -v s="$c" 'BEGIN { printf "| volumetric shadows + scattering | %s | %+.0f%% |\n", s, 100 * (s / u - 1) }'
+low() { sort -n "$W/$1" | head -1; }
+echo "| dvr, ch2 MRI head $SIZE, $NT threads, $RUNS runs | median s | over unshaded | minimum s | over unshaded |"
+echo "| --- | --- | --- | --- | --- |"
+for v in unshaded shadows scat; do
+	case $v in
+	unshaded) what="unshaded (effects none)" ;;
+	shadows) what="volumetric shadows" ;;
+	scat) what="volumetric shadows + scattering" ;;
+	esac
+	awk -v w="$what" -v m="$(med $v)" -v mu="$(med unshaded)" \
+	    -v l="$(low $v)" -v lu="$(low unshaded)" 'BEGIN {
+		if (m == mu) printf "| %s | %s | | %s | |\n", w, m, l
+		else printf "| %s | %s | %+.0f%% | %s | %+.0f%% |\n", w, m,
+		    100 * (m / mu - 1), l, 100 * (l / lu - 1) }'
+done

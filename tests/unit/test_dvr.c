@@ -19,7 +19,8 @@
  *    change at the switch of compositing order (front to back <-> back to
  *    front) is no larger than a step's change elsewhere allows;
  *  - skipping empty macrocells changes no bit, and does skip; 1 thread and
- *    3 threads give the same bits. */
+ *    3 threads give the same bits;
+ *  - the plan's decisions for a table of scenes, by vx_dvr.h's rules. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -394,6 +395,68 @@ skip_and_threads(void **state)
 	vx_grid_free(&g);
 }
 
+/* 6. the plan: only what the scene asks for (vx_dvr.h, "Only what the
+ * scene asks for" and "Lights") */
+static void
+plan_table(void **state)
+{
+	static const struct {
+		const char *text;
+		int driver, light_buffer, scatter, gradient, surface, specular;
+		int local0, local1;
+	} t[] = {
+		/* the default headlight, no effects asked: unattenuated */
+		{ "", 0, 0, 0, 0, 0, 0, 1, 0 },
+		{ "effects volumetric-shadows", 0, 1, 0, 0, 0, 0, 0, 0 },
+		/* scattering implies the light buffer */
+		{ "effects scattering", 0, 1, 1, 0, 0, 0, 0, 0 },
+		/* the first point/directional light drives; the next is local */
+		{ "light sky\nlight directional direction 0 0 -1\n"
+		  "light point position 0 0 5\neffects volumetric-shadows",
+		  1, 1, 0, 0, 0, 0, 0, 0 },
+		/* a light of intensity 0 drives nothing */
+		{ "light point position 0 0 5 intensity 0\n"
+		  "light directional direction 0 0 -1\neffects scattering",
+		  1, 1, 1, 0, 0, 0, 0, 0 },
+		/* no light that can drive the buffer: none, even if asked */
+		{ "light sky\neffects volumetric-shadows scattering",
+		  -1, 0, 0, 0, 0, 0, 0, 0 },
+		/* the gradient for a surface list or a gradient list */
+		{ "transfer surface 0 1\neffects specular", 0, 0, 0, 1, 1, 1, 1,
+		  0 },
+		{ "transfer gradient 0 1\neffects none", 0, 0, 0, 1, 0, 0, 1, 0 },
+	};
+	vx_dvr_opts o;
+
+	(void)state;
+	vx_dvr_opts_init(&o);
+	for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+		char text[512];
+		vx_scene s;
+		vx_tf tf;
+		vx_plan p;
+		vx_dvr_decide d;
+		vx_err e = { 0, "" };
+
+		snprintf(text, sizeof text, "transfer opacity 0 0.5\n%s\n",
+		    t[i].text);
+		scene(&s, text);
+		vx_tf_init(&tf);
+		assert_int_equal(vx_tf_apply_scene(&tf, &s, &e), 0);
+		vx_dvr_plan(&s, &tf, &o, &d, &p);
+		if (d.driver != t[i].driver || d.light_buffer != t[i].light_buffer ||
+		    d.scatter != t[i].scatter || d.gradient != t[i].gradient ||
+		    d.surface != t[i].surface || d.specular != t[i].specular ||
+		    d.local[0] != t[i].local0 || d.local[1] != t[i].local1)
+			fail_msg("case %zu (%s): driver %d buffer %d scatter %d "
+			    "gradient %d surface %d specular %d local %d %d", i,
+			    t[i].text, d.driver, d.light_buffer, d.scatter,
+			    d.gradient, d.surface, d.specular, d.local[0],
+			    d.local[1]);
+		vx_tf_free(&tf);
+	}
+}
+
 int
 main(void)
 {
@@ -403,6 +466,7 @@ main(void)
 		cmocka_unit_test(slice_count),
 		cmocka_unit_test(flip),
 		cmocka_unit_test(skip_and_threads),
+		cmocka_unit_test(plan_table),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
