@@ -401,9 +401,10 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 			    "ambient occlusion (%s) is computed by illumination "
 			    "irradiance or pathtrace, not by local shading", dist);
 	}
-	if (s->ntf_opacity > 0 || s->ntf_color > 0)
+	if (s->ntf_opacity > 0 || s->ntf_color > 0 || s->ntf_transport > 0 ||
+	    s->ntf_surface > 0 || s->ntf_gradient > 0 || s->tf_file[0] != '\0')
 		vx_plan_add(p, "transfer function", VX_PLAN_OFF, 0, "for direct "
-		    "volume rendering: not used by raycast");
+		    "volume rendering (dvr): not used by raycast");
 	if (s->has_medium)
 		vx_plan_add(p, "medium", VX_PLAN_OFF, 0, "for direct volume "
 		    "rendering: not used by raycast");

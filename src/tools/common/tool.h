@@ -209,4 +209,12 @@ void tool_gi_setup(struct vx_gi *gi, struct vx_scene *s,
  * one: the calling thread). */
 int tool_threads(long j);
 
+/* tool_scene_tf: the transfer function of scene s into tf (initialized
+ * here): the scene's "transfer file" read by vx_tf_import (the format by
+ * its name), then the scene's own transfer lines over it
+ * (vx_tf_apply_scene), then vx_tf_check.  Exits with the import's code
+ * ("transfer file NAME: why") or 65 ("transfer: why"). */
+struct vx_tf;
+void tool_scene_tf(struct vx_tf *tf, const struct vx_scene *s);
+
 #endif
