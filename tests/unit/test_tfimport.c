@@ -263,6 +263,119 @@ sharpness(void **state)
 		}
 }
 
+/* ParaView presets in HSV, Lab and Diverging space: the colour list
+ * against VTK 9.1's own vtkColorTransferFunction::GetColor (python3-vtk9,
+ * SetColorSpace 1, 2, 3, the same four nodes; the oracle values below
+ * were printed by it), within twice the tolerance: the interpolation in
+ * each space, the white Moreland's diverging maps put between two
+ * saturated ends, VTK's gamut clipping. */
+static void
+color_spaces(void **state)
+{
+	static const char fmt[] = "[{\"ColorSpace\": \"%s\", \"RGBPoints\": "
+	    "[0, 0.231373, 0.298039, 0.752941, 1, 0.705882, 0.0156863, 0.14902,"
+	    " 2, 0.9, 0.9, 0.2, 3, 0.1, 0.8, 0.9]}]";
+	static const double xs[9] = { 0, 0.25, 0.5, 0.75, 1, 1.3, 1.5, 2.5, 3 };
+	static const struct {
+		const char *space;
+		double rgb[9][3];
+	} t[] = {
+		{ "HSV", {
+		    { 0.231373000, 0.298039000, 0.752941000 },
+		    { 0.376427247, 0.174935991, 0.741176250 },
+		    { 0.631628914, 0.120175872, 0.729411500 },
+		    { 0.717646750, 0.067092641, 0.507414626 },
+		    { 0.705882000, 0.015686300, 0.149020000 },
+		    { 0.764117400, 0.178380600, 0.062827456 },
+		    { 0.802941000, 0.382461267, 0.098137252 },
+		    { 0.150000000, 0.900000000, 0.196875000 },
+		    { 0.100000000, 0.800000000, 0.900000000 } } },
+		{ "Lab", {
+		    { 0.231373000, 0.298039000, 0.752941000 },
+		    { 0.466813343, 0.253075163, 0.595160089 },
+		    { 0.580662530, 0.202498456, 0.443042772 },
+		    { 0.653883510, 0.138599115, 0.296020041 },
+		    { 0.705879693, 0.015812728, 0.149021126 },
+		    { 0.784719293, 0.380435274, 0.172776605 },
+		    { 0.827912260, 0.534596168, 0.184849346 },
+		    { 0.682182506, 0.847309663, 0.593722474 },
+		    { 0.100116914, 0.800010803, 0.900005052 } } },
+		{ "Diverging", {
+		    { 0.231373000, 0.298039000, 0.752941000 },
+		    { 0.553318141, 0.688634521, 0.995187915 },
+		    { 0.865395197, 0.865410210, 0.865395561 },
+		    { 0.958417217, 0.603116240, 0.481685120 },
+		    { 0.705879693, 0.015812728, 0.149021126 },
+		    { 1.000000000, 0.805209337, 0.552883485 },
+		    { 0.999982963, 1.000000000, 0.999983376 },
+		    { 0.999982963, 1.000000000, 0.999983376 },
+		    { 0.100116914, 0.800010803, 0.900005052 } } },
+	};
+	char text[512];
+	vx_err e;
+
+	(void)state;
+	for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+		vx_tf tf;
+
+		snprintf(text, sizeof text, fmt, t[i].space);
+		if (vx_tf_import(puts_("cs.json", text), VX_TF_FORMAT_AUTO, &tf,
+		    &e) != 0)
+			fail_msg("%s: %s", t[i].space, e.msg);
+		assert_true(tf.color.n > 4);     /* points were inserted */
+		for (int k = 0; k < 9; k++) {
+			double c[3];
+
+			vx_tf_list_eval(&tf.color, xs[k], c);
+			for (int a = 0; a < 3; a++)
+				if (fabs(c[a] - t[i].rgb[k][a]) > 2 * VX_TFI_SHARP_TOL)
+					fail_msg("%s at %g: channel %d is %.9f, VTK "
+					    "%.9f", t[i].space, xs[k], a, c[a],
+					    t[i].rgb[k][a]);
+		}
+		vx_tf_free(&tf);
+	}
+}
+
+/* VTK's midpoint and sharpness on an opacity function, against VTK 9.1's
+ * vtkPiecewiseFunction::GetValue (python3-vtk9; nodes (10, 0, 0.25, 0.6),
+ * (20, 1, 0.5, 0), (40, 0.25, 0.8, 0.995), (50, 0.75)): the formula to
+ * rounding, the list within twice the tolerance. */
+static void
+vtk_piecewise(void **state)
+{
+	static const double x[] = { 10, 20, 40, 50 }, y[] = { 0, 1, 0.25, 0.75 };
+	static const double mid[] = { 0.25, 0.5, 0.8, 0.5 };
+	static const double sh[] = { 0.6, 0, 0.995, 0 };
+	static const double t[][2] = {
+		{ 10, 0.0 }, { 11, 0.00032888729984502347 }, { 12.5, 0.5 },
+		{ 13, 0.7405457208130601 }, { 15, 0.9867830708469435 },
+		{ 19.9, 0.9999999999999848 }, { 20, 1.0 }, { 25, 0.8125 },
+		{ 30, 0.625 }, { 35, 0.4375 }, { 36, 0.39999999999999997 },
+		{ 39, 0.28750000000000003 }, { 42, 0.25 }, { 47.5, 0.25 },
+		{ 50, 0.75 },
+	};
+	vx_tf_list l = { 0 };
+	vx_tfi_pts p;
+	vx_err e;
+
+	(void)state;
+	vx_tfi_pts_init(&p, 1);
+	assert_int_equal(vx_tfi_vtk(&p, 4, 1, x, y, mid, sh, &e), 0);
+	assert_int_equal(vx_tfi_set(&l, &p, &e), 0);
+	for (size_t k = 0; k < sizeof t / sizeof t[0]; k++) {
+		int s = t[k][0] >= 40 ? 2 : t[k][0] >= 20 ? 1 : 0;
+		double u = (t[k][0] - x[s]) / (x[s + 1] - x[s]), got;
+
+		assert_true(fabs(vx_tfi_vtk_eval(y[s], y[s + 1], mid[s], sh[s],
+		    u) - t[k][1]) < 1e-12);
+		vx_tf_list_eval(&l, t[k][0], &got);
+		assert_true(fabs(got - t[k][1]) <= 2 * VX_TFI_SHARP_TOL);
+	}
+	vx_tfi_pts_free(&p);
+	vx_tf_list_free(&l);
+}
+
 /* An opacity step at sharpness 1 and an inserted midpoint, read through
  * the ParaView reader: the points themselves. */
 static void
@@ -328,6 +441,10 @@ malformed(void **state)
 		{ "space.json", "[{\"ColorSpace\": \"Step\", \"RGBPoints\": "
 		    "[0, 1, 0, 0]}]", VX_TF_FORMAT_PARAVIEW, VX_EDATA,
 		    "\"Step\" is not supported" },
+		/* found by fuzz_tf: a decoded newline reached the message */
+		{ "csnl.json", "[{\"ColorSpace\": \"a\\nb\\u001b\", \"Points\": "
+		    "[0, 0, 0.5, 0]}]", VX_TF_FORMAT_PARAVIEW, VX_EDATA,
+		    "\"a?b?\" is not supported" },
 		{ "empty.json", "[]", VX_TF_FORMAT_PARAVIEW, VX_EDATA,
 		    "an empty array" },
 		{ "none.json", "[{\"Name\": \"x\"}]", VX_TF_FORMAT_PARAVIEW,
@@ -536,6 +653,8 @@ main(void)
 		cmocka_unit_test(miter_table),
 		cmocka_unit_test(sharpness),
 		cmocka_unit_test(paraview_points),
+		cmocka_unit_test(color_spaces),
+		cmocka_unit_test(vtk_piecewise),
 		cmocka_unit_test(malformed),
 		cmocka_unit_test(json),
 	};

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "import_priv.h"
 #include "tf_priv.h"
 #include "vx_import.h"
 #include "vx_scan.h"
@@ -169,6 +170,13 @@ bad:
 	    "quoted labels (each under 64 bytes)", t->line[K_LABELS], t->dim);
 }
 
+/* show: a label as printable text for messages */
+static const char *
+show(const char *label)
+{
+	return vx_imp_show(label, strlen(label));
+}
+
 /* variable: the domain variable a gage label names, or 0. */
 static int
 variable(const char *l)
@@ -231,8 +239,8 @@ fields(txf *t, vx_err *e)
 		    VX_TF_MAX_POINTS : VX_TF_MAX_TABLE, &t->sizes[a]) != 0 ||
 		    (a > 0 && t->sizes[a] < 2))
 			return vx_err_set(e, VX_EDATA, "line %d: field 'sizes': "
-			    "axis %d: '%.*s' is not in [%d, %d]", t->line[K_SIZES],
-			    a, (int)(wl[a] > 20 ? 20 : wl[a]), w[a], a ? 2 : 1,
+			    "axis %d: '%s' is not in [%d, %d]", t->line[K_SIZES],
+			    a, vx_imp_show(w[a], wl[a]), a ? 2 : 1,
 			    a == 0 ? 9 : t->dim == 2 ? VX_TF_MAX_POINTS :
 			    VX_TF_MAX_TABLE);
 	if (labels(t, e) != 0)
@@ -241,7 +249,7 @@ fields(txf *t, vx_err *e)
 	    strspn(t->label[0], "ARGBEadsp") != strlen(t->label[0]))
 		return vx_err_set(e, VX_EDATA, "axis 0: label \"%s\" with size "
 		    "%lld: the range axis is labelled with one of "
-		    "\"ARGBEadsp\" per value", t->label[0],
+		    "\"ARGBEadsp\" per value", show(t->label[0]),
 		    (long long)t->sizes[0]);
 	if (words(t, K_MINS, w, wl, e) != 0)
 		return e->code;
@@ -327,9 +335,8 @@ unquantizer(const txf *t, int *uchar, double *lo, double *hi, vx_err *e)
 		return 0;
 	if (!(vx_word_eq(p, n, "uchar", 1) || vx_word_eq(p, n, "unsigned char",
 	    1) || vx_word_eq(p, n, "uint8", 1) || vx_word_eq(p, n, "uint8_t", 1)))
-		return vx_err_set(e, VX_EDATA, "line %d: type '%.*s': a txf is "
-		    "float, double or uchar", t->line[K_TYPE],
-		    (int)(n > 30 ? 30 : n), p);
+		return vx_err_set(e, VX_EDATA, "line %d: type '%s': a txf is "
+		    "float, double or uchar", t->line[K_TYPE], vx_imp_show(p, n));
 	*uchar = 1;
 	if ((t->val[K_OLDMIN] && f64(t, K_OLDMIN, lo, e) != 0) ||
 	    (t->val[K_OLDMAX] && f64(t, K_OLDMAX, hi, e) != 0))
@@ -356,14 +363,14 @@ vx_tfi_miter(const unsigned char *buf, size_t n, const char *dir,
 		if ((var[a] = variable(t.label[a])) == 0)
 			return vx_err_set(e, VX_EDATA, "axis %d: label \"%s\": "
 			    "only the value (gage(v)) and the gradient magnitude "
-			    "(gage(gm)) are read", a, t.label[a]);
+			    "(gage(gm)) are read", a, show(t.label[a]));
 	if (t.dim == 2 && var[1] != VAR_VALUE)
 		return vx_err_set(e, VX_EDATA, "axis 1: a 1-D txf over \"%s\": "
-		    "only one over the value (gage(v)) is read", t.label[1]);
+		    "only one over the value (gage(v)) is read", show(t.label[1]));
 	if (t.dim == 3 && var[1] == var[2])
 		return vx_err_set(e, VX_EDATA, "axes 1 and 2 are both \"%s\": a "
 		    "2-D txf is over the value and the gradient magnitude",
-		    t.label[1]);
+		    show(t.label[1]));
 	for (int c = 0; c < 4; c++) {
 		const char *q = strchr(t.label[0], rgba[c]);
 
@@ -374,10 +381,10 @@ vx_tfi_miter(const unsigned char *buf, size_t n, const char *dir,
 	}
 	if (ch[3] < 0)
 		return vx_err_set(e, VX_EDATA, "axis 0: label \"%s\" has no A: "
-		    "the txf gives no opacity", t.label[0]);
+		    "the txf gives no opacity", show(t.label[0]));
 	if ((ch[0] < 0) != (ch[1] < 0) || (ch[1] < 0) != (ch[2] < 0))
 		return vx_err_set(e, VX_EDATA, "axis 0: label \"%s\" has some of "
-		    "R, G and B but not all", t.label[0]);
+		    "R, G and B but not all", show(t.label[0]));
 	if ((rc = samples(&t, buf, n, dir, &g, e)) != 0)
 		return rc;
 	{

@@ -28,6 +28,17 @@ void vx_tfi_pts_free(vx_tfi_pts *p);
  * VX_TF_MAX_POINTS ("more than N control points"), VX_ENOMEM. */
 int vx_tfi_pts_add(vx_tfi_pts *p, double x, const double *y, vx_err *e);
 
+/* A curve over one segment: fn(ctx, s, out) gives the dim values at the
+ * fraction s in [0,1] of the way along it. */
+typedef void (*vx_tfi_fn)(const void *ctx, double s, double *out);
+
+/* vx_tfi_curve: append to p the points strictly inside the segment
+ * [x0, x1] that make the piecewise-linear form within VX_TFI_SHARP_TOL
+ * of fn at the quarter points of each piece (pieces halved at most 16
+ * times); the segment's ends are the caller's to add. */
+int vx_tfi_curve(vx_tfi_pts *p, double x0, double x1, vx_tfi_fn fn,
+    const void *ctx, vx_err *e);
+
 /* vx_tfi_vtk: append to p the piecewise-linear form of VTK's function
  * through n nodes (x[i], y[i*dim..]) whose segment from node i to i + 1
  * has midpoint mid[i] and sharpness sharp[i] (mid and sharp may be NULL:

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "import_priv.h"
 #include "tf_priv.h"
 #include "vx_scan.h"
 
@@ -35,9 +36,9 @@ vp_list(const char *line, size_t len, int lineno, int stride, vx_tf_list *l,
 	if ((wl = vx_scan_word(&s, &w)) == 0)
 		return 0;                       /* absent */
 	if (vx_num_i64(w, wl, 0, INT64_MAX, &count) != 0)
-		return vx_err_set(e, VX_EDATA, "line %d (%s): the count '%.*s' "
+		return vx_err_set(e, VX_EDATA, "line %d (%s): the count '%s' "
 		    "is not a non-negative integer", lineno, name,
-		    (int)(wl > 40 ? 40 : wl), w);
+		    vx_imp_show(w, wl));
 	if (count % stride != 0)
 		return vx_err_set(e, VX_EDATA, "line %d (%s): the count %lld is "
 		    "not a multiple of %d", lineno, name, (long long)count,
@@ -70,8 +71,8 @@ vp_list(const char *line, size_t len, int lineno, int stride, vx_tf_list *l,
 		}
 		if (vx_num_f64(w, wl, 0, &v[i]) != 0) {
 			rc = vx_err_set(e, VX_EDATA, "line %d (%s): number %lld "
-			    "'%.*s' is not a finite number", lineno, name,
-			    (long long)i + 1, (int)(wl > 40 ? 40 : wl), w);
+			    "'%s' is not a finite number", lineno, name,
+			    (long long)i + 1, vx_imp_show(w, wl));
 			goto out;
 		}
 	}

@@ -138,46 +138,53 @@ vx_tfi_vtk_eval(double y0, double y1, double mid, double sharp, double s)
 }
 
 typedef struct seg {
-	double x0, x1, mid, sharp;
+	double mid, sharp;
 	const double *y0, *y1;
 	int dim;
 } seg;
 
 static void
-seg_eval(const seg *g, double s, double *out)
+seg_eval(const void *ctx, double s, double *out)
 {
+	const seg *g = ctx;
+
 	for (int c = 0; c < g->dim; c++)
 		out[c] = vx_tfi_vtk_eval(g->y0[c], g->y1[c], g->mid, g->sharp, s);
 }
 
 /* refine: points strictly inside (a, b), in order, until the chord from a
- * to b is within the tolerance at b's quarter points (depth bounded). */
+ * to b is within the tolerance at its quarter points (depth bounded). */
 static int
-refine(vx_tfi_pts *p, const seg *g, double a, double b, int depth,
-    vx_err *e)
+refine(vx_tfi_pts *p, double x0, double x1, int dim, vx_tfi_fn fn,
+    const void *ctx, double a, double b, int depth, vx_err *e)
 {
 	double ya[3], yb[3], yq[3], m = 0.5 * (a + b);
 	int ok = 1;
 
-	seg_eval(g, a, ya);
-	seg_eval(g, b, yb);
+	fn(ctx, a, ya);
+	fn(ctx, b, yb);
 	for (int q = 1; q <= 3 && ok; q++) {
-		double s = a + (b - a) * q / 4;
-
-		seg_eval(g, s, yq);
-		for (int c = 0; c < g->dim; c++)
+		fn(ctx, a + (b - a) * q / 4, yq);
+		for (int c = 0; c < dim; c++)
 			if (fabs(yq[c] - (ya[c] + (yb[c] - ya[c]) * q / 4)) >
 			    VX_TFI_SHARP_TOL)
 				ok = 0;
 	}
 	if (ok || depth >= 16)
 		return 0;
-	if (refine(p, g, a, m, depth + 1, e) != 0)
+	if (refine(p, x0, x1, dim, fn, ctx, a, m, depth + 1, e) != 0)
 		return e->code;
-	seg_eval(g, m, yq);
-	if (vx_tfi_pts_add(p, g->x0 + m * (g->x1 - g->x0), yq, e) != 0)
+	fn(ctx, m, yq);
+	if (vx_tfi_pts_add(p, x0 + m * (x1 - x0), yq, e) != 0)
 		return e->code;
-	return refine(p, g, m, b, depth + 1, e);
+	return refine(p, x0, x1, dim, fn, ctx, m, b, depth + 1, e);
+}
+
+int
+vx_tfi_curve(vx_tfi_pts *p, double x0, double x1, vx_tfi_fn fn,
+    const void *ctx, vx_err *e)
+{
+	return refine(p, x0, x1, p->dim, fn, ctx, 0, 1, 0, e);
 }
 
 int
@@ -187,13 +194,14 @@ vx_tfi_vtk(vx_tfi_pts *p, int n, int dim, const double *x,
 	for (int i = 0; i < n; i++) {
 		const double *yi = y + (size_t)i * (size_t)dim;
 		seg g;
+		double x0, x1;
 
 		if (vx_tfi_pts_add(p, x[i], yi, e) != 0)
 			return e->code;
 		if (i + 1 == n || x[i + 1] == x[i])
 			continue;
-		g.x0 = x[i];
-		g.x1 = x[i + 1];
+		x0 = x[i];
+		x1 = x[i + 1];
 		g.mid = mid ? mid[i] : 0.5;
 		g.sharp = sharp ? sharp[i] : 0;
 		g.y0 = yi;
@@ -204,7 +212,7 @@ vx_tfi_vtk(vx_tfi_pts *p, int n, int dim, const double *x,
 		if (g.mid > 1 - MID_EPS)
 			g.mid = 1 - MID_EPS;
 		if (g.sharp < 0.01) {
-			double ym[3], xm = g.x0 + g.mid * (g.x1 - g.x0);
+			double ym[3], xm = x0 + g.mid * (x1 - x0);
 
 			if (g.mid == 0.5)
 				continue;       /* the plain line */
@@ -213,12 +221,12 @@ vx_tfi_vtk(vx_tfi_pts *p, int n, int dim, const double *x,
 			if (vx_tfi_pts_add(p, xm, ym, e) != 0)
 				return e->code;
 		} else if (g.sharp > 0.99) {
-			double xm = g.x0 + g.mid * (g.x1 - g.x0);
+			double xm = x0 + g.mid * (x1 - x0);
 
 			if (vx_tfi_pts_add(p, xm, g.y0, e) != 0 ||
 			    vx_tfi_pts_add(p, xm, g.y1, e) != 0)
 				return e->code;
-		} else if (refine(p, &g, 0, 1, 0, e) != 0)
+		} else if (vx_tfi_curve(p, x0, x1, seg_eval, &g, e) != 0)
 			return e->code;
 	}
 	return 0;
@@ -325,40 +333,41 @@ read_json(const unsigned char *buf, size_t n, vx_tf_format fmt, vx_tf *tf,
 }
 
 int
-vx_tf_import(const char *path, vx_tf_format fmt, vx_tf *tf, vx_err *e)
+vx_tf_import_mem(const void *buf_, size_t n, vx_tf_format fmt,
+    const char *dir, vx_tf *tf, vx_err *e)
 {
-	unsigned char *buf = NULL;
-	char *dir = NULL;
-	size_t n = 0;
-	int rc, c;
+	const unsigned char *buf = buf_;
 	vx_err local;
+	int rc = 0, c;
 
 	if (e == NULL)                  /* the readers need somewhere to say */
 		e = &local;
 	vx_tf_init(tf);
-	if (fmt <= VX_TF_FORMAT_UNKNOWN || fmt >= VX_TF_FORMAT_LAST) {
-		rc = vx_err_set(e, VX_EUSAGE, "unknown transfer-function "
+	if (fmt <= VX_TF_FORMAT_UNKNOWN || fmt >= VX_TF_FORMAT_LAST)
+		return vx_err_set(e, VX_EUSAGE, "unknown transfer-function "
 		    "format %d", (int)fmt);
-		goto out;
-	}
-	if ((rc = load(path, &buf, &n, e)) != 0)
-		goto out;
+	if (n > VX_TF_FILE_MAX)
+		return vx_err_set(e, VX_EDATA, "larger than %zu bytes",
+		    VX_TF_FILE_MAX);
+	if (n == 0)
+		return vx_err_set(e, VX_ENOINPUT, "empty file");
 	c = first_byte(buf, n);
 	if (fmt == VX_TF_FORMAT_AUTO) {
 		if (n >= 4 && memcmp(buf, "NRRD", 4) == 0)
 			fmt = VX_TF_FORMAT_MITER;
 		else if (c == '[' || c == '{')
-			rc = read_json(buf, n, fmt, tf, e);
+			fmt = VX_TF_FORMAT_PARAVIEW;   /* or Slicer's: read_json */
 		else if (c >= '0' && c <= '9')
 			fmt = VX_TF_FORMAT_SLICER;
 		else
-			rc = vx_err_set(e, VX_EDATA, "not a transfer function "
+			return vx_err_set(e, VX_EDATA, "not a transfer function "
 			    "(a ParaView JSON, a Slicer .vp or .vp.json, or a "
 			    "miter txf NRRD)");
-		if (fmt == VX_TF_FORMAT_AUTO)
-			goto out;
+		if (fmt == VX_TF_FORMAT_PARAVIEW)
+			fmt = VX_TF_FORMAT_AUTO;
 	}
 	switch (fmt) {
+	case VX_TF_FORMAT_AUTO:
 	case VX_TF_FORMAT_PARAVIEW:
 		rc = read_json(buf, n, fmt, tf, e);
 		break;
@@ -369,11 +378,7 @@ vx_tf_import(const char *path, vx_tf_format fmt, vx_tf *tf, vx_err *e)
 			rc = vx_tfi_slicer_vp((const char *)buf, n, tf, e);
 		break;
 	case VX_TF_FORMAT_MITER:
-		if ((dir = dir_of(strcmp(path, "-") == 0 ? "." : path, e)) ==
-		    NULL)
-			rc = VX_ENOMEM;
-		else
-			rc = vx_tfi_miter(buf, n, dir, tf, e);
+		rc = vx_tfi_miter(buf, n, dir, tf, e);
 		break;
 	default:
 		rc = vx_err_set(e, VX_EINTERNAL, "format %d", (int)fmt);
@@ -381,12 +386,36 @@ vx_tf_import(const char *path, vx_tf_format fmt, vx_tf *tf, vx_err *e)
 	}
 	if (rc == 0)
 		rc = vx_tf_check(tf, e);
-out:
+	if (rc != 0)
+		vx_tf_free(tf);
+	return rc;
+}
+
+int
+vx_tf_import(const char *path, vx_tf_format fmt, vx_tf *tf, vx_err *e)
+{
+	unsigned char *buf = NULL;
+	char *dir = NULL;
+	size_t n = 0;
+	int rc;
+	vx_err local;
+
+	if (e == NULL)
+		e = &local;
+	vx_tf_init(tf);
+	if (fmt <= VX_TF_FORMAT_UNKNOWN || fmt >= VX_TF_FORMAT_LAST)
+		return vx_err_set(e, VX_EUSAGE, "unknown transfer-function "
+		    "format %d", (int)fmt);
+	if ((rc = load(path, &buf, &n, e)) == 0) {
+		if ((dir = dir_of(strcmp(path, "-") == 0 ? "." : path, e)) ==
+		    NULL)
+			rc = VX_ENOMEM;
+		else
+			rc = vx_tf_import_mem(buf, n, fmt, dir, tf, e);
+	}
 	free(buf);
 	free(dir);
-	if (rc != 0) {
-		vx_tf_free(tf);
+	if (rc != 0)
 		vx_err_push(e, "%s", path);
-	}
 	return rc;
 }

@@ -41,4 +41,10 @@ extern const vx_enum vx_tf_format_enum;   /* auto paraview slicer miter */
  * where), VX_EUSAGE (fmt not a format), VX_ENOMEM, VX_EIO. */
 int vx_tf_import(const char *path, vx_tf_format fmt, vx_tf *tf, vx_err *e);
 
+/* vx_tf_import_mem: the same from the n bytes at buf (messages without a
+ * path); dir is where a txf's detached data file is looked for (NULL:
+ * such a header is refused, so fuzzing opens no files). */
+int vx_tf_import_mem(const void *buf, size_t n, vx_tf_format fmt,
+    const char *dir, vx_tf *tf, vx_err *e);
+
 #endif
