@@ -147,7 +147,7 @@ print-core-inc:
 
 # ---- dependencies (Debian) ----
 DEB_BUILD := build-essential pkg-config libpng-dev zlib1g-dev libcmocka-dev libopenexr-dev
-DEB_TEST := mricron-data python3 strace gnuplot-nox blender-data
+DEB_TEST := mricron-data python3 strace gnuplot-nox blender-data teem-apps
 DEB_FUZZ := clang libclang-rt-14-dev libomp-dev
 deps:
 	@missing=""; for p in $(DEB_BUILD) $(DEB_TEST) $(DEB_FUZZ) $(DEB_EXTRA); do \
