@@ -9,6 +9,7 @@
 #   make fuzz         libFuzzer targets (clang) over the committed corpus
 #   make bench        benchmarks (see examples/bench)
 #   make demo         the README's first command
+#   make cloud        a coarse volume made a cloud by noise (examples/cloud)
 #
 # New modules, programs and tests are picked up by wildcard: a file in a
 # layer folder of src/core/ (LAYERS, in order) joins the library (.c, and
@@ -84,7 +85,7 @@ FUZZ_TIME ?= 30
 .SECONDARY:
 .DELETE_ON_ERROR:
 
-.PHONY: all test unit cli check-layers print-core-inc deps install uninstall fuzz fuzz-build bench demo \
+.PHONY: all test unit cli check-layers print-core-inc deps install uninstall fuzz fuzz-build bench demo cloud \
 	studies clean check-deps
 all: $(LIB) $(TOOLS)
 
@@ -219,6 +220,9 @@ bench: all
 
 studies: all
 	$(MAKE) -C examples/studies
+
+cloud: all
+	$(MAKE) -C examples/cloud
 
 clean:
 	rm -rf build bin/*
