@@ -19,6 +19,9 @@
 #include "vx_plan.h"
 #include "vx_raycast.h"
 #include "vx_scene.h"
+#include "vx_sh.h"
+#include "vx_shlight.h"
+#include "vx_env.h"
 #include "vx_tetimport.h"
 #include "vx_tetleaf.h"
 #include "vx_tonemap.h"
@@ -231,6 +234,13 @@ print_stats(const vx_raycast_stats *st, const vx_macro *m, int w, int h,
 
 /* ---- lazy illumination ---- */
 
+/* the baked volume the plan reads, for messages */
+static const char *
+what(const vx_plan *plan)
+{
+	return plan->sh ? "SH transfer volume" : "irradiance volume";
+}
+
 typedef struct lazy_map {
 	const vx_irrvol *v;
 	uint8_t *need;            /* a byte a texel, i + n0 (j + n1 k) */
@@ -268,7 +278,10 @@ lazy_bake(vx_irrvol *irr, int have, vx_scene *s, const vx_grid *g,
 	size_t nt;
 	uint64_t before = 0, after = 0;
 
-	tool_gi_setup(&gi, s, g, m);
+	if (!plan->sh)
+		tool_gi_setup(&gi, s, g, m);
+	else if (vx_gi_setup(&gi, s, g, m, &e) != 0)
+		tool_fail_err(&e);    /* a transfer needs no light */
 	vx_bake_opts_init(&bo);
 	if (have) {
 		gi.seed = irr->seed;
@@ -281,21 +294,23 @@ lazy_bake(vx_irrvol *irr, int have, vx_scene *s, const vx_grid *g,
 
 		gi.seed = 1;
 		bo.samples = s->has_interreflection ? (uint32_t)s->samples : 64;
-		if (vx_irr_setup(irr, g, crc, 1, VX_IRR_ACCUM, &e) != 0)
+		if (vx_irr_setup_sh(irr, g, crc, 1, VX_IRR_ACCUM,
+		    plan->sh ? s->sh_order : 0, plan->sh ?
+		    vx_gi_sh_channels(&gi) : 3, &e) != 0)
 			tool_fail_err(&e);
 		vx_bake_sign(irr, &gi, &bo);
 	}
 	if (irr->store != VX_IRR_ACCUM)
-		tool_fail(VX_EDATA, "--lazy: the stream's irradiance volume is "
-		    "final (%s): it cannot take more texels",
+		tool_fail(VX_EDATA, "--lazy: the stream's %s is final (%s): it "
+		    "cannot take more texels", what(plan),
 		    vx_irr_store_name(irr->store));
 	vx_bake_settings(irr, &gi, &bo, settings, sizeof settings);
 	vx_bake_key(settings, key);
 	if (strcmp(key, irr->key) != 0)
-		tool_fail(VX_EDATA, "--lazy: the stream's irradiance volume was "
-		    "baked with other settings than this scene's (key %s, the "
-		    "scene gives %s): bake anew with bake-irr --fresh",
-		    irr->key, key);
+		tool_fail(VX_EDATA, "--lazy: the stream's %s was baked with "
+		    "other settings than this scene's (key %s, the scene gives "
+		    "%s): bake anew with %s --fresh", what(plan), irr->key, key,
+		    plan->sh ? "bake-sh" : "bake-irr");
 	if (bo.samples == 0)
 		bo.samples = 64;
 	nt = (size_t)irr->dims[0] * (size_t)irr->dims[1] *
@@ -326,7 +341,8 @@ lazy_bake(vx_irrvol *irr, int have, vx_scene *s, const vx_grid *g,
 					continue;
 				if ((q = vx_irr_want_texel(irr, i, j, k, &e)) < 0)
 					tool_fail_err(&e);
-				if (irr->acc[q].count > 0 || (irr->acc[q].flags &
+				if (vx_irr_accp(irr, q)->count > 0 ||
+				    (vx_irr_accp(irr, q)->flags &
 				    (VX_TEXEL_FLAT | VX_TEXEL_NAN))) {
 					x.need[t] = 0;    /* baked already */
 					before++;
@@ -348,9 +364,65 @@ lazy_bake(vx_irrvol *irr, int have, vx_scene *s, const vx_grid *g,
 		    bs.bake_s, (unsigned long long)before);
 }
 
+/* sh_lighting: the SH lighting of order n into c (3 channels of n^2, vx_sh.h's
+ * basis): the stream's SHLC chunk (from sh-rotate), else the projection
+ * of the scene's environment and sky lights; bands the lighting lacks are
+ * 0, bands beyond n dropped */
+static void
+sh_lighting(vx_scene *s, const vx_stream *st, int n, double *c, int say)
+{
+	static vx_shlight sl;
+	vx_err e = { 0, "" };
+	long idx;
+	int nn = n * n, found = 0;
+
+	memset(c, 0, sizeof(double) * 3 * (size_t)nn);
+	if (vx_shlight_from_stream(&sl, st, &idx, &e) != 0)
+		tool_fail_err(&e);
+	if (idx >= 0) {
+		int m = sl.order < n ? sl.order : n, mm = sl.order * sl.order;
+
+		if (sl.phase == VX_SHLIGHT_PHASE_NONE)
+			vx_sh_flip_phase(sl.order, 3, sl.c);
+		for (int k = 0; k < 3; k++)
+			memcpy(c + k * nn, sl.c + k * mm, sizeof(double) *
+			    (size_t)(m * m));
+		if (say)
+			fprintf(stderr, "raycast: SH lighting: the stream's (order "
+			    "%d%s) for a transfer of order %d\n", sl.order,
+			    sl.order < n ? ", higher bands 0" : "", n);
+		return;
+	}
+	if (vx_env_scene_resolve(s, &e) != 0)
+		tool_fail_err(&e);
+	for (int k = 0; k < s->nlight; k++) {
+		const vx_light *l = &s->light[k];
+		vx_env env;
+
+		if (l->type != VX_LIGHT_ENVIRONMENT && l->type != VX_LIGHT_SKY)
+			continue;
+		if (vx_env_load_light(&env, l, &e) != 0) {
+			vx_err_push(&e, "light %d", k + 1);
+			tool_fail_err(&e);
+		}
+		vx_shlight_project(&env, n, c);
+		vx_env_free(&env);
+		found++;
+	}
+	if (found == 0)
+		tool_fail(VX_EUSAGE, "illumination sh: no SH lighting: the "
+		    "stream has no SHLC chunk (sh-rotate makes one) and the "
+		    "scene no environment or sky light");
+	if (say)
+		fprintf(stderr, "raycast: SH lighting: %d environment or sky "
+		    "light%s of the scene projected to order %d\n", found,
+		    found == 1 ? "" : "s", n);
+}
+
 int
 main(int argc, char **argv)
 {
+	static double shl[3 * VX_SHLIGHT_MAX_COEF];
 	opts o;
 	vx_stream st;
 	vx_grid g;
@@ -509,23 +581,25 @@ main(int argc, char **argv)
 	ro.bin_block = o.binblock;
 	vx_irr_init(&irr);
 	if (plan.irradiance) {
+		const char *il = plan.sh ? "illumination sh" :
+		    "illumination irradiance";
 		long ii;
 
 		if (is_mesh)
-			tool_fail(VX_EUSAGE, "illumination irradiance: "
-			    "irradiance volumes are baked for volumes, not "
-			    "meshes");
-		if (vx_irr_from_stream(&irr, &st, g.name, &ii, &e) != 0)
+			tool_fail(VX_EUSAGE, "%s: %ss are baked for volumes, not "
+			    "meshes", il, what(&plan));
+		if ((plan.sh ? vx_irr_sh_from_stream : vx_irr_from_stream)(&irr,
+		    &st, g.name, &ii, &e) != 0)
 			tool_fail_err(&e);
 		if (ii < 0 && !o.lazy)
-			tool_fail(VX_EDATA, "illumination irradiance: no "
-			    "irradiance volume of '%s' in the stream (bake one "
-			    "with bake-irr, or give --lazy)", g.name);
+			tool_fail(VX_EDATA, "%s: no %s of '%s' in the stream (bake "
+			    "one with %s, or give --lazy)", il, what(&plan),
+			    g.name, plan.sh ? "bake-sh" : "bake-irr");
 		for (int a = 0; a < 3 && ii >= 0; a++)
 			if (irr.vdims[a] != g.dims[a])
-				tool_fail(VX_EDATA, "illumination irradiance: the "
-				    "irradiance volume was baked for dims %lld %lld "
-				    "%lld, not these", (long long)irr.vdims[0],
+				tool_fail(VX_EDATA, "%s: the %s was baked for dims "
+				    "%lld %lld %lld, not these", il, what(&plan),
+				    (long long)irr.vdims[0],
 				    (long long)irr.vdims[1],
 				    (long long)irr.vdims[2]);
 		ro.irr = &irr;
@@ -549,9 +623,14 @@ main(int argc, char **argv)
 				tool_write_stream(&st, o.lazy_save);
 			}
 		}
+		if (plan.sh) {
+			sh_lighting(&s, &st, irr.sh_order, shl, o.stats ||
+			    o.explain);
+			ro.shl = shl;
+		}
 	} else if (o.lazy) {
 		tool_fail(VX_EUSAGE, "--lazy: the scene's illumination is not "
-		    "irradiance (add --set \"illumination irradiance\")");
+		    "irradiance or sh (add --set \"illumination irradiance\")");
 	}
 	if (plan.pathtrace) {
 		if (is_mesh)

@@ -219,24 +219,6 @@ load_env(vx_env *env, const opts *o, vx_scene *s, const vx_stream *st)
 	return found;
 }
 
-/* project: exact quadrature of the piecewise-constant map over its pixels
- * (each pixel's radiance times its exact solid angle times Y at its
- * centre) */
-static void
-project(const vx_env *env, int order, double *c)
-{
-	size_t n = vx_env_npixel(env);
-
-	memset(c, 0, sizeof(double) * 3 * order * order);
-	for (size_t i = 0; i < n; i++) {
-		double dir[3], om, rgb[3];
-
-		vx_env_pixel(env, i, dir, &om, rgb);
-		if (om > 0)
-			vx_sh_accumulate(order, dir, om, rgb, 3, c);
-	}
-}
-
 static double
 window(int kind, int l, int order)
 {
@@ -445,7 +427,8 @@ main(int argc, char **argv)
 		sl.env_hash = env.hash;
 		npix = vx_env_npixel(&env);
 		t0 = vx_par_seconds();
-		project(&env, o.order, sl.c);
+		memset(sl.c, 0, sizeof(double) * 3 * o.order * o.order);
+		vx_shlight_project(&env, o.order, sl.c);
 		tproj = vx_par_seconds() - t0;
 	} else if (idx >= 0) {
 		/* no light in the scene: the stream's SH lighting is turned

@@ -564,6 +564,23 @@ irrv_usable(const vx_irrvol *v, int64_t s)
 	return (v->flags[s] & VX_TEXEL_WANTED) && vx_irr_usable(v, s);
 }
 
+/* irrv_rgb: texel s's RGB: the irradiance, or an SH transfer's constant
+ * coefficient per channel (one channel: repeated) */
+static void
+irrv_rgb(const vx_irrvol *v, int64_t s, double e[3])
+{
+	double m[VX_IRR_MAX_COMP];
+	size_t cs = v->sh_order ? (size_t)(v->sh_order * v->sh_order) : 1;
+
+	if (v->store == VX_IRR_ACCUM)
+		vx_irr_acc_mean(v, vx_irr_accp(v, s), m);
+	else
+		for (int c = 0; c < v->ncomp; c++)
+			m[c] = v->mean[(size_t)v->ncomp * (size_t)s + (size_t)c];
+	for (int c = 0; c < 3; c++)
+		e[c] = m[v->channels == 1 ? 0 : c * cs];
+}
+
 static void
 irrv_count(irrv_info *ii)
 {
@@ -610,7 +627,7 @@ irrv_count(irrv_info *ii)
 				ii->overflow += (f & VX_TEXEL_OVERFLOW) != 0;
 				ii->border += (f & VX_TEXEL_BORDER) != 0;
 				if (v->store == VX_IRR_ACCUM) {
-					uint32_t n = v->acc[s].count;
+					uint32_t n = vx_irr_accp(v, s)->count;
 
 					if (n > 0) {
 						ii->baked++;
@@ -626,11 +643,7 @@ irrv_count(irrv_info *ii)
 				if (!irrv_usable(v, s))
 					continue;
 				ii->usable++;
-				if (v->store == VX_IRR_ACCUM)
-					vx_irr_acc_mean(&v->acc[s], v->fixed, e);
-				else
-					for (c = 0; c < 3; c++)
-						e[c] = v->mean[3 * s + c];
+				irrv_rgb(v, s, e);
 				for (c = 0; c < 3; c++) {
 					sum[c] += e[c];
 					if (e[c] < ii->emin[c])
@@ -689,7 +702,11 @@ text_irrv(const irrv_info *ii)
 	static const char rgb[] = "RGB";
 	int c;
 
-	printf("  irradiance volume: of ");
+	if (v->sh_order > 0)
+		printf("  SH transfer volume: order %d, %d channel%s, of ",
+		    v->sh_order, v->channels, v->channels == 1 ? "" : "s");
+	else
+		printf("  irradiance volume: of ");
 	put_str(v->volume);
 	printf(" (%s)\n", ii->status);
 	printf("    lattice: %lld x %lld x %lld texels (%llu) at scale %.9g, "
@@ -705,7 +722,7 @@ text_irrv(const irrv_info *ii)
 		printf("    world spacing: unknown (the volume is not in the "
 		    "stream)\n");
 	printf("    store: %s, %zu bytes a texel", vx_irr_store_name(v->store),
-	    vx_irr_texel_bytes(v->store));
+	    vx_irr_texel_bytes(v->store, v->ncomp));
 	if (v->store == VX_IRR_ACCUM)
 		printf(", %d fraction bits\n", v->fixed);
 	else
@@ -729,7 +746,8 @@ text_irrv(const irrv_info *ii)
 		printf("    samples per texel: not kept (the bake asked %u)\n",
 		    v->samples);
 	if (ii->usable > 0) {
-		printf("    irradiance over the %llu usable texels:\n",
+		printf("    %s over the %llu usable texels:\n", v->sh_order ?
+		    "constant coefficient" : "irradiance",
 		    (unsigned long long)ii->usable);
 		for (c = 0; c < 3; c++)
 			printf("      %c: min %.9g max %.9g mean %.9g\n", rgb[c],
@@ -750,7 +768,11 @@ json_irrv(const irrv_info *ii)
 {
 	const vx_irrvol *v = &ii->v;
 
-	printf(",\"irradiance\":{\"volume\":");
+	printf(",\"%s\":{", v->sh_order ? "sh_transfer" : "irradiance");
+	if (v->sh_order > 0)
+		printf("\"order\":%d,\"channels\":%d,", v->sh_order,
+		    v->channels);
+	printf("\"volume\":");
 	json_str(v->volume);
 	printf(",\"status\":");
 	json_str(ii->status);
@@ -771,7 +793,8 @@ json_irrv(const irrv_info *ii)
 	else
 		fputs("null", stdout);
 	printf(",\"store\":\"%s\",\"texel_bytes\":%zu,\"fixed\":",
-	    vx_irr_store_name(v->store), vx_irr_texel_bytes(v->store));
+	    vx_irr_store_name(v->store), vx_irr_texel_bytes(v->store,
+	    v->ncomp));
 	if (v->store == VX_IRR_ACCUM)
 		printf("%d", v->fixed);
 	else
@@ -858,7 +881,8 @@ decode_content(const vx_stream *s, const vx_chunk *c, const opts *o,
 		d->kind = K_TLEF;
 		return decode_tlef(s, c, &d->ti, e);
 	}
-	if (memcmp(c->type, VX_CHUNK_IRRAD, 4) == 0) {
+	if (memcmp(c->type, VX_CHUNK_IRRAD, 4) == 0 ||
+	    memcmp(c->type, VX_CHUNK_SHXFER, 4) == 0) {
 		d->kind = K_IRRV;
 		return decode_irrv(s, c, &d->ii, e);
 	}

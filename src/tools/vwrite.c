@@ -80,12 +80,15 @@ parse_args(opts *o, int argc, char **argv)
 	if (strlen(o->chunk) != 4 || !vx_chunk_type_valid(o->chunk))
 		tool_usage_fail(usage, "--chunk %s: not a chunk type", o->chunk);
 	if (strcmp(o->chunk, VX_CHUNK_VOLUME) != 0 &&
-	    strcmp(o->chunk, VX_CHUNK_IRRAD) != 0)
-		tool_fail(VX_EUSAGE, "--chunk %s: only %s and %s chunks can be "
-		    "exported", o->chunk, VX_CHUNK_VOLUME, VX_CHUNK_IRRAD);
-	if (o->flags != NULL && strcmp(o->chunk, VX_CHUNK_IRRAD) != 0)
-		tool_usage_fail(usage, "--flags: only with --chunk %s",
-		    VX_CHUNK_IRRAD);
+	    strcmp(o->chunk, VX_CHUNK_IRRAD) != 0 &&
+	    strcmp(o->chunk, VX_CHUNK_SHXFER) != 0)
+		tool_fail(VX_EUSAGE, "--chunk %s: only %s, %s and %s chunks can "
+		    "be exported", o->chunk, VX_CHUNK_VOLUME, VX_CHUNK_IRRAD,
+		    VX_CHUNK_SHXFER);
+	if (o->flags != NULL && strcmp(o->chunk, VX_CHUNK_IRRAD) != 0 &&
+	    strcmp(o->chunk, VX_CHUNK_SHXFER) != 0)
+		tool_usage_fail(usage, "--flags: only with --chunk %s or %s",
+		    VX_CHUNK_IRRAD, VX_CHUNK_SHXFER);
 	if (o->flags != NULL && (strcmp(o->flags, "-") == 0 ||
 	    strcmp(o->flags, o->out) == 0))
 		tool_usage_fail(usage, "--flags %s: a file of its own",
@@ -135,20 +138,23 @@ main(int argc, char **argv)
 
 	tool_init("vwrite", argc, argv);
 	parse_args(&o, argc, argv);
-	irr = strcmp(o.chunk, VX_CHUNK_IRRAD) == 0;
+	irr = strcmp(o.chunk, VX_CHUNK_IRRAD) == 0 ? 1 :
+	    strcmp(o.chunk, VX_CHUNK_SHXFER) == 0 ? 2 : 0;
 	vx_stream_init(&s);
 	vx_irr_init(&iv);
 	tool_read_stream(&s, o.in);
 	if (irr) {
 		/* the irradiance volume of volume --name (or the first); its
 		 * volume gives the lattice's place in the world */
-		if (vx_irr_from_stream(&iv, &s, o.name, &idx, &e) != 0) {
+		if ((irr == 2 ? vx_irr_sh_from_stream : vx_irr_from_stream)(&iv,
+		    &s, o.name, &idx, &e) != 0) {
 			vx_err_push(&e, "%s", inname(&o));
 			tool_fail_err(&e);
 		}
 		if (idx < 0)
-			tool_fail(VX_EDATA, "%s: no irradiance volume%s%s%s",
-			    inname(&o), o.name ? " of '" : "",
+			tool_fail(VX_EDATA, "%s: no %s%s%s%s", inname(&o),
+			    irr == 2 ? "SH transfer volume" :
+			    "irradiance volume", o.name ? " of '" : "",
 			    o.name ? o.name : "", o.name ? "'" : "");
 		if (vx_grid_view_stream(&g, &s, iv.volume, NULL, &e) != 0) {
 			vx_err_push(&e, "%s: the volume of the irradiance "

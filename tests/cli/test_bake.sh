@@ -149,7 +149,7 @@ check "raycast counts points outside the band" grep -q "found no baked texel" "$
 # 5. final stores: half precision within binary16's rounding of f32
 bake-irr --light sky --iso 0.5 --side high --samples 8 --bounces 2 --half \
     --stats "$T/s.vx" > "$T/h.vx" 2>"$T/hst"
-check "--half: 8 bytes a texel" grep -q "f16, 8 bytes per texel" "$T/hst"
+check "--half: 8 bytes a texel" grep -q "f16 RGB irradiance, 8 bytes per texel in the stream" "$T/hst"
 raycast --iso 0.5 --set "illumination irradiance" --size 33x33 --hdr \
     "$T/h.vx" > "$T/rh.vx"
 check_close "--half: radiance within 2^-11 of 0.8" \

@@ -52,8 +52,8 @@ check_eq "all wanted are baked and usable, of 64 bricks" \
 check_eq "samples per texel 4 to 4, 4 x wanted in all" \
     "$(jget "$T/b.json" "$J[\"samples_min\"], $J[\"samples_max\"], $J[\"samples_total\"] == 4 * $J[\"wanted\"]")" \
     "4 4 True"
-check_eq "accum: 48 bytes a texel, memory = bricks x 512 x 48 + the brick table" \
-    "$(jget "$T/b.json" "$J[\"texel_bytes\"], $J[\"bytes\"] == $J[\"bricks\"] * 512 * 48 + 64 * 4")" "48 True"
+check_eq "accum: 48 bytes a texel, memory = bricks x 512 x (48 + 16: flags and mean) + the brick table" \
+    "$(jget "$T/b.json" "$J[\"texel_bytes\"], $J[\"bytes\"] == $J[\"bricks\"] * 512 * 64 + 64 * 4")" "48 True"
 check_eq "the volume matches, the bake's knobs" \
     "$(jget "$T/b.json" "$J[\"status\"], $J[\"side\"], $J[\"offset\"], len($J[\"key\"])")" \
     "matches high 0.5 16"
@@ -174,7 +174,7 @@ expect_fail "no irradiance volume" 65 "no irradiance volume" \
     vwrite --chunk IRRV -o "$T/x.nrrd" "$T/s.vx"
 expect_fail "the volume left out: no world frame" 65 "its world frame" \
     vwrite --chunk IRRV -o "$T/x.nrrd" "$T/novol.vx"
-expect_fail "--chunk of another kind" 64 "only VOLM and IRRV" \
+expect_fail "--chunk of another kind" 64 "only VOLM, IRRV and SHTV" \
     vwrite --chunk TETM -o "$T/x.nrrd" "$T/b.vx"
 check "a failed run leaves no file" test ! -e "$T/x.nrrd"
 done_testing

@@ -13,6 +13,12 @@
 #include "vx_half.h"
 #include "vx_irrvol.h"
 
+/* room for one texel's accumulators of any size */
+typedef union accbuf {
+	vx_irr_acc a;
+	int64_t w[3 + VX_IRR_MAX_COMP];
+} accbuf;
+
 /* binary16 by its definition (IEEE 754-2008 §3.6): the oracle is the exact
  * value of each bit pattern and round-to-nearest-even. */
 static void
@@ -103,11 +109,14 @@ make_grid(vx_grid *g, int64_t nx, int64_t ny, int64_t nz)
 static void
 accum_grouping(void **state)
 {
-	vx_irr_acc one, a, b;
+	accbuf ub_one, ub_a, ub_b;
+	vx_irr_acc *one = &ub_one.a, *a = &ub_a.a, *b = &ub_b.a;
+	vx_irrvol iv;
 	double est[257][3];
 	uint64_t x = 88172645463325252u;
 
 	(void)state;
+	vx_irr_init(&iv);        /* irradiance: 3 components, 24 bits */
 	for (int i = 0; i < 257; i++)
 		for (int c = 0; c < 3; c++) {
 			x ^= x << 13;
@@ -116,18 +125,18 @@ accum_grouping(void **state)
 			est[i][c] = (double)(x >> 11) * 0x1p-53 * 10 *
 			    (c + 1) + (i % 7 == 0 ? 1e3 : 0);
 		}
-	memset(&one, 0, sizeof one);
+	memset(&ub_one, 0, sizeof ub_one);
 	for (int i = 0; i < 257; i++)
-		vx_irr_acc_add(&one, est[i], 24);
+		vx_irr_acc_add(&iv, one, est[i]);
 	for (int split = 0; split <= 257; split += 37) {
-		memset(&a, 0, sizeof a);
-		memset(&b, 0, sizeof b);
+		memset(&ub_a, 0, sizeof ub_a);
+		memset(&ub_b, 0, sizeof ub_b);
 		for (int i = 0; i < split; i++)
-			vx_irr_acc_add(&a, est[i], 24);
+			vx_irr_acc_add(&iv, a, est[i]);
 		for (int i = split; i < 257; i++)
-			vx_irr_acc_add(&b, est[i], 24);
-		vx_irr_acc_merge(&a, &b);
-		assert_memory_equal(&a, &one, sizeof a);
+			vx_irr_acc_add(&iv, b, est[i]);
+		vx_irr_acc_merge(&iv, a, b);
+		assert_memory_equal(a, one, vx_irr_acc_bytes(3));
 	}
 	/* the mean within rounding of the exact mean */
 	{
@@ -136,21 +145,21 @@ accum_grouping(void **state)
 		for (int i = 0; i < 257; i++)
 			for (int c = 0; c < 3; c++)
 				ref[c] += est[i][c] / 257;
-		vx_irr_acc_mean(&one, 24, m);
+		vx_irr_acc_mean(&iv, one, m);
 		for (int c = 0; c < 3; c++)
 			assert_true(fabs(m[c] - ref[c]) <= 1e-6 * ref[c]);
-		assert_true(vx_irr_acc_relerr(&one, 24) > 0);
+		assert_true(vx_irr_acc_relerr(&iv, one) > 0);
 	}
 	/* negative and NaN estimates count as 0; huge ones saturate */
 	{
 		double bad[3] = { -1, NAN, INFINITY };
 
-		memset(&a, 0, sizeof a);
-		vx_irr_acc_add(&a, bad, 24);
-		assert_int_equal(a.count, 1);
-		assert_int_equal(a.sum[0], 0);
-		assert_int_equal(a.sum[1], 0);
-		assert_true(a.flags & VX_TEXEL_OVERFLOW);
+		memset(&ub_a, 0, sizeof ub_a);
+		vx_irr_acc_add(&iv, a, bad);
+		assert_int_equal(a->count, 1);
+		assert_int_equal(a->sum[0], 0);
+		assert_int_equal(a->sum[1], 0);
+		assert_true(a->flags & VX_TEXEL_OVERFLOW);
 	}
 }
 
@@ -172,8 +181,8 @@ fill(vx_irrvol *v, int wanted_every)
 				if (s < 0)
 					continue;
 				for (int n = 0; n < 4; n++)
-					vx_irr_acc_add(&v->acc[s], rgb, v->fixed);
-				v->acc[s].flags |= VX_TEXEL_WANTED;
+					vx_irr_acc_add(v, vx_irr_accp(v, s), rgb);
+				vx_irr_accp(v, s)->flags |= VX_TEXEL_WANTED;
 			}
 	vx_irr_finish(v);
 }
@@ -255,7 +264,7 @@ lookup_modes(void **state)
 			s = vx_irr_texel(&v, 3 + (q & 1), 3 + (q >> 1 & 1),
 			    3 + (q >> 2 & 1));
 			if (q != 7)
-				v.acc[s].flags |= q % 2 ? VX_TEXEL_FLAT :
+				vx_irr_accp(&v, s)->flags |= q % 2 ? VX_TEXEL_FLAT :
 				    VX_TEXEL_NAN;
 		}
 		vx_irr_finish(&v);
@@ -263,7 +272,7 @@ lookup_modes(void **state)
 		    rgb), 1);
 		assert_true(fabs(rgb[0] - 4) < 1e-6);   /* texel (4,4,4) alone */
 		s = vx_irr_texel(&v, 4, 4, 4);
-		v.acc[s].flags |= VX_TEXEL_FLAT;
+		vx_irr_accp(&v, s)->flags |= VX_TEXEL_FLAT;
 		vx_irr_finish(&v);
 		assert_int_equal(vx_irr_lookup(&v, p, VX_IRR_TRILINEAR, &g, 0,
 		    rgb), 0);
@@ -313,8 +322,9 @@ chunk_roundtrip(void **state)
 					assert_memory_equal(&v.mean[3 * a],
 					    &w.mean[3 * b], 3 * sizeof(float));
 					if (st[si] == VX_IRR_ACCUM)
-						assert_memory_equal(&v.acc[a],
-						    &w.acc[b], sizeof *v.acc);
+						assert_memory_equal(vx_irr_accp(&v, a),
+						    vx_irr_accp(&w, b),
+						    vx_irr_acc_bytes(v.ncomp));
 				}
 		vx_irr_free(&w);
 		/* malformed: a flipped map bit past the bricks, a count that
@@ -374,11 +384,12 @@ merge_rules(void **state)
 	assert_int_equal(vx_irr_want_brick(&b, 7, &e), 0);
 	for (int n = 0; n < 5; n++) {
 		est[0] += 0.125;
-		vx_irr_acc_add(&one.acc[9], est, one.fixed);
-		vx_irr_acc_add(n < 3 ? &a.acc[9] : &b.acc[9], est, a.fixed);
+		vx_irr_acc_add(&one, vx_irr_accp(&one, 9), est);
+		vx_irr_acc_add(&a, vx_irr_accp(n < 3 ? &a : &b, 9), est);
 	}
 	assert_int_equal(vx_irr_merge(&a, &b, &e), 0);
-	assert_memory_equal(&a.acc[9], &one.acc[9], sizeof a.acc[9]);
+	assert_memory_equal(vx_irr_accp(&a, 9), vx_irr_accp(&one, 9),
+	    vx_irr_acc_bytes(3));
 	assert_int_equal(a.nslot, 2);   /* b's brick 7 joined */
 	/* a texel of 5 samples cannot take samples that start at 3 */
 	assert_int_equal(vx_irr_merge(&a, &b, &e), VX_EDATA);

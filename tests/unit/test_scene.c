@@ -846,11 +846,13 @@ static const struct {
 	    "surface iso 90 ks 0", 0, 0, 0, 0, 1 },
 	/* no surface: only primary rays */
 	{ "light directional direction 0 0 1", 0, 0, 0, 0, 1 },
-	/* reserved things asked for are reported, not computed */
+	/* SH illumination: the lights and interreflection are in the
+	 * transfer volume and the SH lighting (off), diffuse only; the
+	 * volume renderer's effects are reported, not computed */
 	{ "light environment file env.pfm\nlight sky\nsurface iso 9\n"
 	    "interreflection bounces 2\nillumination sh\n"
 	    "effects +interreflection +scattering +volumetric-shadows",
-	    0, 0, 1, 6, 1 },
+	    0, 0, 0, 2, 1 },
 	/* interreflection bounces without the effect: off, not unsupported */
 	{ "surface iso 9\ninterreflection bounces 2\ntransfer opacity 0 1",
 	    0, 0, 1, 0, 1 },

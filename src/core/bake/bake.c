@@ -5,6 +5,7 @@
 #include "vx_vec.h"
 
 #include "vx_par.h"
+#include "vx_sh.h"
 
 #include <math.h>
 #include <stdatomic.h>
@@ -52,6 +53,13 @@ vx_bake_settings(const vx_irrvol *v, const vx_gi *gi, const vx_bake_opts *o,
 	    "solver exact fixed %d side %s", v->scale, o->offset,
 	    (unsigned long long)gi->seed, gi->bounces, gi->eps, v->fixed,
 	    gi->high ? "high" : "low");
+	if (v->sh_order > 0) {
+		/* a transfer volume holds no light: only the geometry, the
+		 * albedo and the bounces determine it */
+		PUT("; transfer sh order %d channels %d", v->sh_order,
+		    v->channels);
+		goto albedo;
+	}
 	for (int i = 0; i < gi->nlight; i++) {
 		const vx_gi_light *l = &gi->light[i];
 
@@ -70,6 +78,7 @@ vx_bake_settings(const vx_irrvol *v, const vx_gi *gi, const vx_bake_opts *o,
 		    gi->sky[2]);
 	if (gi->has_env)
 		PUT("; environment %s%s", gi->env_id, gi->env_mis ? " mis" : "");
+albedo:
 	PUT("; albedo");
 	for (int i = 0; i < gi->nalbedo; i++)
 		PUT(" %.17g:%.17g,%.17g,%.17g", gi->albedo_v[i],
@@ -176,23 +185,51 @@ plan_slab(void *ctx, void *lp, const vx_par_block *b)
 	return 0;
 }
 
+/* the brick of lattice cell corner (x, y, z) */
+static size_t
+brick_of(const vx_irrvol *v, int64_t x, int64_t y, int64_t z)
+{
+	return (size_t)(x / VX_IRR_BRICK) + (size_t)v->bdims[0] *
+	    ((size_t)(y / VX_IRR_BRICK) + (size_t)v->bdims[1] *
+	    (size_t)(z / VX_IRR_BRICK));
+}
+
+/* the memory check: nb bricks stored in all (those v has included) */
+static int
+fits(const vx_irrvol *v, const vx_bake_opts *o, size_t nb, vx_bake_stats *st,
+    vx_err *e)
+{
+	size_t nall = (size_t)v->bdims[0] * (size_t)v->bdims[1] *
+	    (size_t)v->bdims[2];
+
+	st->need_bytes = (uint64_t)nb * VX_IRR_BRICK3 *
+	    vx_irr_texel_memory(v->store, v->ncomp) + (uint64_t)nall *
+	    sizeof *v->slot;
+	if (o->max_bytes > 0 && st->need_bytes > o->max_bytes)
+		return vx_err_set(e, VX_ENOMEM, "the volume would take %.3g GB "
+		    "of memory (%zu bricks of %d^3 texels, %zu bytes a texel), "
+		    "more than the %.3g GB allowed", (double)st->need_bytes /
+		    1e9, nb, VX_IRR_BRICK, vx_irr_texel_memory(v->store,
+		    v->ncomp), (double)o->max_bytes / 1e9);
+	return 0;
+}
+
 int
 vx_bake_plan(vx_irrvol *v, const vx_grid *g, const vx_bake_opts *o,
     vx_bake_stats *st, vx_err *e)
 {
 	double t0 = wall();
 	int64_t cd[3];
-	uint8_t *cellw = NULL;
-	size_t ncell;
+	uint8_t *cellw = NULL, *bneed = NULL;
+	size_t ncell, nb = (size_t)v->bdims[0] * (size_t)v->bdims[1] *
+	    (size_t)v->bdims[2], need = 0;
 	int rc;
 
 	st->lattice = (uint64_t)v->dims[0] * (uint64_t)v->dims[1] *
 	    (uint64_t)v->dims[2];
 	if (o->all) {
-		size_t nb = (size_t)v->bdims[0] * (size_t)v->bdims[1] *
-		    (size_t)v->bdims[2];
-
-		if ((rc = vx_irr_reserve(v, nb, e)) != 0)
+		if ((rc = fits(v, o, nb, st, e)) != 0 ||
+		    (rc = vx_irr_reserve(v, nb, e)) != 0)
 			return rc;
 		for (size_t b = 0; b < nb; b++)
 			if ((rc = vx_irr_want_brick(v, b, e)) != 0)
@@ -210,8 +247,11 @@ vx_bake_plan(vx_irrvol *v, const vx_grid *g, const vx_bake_opts *o,
 	for (int a = 0; a < 3; a++)
 		cd[a] = v->dims[a] > 1 ? v->dims[a] - 1 : 1;
 	ncell = (size_t)cd[0] * (size_t)cd[1] * (size_t)cd[2];
-	if ((cellw = vx_calloc(ncell, 1, e)) == NULL)
+	if ((cellw = vx_calloc(ncell, 1, e)) == NULL ||
+	    (bneed = vx_calloc(nb, 1, e)) == NULL) {
+		free(cellw);
 		return VX_ENOMEM;
+	}
 	/* which lattice cells meet a band: the range of the samples their
 	 * box covers (a slab of cells a block) */
 	{
@@ -222,10 +262,38 @@ vx_bake_plan(vx_irrvol *v, const vx_grid *g, const vx_bake_opts *o,
 
 		if ((rc = vx_par_init(&team, o->threads, 0, e)) != 0) {
 			free(cellw);
+			free(bneed);
 			return rc;
 		}
 		vx_par_run(&team, &slabs, plan_slab, &C, NULL);
 		vx_par_free(&team);
+	}
+	/* the bricks it needs, and the memory they take, before any is
+	 * allocated */
+	for (size_t b = 0; b < nb; b++)
+		bneed[b] = v->slot[b] != 0;
+	for (int64_t k = 0; k < cd[2]; k++)
+		for (int64_t j = 0; j < cd[1]; j++)
+			for (int64_t i = 0; i < cd[0]; i++) {
+				if (!cellw[(size_t)i + (size_t)cd[0] * ((size_t)j +
+				    (size_t)cd[1] * (size_t)k)])
+					continue;
+				for (int q = 0; q < 8; q++) {
+					int64_t x = i + (q & 1), y = j + ((q >> 1) & 1),
+					    z = k + ((q >> 2) & 1);
+
+					if (x < v->dims[0] && y < v->dims[1] &&
+					    z < v->dims[2])
+						bneed[brick_of(v, x, y, z)] = 1;
+				}
+			}
+	for (size_t b = 0; b < nb; b++)
+		need += bneed[b];
+	free(bneed);
+	if ((rc = fits(v, o, need, st, e)) != 0 ||
+	    (rc = vx_irr_reserve(v, need, e)) != 0) {
+		free(cellw);
+		return rc;
 	}
 	/* bricks first (serially, in brick order), then the texels */
 	for (int64_t k = 0; k < cd[2]; k++)
@@ -297,6 +365,39 @@ texel_id(const vx_irrvol *v, int64_t i, int64_t j, int64_t k)
 	    (uint64_t)v->dims[1] * (uint64_t)k);
 }
 
+/* one_sample: sample `index` of texel id into a: the irradiance estimate,
+ * or the SH transfer estimate pi thru Y(w) of an escaping path (zeros for
+ * a path that ends on a surface) */
+static void
+one_sample(const vx_irrvol *v, const vx_gi *gi, const double start[3],
+    const double n[3], double rho, const double D[3], uint64_t id,
+    vx_irr_acc *a, vx_gi_stats *st)
+{
+	uint64_t index = (uint64_t)v->first + a->count;
+	double val[VX_IRR_MAX_COMP];
+
+	if (v->sh_order == 0) {
+		vx_gi_sample(gi, start, n, rho, gi->high, D, id, index, val, st);
+	} else {
+		int nn = v->sh_order * v->sh_order;
+		double w[3], thru[3], y[VX_IRR_MAX_COMP / 3];
+
+		if (!vx_gi_transfer(gi, start, n, rho, gi->high, id, index, w,
+		    thru, st)) {
+			memset(val, 0, (size_t)v->ncomp * sizeof *val);
+		} else {
+			vx_sh_eval(v->sh_order, w, y);
+			if (v->channels == 1)
+				thru[0] = 0.2126 * thru[0] + 0.7152 * thru[1] +
+				    0.0722 * thru[2];
+			for (int c = 0; c < v->channels; c++)
+				for (int i = 0; i < nn; i++)
+					val[c * nn + i] = VX_PI * thru[c] * y[i];
+		}
+	}
+	vx_irr_acc_add(v, a, val);
+}
+
 void
 vx_bake_texel(const vx_irrvol *v, const vx_gi *gi, const vx_grid *g,
     const vx_bake_opts *o, int64_t i, int64_t j, int64_t k, vx_irr_acc *a,
@@ -311,36 +412,28 @@ vx_bake_texel(const vx_irrvol *v, const vx_gi *gi, const vx_grid *g,
 	a->flags |= fl;
 	if (fl & (VX_TEXEL_NAN | VX_TEXEL_FLAT))
 		return;
-	vx_index_to_world(g, start, sw);
-	vx_gi_direct(gi, sw, start, n, rho, gi->high, D, st);
+	if (v->sh_order == 0) {
+		vx_index_to_world(g, start, sw);
+		vx_gi_direct(gi, sw, start, n, rho, gi->high, D, st);
+	}
 	if (o->target > 0) {
 		uint32_t cap = o->samples, r = o->round ? o->round : 16;
 
 		while (a->count < cap) {
 			if (a->count >= o->min_samples &&
-			    vx_irr_acc_relerr(a, v->fixed) <= o->target)
+			    vx_irr_acc_relerr(v, a) <= o->target)
 				break;
 			goal = a->count + (cap - a->count < r ? cap - a->count : r);
-			while (a->count < goal) {
-				double rgb[3];
-
-				vx_gi_sample(gi, start, n, rho, gi->high, D, id,
-				    (uint64_t)v->first + a->count, rgb, st);
-				vx_irr_acc_add(a, rgb, v->fixed);
-			}
+			while (a->count < goal)
+				one_sample(v, gi, start, n, rho, D, id, a, st);
 		}
 		return;
 	}
 	goal = o->topup ? o->samples : a->count + o->samples;
 	if (!o->topup && goal < a->count)
 		goal = UINT32_MAX;
-	while (a->count < goal) {
-		double rgb[3];
-
-		vx_gi_sample(gi, start, n, rho, gi->high, D, id,
-		    (uint64_t)v->first + a->count, rgb, st);
-		vx_irr_acc_add(a, rgb, v->fixed);
-	}
+	while (a->count < goal)
+		one_sample(v, gi, start, n, rho, D, id, a, st);
 }
 
 /* what the bake's parallel pass reads */
@@ -354,9 +447,11 @@ typedef struct run_ctx {
 	_Atomic uint64_t done;   /* texels done, for the progress report */
 } run_ctx;
 
-/* a thread's state: its estimator's counters and its texels' */
+/* a thread's state: its estimator's counters and its texels', and the
+ * accumulators of a final store's texel */
 typedef struct run_local {
 	vx_gi_stats ls;
+	vx_irr_acc *tmp;
 	uint64_t sampled, baked, flat, nan, border;
 	double last;             /* when it last reported progress */
 	int t;                   /* the thread */
@@ -367,17 +462,25 @@ run_start(void *ctx, void *lp, int t)
 {
 	run_local *L = lp;
 
-	(void)ctx;
+	run_ctx *C = ctx;
+
 	memset(L, 0, sizeof *L);
 	L->t = t;
 	L->last = wall();
+	if (C->v->store != VX_IRR_ACCUM &&
+	    (L->tmp = malloc(vx_irr_acc_bytes(C->v->ncomp))) == NULL)
+		return VX_ENOMEM;
 	return 0;
 }
 
 static int
 run_merge(void *ctx, void *lp, int t)
 {
-	vx_gi_stats_add(ctx, &((run_local *)lp)->ls);
+	run_local *L = lp;
+
+	vx_gi_stats_add(ctx, &L->ls);
+	free(L->tmp);
+	L->tmp = NULL;
 	return 0;
 }
 
@@ -394,13 +497,22 @@ run_texel(void *ctx, void *lp, const vx_par_block *b)
 	int64_t j = (int64_t)(C->todo[q] >> 21 & 0x1fffff);
 	int64_t k = (int64_t)(C->todo[q] >> 42);
 	int64_t s = vx_irr_texel(v, i, j, k);
-	vx_irr_acc *a = &v->acc[s];
-	uint32_t before = a->count;
+	vx_irr_acc *a;
+	uint32_t before;
 
+	if (v->store == VX_IRR_ACCUM) {
+		a = vx_irr_accp(v, s);
+	} else {                   /* a final store: from zero, then kept */
+		a = L->tmp;
+		memset(a, 0, vx_irr_acc_bytes(v->ncomp));
+	}
+	before = a->count;
 	vx_bake_texel(v, C->gi, C->g, C->o, i, j, k, a, &L->ls);
 	/* the wanted bit lives in the accumulators' flags too, so a stored
 	 * bake keeps its plan */
 	a->flags |= VX_TEXEL_WANTED;
+	if (v->store != VX_IRR_ACCUM)
+		vx_irr_settle(v, s, a);
 	L->sampled += a->count - before;
 	L->baked += a->count > before;
 	L->flat += (a->flags & VX_TEXEL_FLAT) != 0;
@@ -428,9 +540,6 @@ vx_bake_run(vx_irrvol *v, const vx_gi *gi, const vx_grid *g,
 	double t0 = wall();
 	vx_gi_stats gs;
 
-	if (v->store != VX_IRR_ACCUM)
-		return vx_err_set(e, VX_EUSAGE, "a final (%s) bake cannot take "
-		    "more samples", vx_irr_store_name(v->store));
 	/* the wanted texels, in brick order then texel order */
 	for (size_t s = 0; s < v->nslot * VX_IRR_BRICK3; s++)
 		nt += (v->flags[s] & VX_TEXEL_WANTED) != 0;
@@ -468,6 +577,7 @@ vx_bake_run(vx_irrvol *v, const vx_gi *gi, const vx_grid *g,
 		int rc;
 
 		memset(&C, 0, sizeof C);
+		memset(&gs, 0, sizeof gs);
 		C.v = v;
 		C.gi = gi;
 		C.g = g;
@@ -479,11 +589,15 @@ vx_bake_run(vx_irrvol *v, const vx_gi *gi, const vx_grid *g,
 			free(todo);
 			return rc;
 		}
-		vx_par_each(&team, run_start, NULL);
+		if ((rc = vx_par_each(&team, run_start, &C)) != 0) {
+			vx_par_each(&team, run_merge, &gs);
+			vx_par_free(&team);
+			free(todo);
+			return vx_err_set(e, rc, "out of memory");
+		}
 		vx_par_loop texels = VX_PAR_ITEMS((int64_t)n, 16);
 
 		vx_par_run(&team, &texels, run_texel, &C, NULL);
-		memset(&gs, 0, sizeof gs);
 		vx_par_each(&team, run_merge, &gs);
 		for (int t = 0; t < team.nthreads; t++) {
 			const run_local *L = vx_par_local(&team, t);

@@ -34,6 +34,8 @@ vx_irr_init(vx_irrvol *v)
 {
 	memset(v, 0, sizeof *v);
 	v->fixed = VX_IRR_FIXED;
+	v->ncomp = 3;
+	v->channels = 3;
 	v->scale = 1;
 	v->offset = 0.5;
 	v->seed = 1;
@@ -111,9 +113,23 @@ int
 vx_irr_setup(vx_irrvol *v, const vx_grid *g, uint32_t vcrc, double s,
     vx_irr_store store, vx_err *e)
 {
+	return vx_irr_setup_sh(v, g, vcrc, s, store, 0, 3, e);
+}
+
+int
+vx_irr_setup_sh(vx_irrvol *v, const vx_grid *g, uint32_t vcrc, double s,
+    vx_irr_store store, int order, int channels, vx_err *e)
+{
 	int rc;
 
 	vx_irr_free(v);
+	if (order < 0 || order > 16 || (channels != 1 && channels != 3) ||
+	    (order == 0 && channels != 3))
+		return vx_err_set(e, VX_EUSAGE, "SH order %d with %d channels",
+		    order, channels);
+	v->sh_order = order;
+	v->channels = channels;
+	v->ncomp = order ? channels * order * order : 3;
 	snprintf(v->volume, sizeof v->volume, "%s", g->name);
 	memcpy(v->vdims, g->dims, sizeof v->vdims);
 	v->vcrc = vcrc;
@@ -135,13 +151,13 @@ vx_irr_reserve(vx_irrvol *v, size_t n, vx_err *e)
 	if (vx_mul_size(&texels, n, VX_IRR_BRICK3) != 0)
 		return vx_err_set(e, VX_ENOMEM, "irradiance volume too large");
 	if (v->store == VX_IRR_ACCUM) {
-		if (vx_mul_size(&b, texels, sizeof *v->acc) != 0 ||
+		if (vx_mul_size(&b, texels, vx_irr_acc_bytes(v->ncomp)) != 0 ||
 		    (p = realloc(v->acc, b)) == NULL)
 			return vx_err_set(e, VX_ENOMEM, "out of memory for "
 			    "%zu texels", texels);
 		v->acc = p;
 	}
-	if (vx_mul_size(&b, texels, 3 * sizeof *v->mean) != 0 ||
+	if (vx_mul_size(&b, texels, (size_t)v->ncomp * sizeof *v->mean) != 0 ||
 	    (p = realloc(v->mean, b)) == NULL)
 		return vx_err_set(e, VX_ENOMEM, "out of memory for %zu texels",
 		    texels);
@@ -172,8 +188,10 @@ vx_irr_want_brick(vx_irrvol *v, size_t b, vx_err *e)
 		return rc;
 	base = v->nslot * VX_IRR_BRICK3;
 	if (v->store == VX_IRR_ACCUM)
-		memset(v->acc + base, 0, VX_IRR_BRICK3 * sizeof *v->acc);
-	memset(v->mean + 3 * base, 0, 3 * VX_IRR_BRICK3 * sizeof *v->mean);
+		memset(v->acc + base * vx_irr_acc_bytes(v->ncomp), 0,
+		    VX_IRR_BRICK3 * vx_irr_acc_bytes(v->ncomp));
+	memset(v->mean + (size_t)v->ncomp * base, 0,
+	    (size_t)v->ncomp * VX_IRR_BRICK3 * sizeof *v->mean);
 	memset(v->flags + base, 0, VX_IRR_BRICK3 * sizeof *v->flags);
 	v->slot[b] = (uint32_t)++v->nslot;
 	return 0;
@@ -224,16 +242,16 @@ mul64(uint64_t a, uint64_t b, uint64_t *lo, uint64_t *hi)
 	*hi = p11 + (p01 >> 32) + (p10 >> 32) + (mid >> 32);
 }
 
-/* q: v in 2^-fixed units, rounded to nearest; *sat set when v is too
- * large for 2^62 units */
-static uint64_t
-quant(double v, int fixed, int *sat)
+/* q: v in units of 1/scale (scale = 2^fixed: the product is exact),
+ * rounded to nearest; *sat set when v is too large for 2^62 units */
+static inline uint64_t
+quant(double v, double scale, int *sat)
 {
 	double s;
 
 	if (!(v > 0))                  /* 0, negative, NaN */
 		return 0;
-	s = ldexp(v, fixed);
+	s = v * scale;
 	if (!(s < 4611686018427387904.0)) {   /* 2^62, and +Inf */
 		*sat = 1;
 		return (uint64_t)1 << 62;
@@ -241,26 +259,59 @@ quant(double v, int fixed, int *sat)
 	return (uint64_t)llrint(s);
 }
 
-void
-vx_irr_acc_add(vx_irr_acc *a, const double rgb[3], int fixed)
+/* qs: the signed quant (NaN is 0) */
+static inline int64_t
+qs(double v, double scale, int *sat)
 {
-	int sat = 0;
-	uint64_t qy, lo, hi;
+	return v < 0 ? -(int64_t)quant(-v, scale, sat) :
+	    (int64_t)quant(v, scale, sat);
+}
+
+/* add: *a += q, saturating at +-INT64_MAX */
+static inline void
+add_sat(int64_t *a, int64_t q, int *sat)
+{
+	if (q > 0 && *a > INT64_MAX - q) {
+		*a = INT64_MAX;
+		*sat = 1;
+	} else if (q < 0 && *a < -INT64_MAX - q) {
+		*a = -INT64_MAX;
+		*sat = 1;
+	} else {
+		*a += q;
+	}
+}
+
+/* the luminance of a sample or a mean (see vx_irr_acc_add) */
+static double
+lum(const vx_irrvol *v, const double *val)
+{
+	size_t cs = v->sh_order ? (size_t)v->sh_order * (size_t)v->sh_order : 1;
 	double y = 0;
 
-	for (int c = 0; c < 3; c++) {
-		uint64_t q = quant(rgb[c], fixed, &sat);
+	if (v->channels == 1)
+		return val[0] > 0 ? val[0] : 0;
+	for (int c = 0; c < 3; c++)
+		if (val[c * cs] > 0 && isfinite(val[c * cs]))
+			y += LUM[c] * val[c * cs];
+	return y;
+}
 
-		if ((uint64_t)a->sum[c] > (uint64_t)INT64_MAX - q) {
-			a->sum[c] = INT64_MAX;
-			sat = 1;
-		} else {
-			a->sum[c] += (int64_t)q;
-		}
-		if (rgb[c] > 0 && isfinite(rgb[c]))
-			y += LUM[c] * rgb[c];
-	}
-	qy = quant(y, fixed, &sat);
+void
+vx_irr_acc_add(const vx_irrvol *v, vx_irr_acc *a, const double *val)
+{
+	double scale = ldexp(1, v->fixed);
+	int sat = 0;
+	uint64_t qy, lo, hi;
+
+	if (v->sh_order)
+		for (int c = 0; c < v->ncomp; c++)
+			add_sat(&a->sum[c], qs(val[c], scale, &sat), &sat);
+	else
+		for (int c = 0; c < v->ncomp; c++)
+			add_sat(&a->sum[c], (int64_t)quant(val[c], scale, &sat),
+			    &sat);
+	qy = quant(lum(v, val), scale, &sat);
 	mul64(qy, qy, &lo, &hi);
 	a->sq[0] += lo;
 	hi += a->sq[0] < lo;
@@ -277,18 +328,15 @@ vx_irr_acc_add(vx_irr_acc *a, const double rgb[3], int fixed)
 }
 
 void
-vx_irr_acc_merge(vx_irr_acc *a, const vx_irr_acc *b)
+vx_irr_acc_merge(const vx_irrvol *v, vx_irr_acc *a, const vx_irr_acc *b)
 {
 	uint64_t lo;
+	int sat = 0;
 
-	for (int c = 0; c < 3; c++) {
-		if ((uint64_t)a->sum[c] > (uint64_t)INT64_MAX - (uint64_t)b->sum[c]) {
-			a->sum[c] = INT64_MAX;
-			a->flags |= VX_TEXEL_OVERFLOW;
-		} else {
-			a->sum[c] += b->sum[c];
-		}
-	}
+	for (int c = 0; c < v->ncomp; c++)
+		add_sat(&a->sum[c], b->sum[c], &sat);
+	if (sat)
+		a->flags |= VX_TEXEL_OVERFLOW;
 	lo = a->sq[0] + b->sq[0];
 	{
 		uint64_t carry = lo < a->sq[0], hi = b->sq[1] + carry;
@@ -307,25 +355,26 @@ vx_irr_acc_merge(vx_irr_acc *a, const vx_irr_acc *b)
 }
 
 void
-vx_irr_acc_mean(const vx_irr_acc *a, int fixed, double rgb[3])
+vx_irr_acc_mean(const vx_irrvol *v, const vx_irr_acc *a, double *out)
 {
-	for (int c = 0; c < 3; c++)
-		rgb[c] = a->count ? ldexp((double)a->sum[c], -fixed) /
+	for (int c = 0; c < v->ncomp; c++)
+		out[c] = a->count ? ldexp((double)a->sum[c], -v->fixed) /
 		    (double)a->count : 0;
 }
 
 double
-vx_irr_acc_relerr(const vx_irr_acc *a, int fixed)
+vx_irr_acc_relerr(const vx_irrvol *v, const vx_irr_acc *a)
 {
-	double m[3], my, sq, var, n = a->count;
+	double m[VX_IRR_MAX_COMP], my, sq, var, n = a->count;
 
 	if (a->count < 2)
 		return 0;
-	vx_irr_acc_mean(a, fixed, m);
-	my = LUM[0] * m[0] + LUM[1] * m[1] + LUM[2] * m[2];
+	vx_irr_acc_mean(v, a, m);
+	my = lum(v, m);
 	if (!(my > 0))
 		return 0;
-	sq = ldexp(ldexp((double)a->sq[1], 64) + (double)a->sq[0], -2 * fixed);
+	sq = ldexp(ldexp((double)a->sq[1], 64) + (double)a->sq[0],
+	    -2 * v->fixed);
 	var = (sq / n - my * my) * n / (n - 1);
 	if (var < 0)
 		var = 0;
@@ -340,13 +389,13 @@ vx_irr_finish(vx_irrvol *v)
 	if (v->store != VX_IRR_ACCUM)
 		return;
 	for (size_t s = 0; s < n; s++) {
-		double m[3];
+		const vx_irr_acc *a = vx_irr_accp(v, (int64_t)s);
+		double m[VX_IRR_MAX_COMP];
 
-		vx_irr_acc_mean(&v->acc[s], v->fixed, m);
-		for (int c = 0; c < 3; c++)
-			v->mean[3 * s + c] = (float)m[c];
-		v->flags[s] = v->acc[s].flags |
-		    (v->acc[s].count > 0 ? VX_TEXEL_SAMPLED : 0);
+		vx_irr_acc_mean(v, a, m);
+		for (int c = 0; c < v->ncomp; c++)
+			v->mean[(size_t)v->ncomp * s + (size_t)c] = (float)m[c];
+		v->flags[s] = a->flags | (a->count > 0 ? VX_TEXEL_SAMPLED : 0);
 	}
 }
 
@@ -376,22 +425,26 @@ lattice_coord(const vx_irrvol *v, const double p[3], int64_t b[3],
 	}
 }
 
-int
-vx_irr_lookup(const vx_irrvol *v, const double p[3], vx_irr_interp m,
-    const vx_grid *g, double iso, double rgb[3])
+/* weights: the texels and raw weights of a lookup; *ws gets their sum
+ * (n = 0 when it is not positive) */
+static int
+weights(const vx_irrvol *v, const double p[3], vx_irr_interp m,
+    const vx_grid *g, double iso, int64_t idx[64], double w[64], double *ws)
 {
 	int64_t b[3];
-	double f[3], wsum = 0, acc[3] = { 0, 0, 0 };
+	double f[3], wsum = 0;
+	int n = 0;
 
-	rgb[0] = rgb[1] = rgb[2] = 0;
+	*ws = 1;
+
 	lattice_coord(v, p, b, f);
 	if (m == VX_IRR_NEAREST) {
 		int64_t s = vx_irr_texel(v, b[0] + (f[0] >= 0.5),
 		    b[1] + (f[1] >= 0.5), b[2] + (f[2] >= 0.5));
 
 		if (s >= 0 && vx_irr_usable(v, s)) {
-			for (int c = 0; c < 3; c++)
-				rgb[c] = v->mean[3 * s + c];
+			idx[0] = s;
+			w[0] = 1;
 			return 1;
 		}
 		m = VX_IRR_TRILINEAR;  /* unusable nearest: its neighbours */
@@ -416,27 +469,28 @@ vx_irr_lookup(const vx_irrvol *v, const double p[3], vx_irr_interp m,
 		}
 		if (bs < 0)
 			return 0;
-		for (int c = 0; c < 3; c++)
-			rgb[c] = v->mean[3 * bs + c];
+		idx[0] = bs;
+		w[0] = 1;
 		return 1;
 	}
 	if (m == VX_IRR_TRICUBIC) {
-		double w[3][4];
+		double wt3[3][4];
 
 		for (int a = 0; a < 3; a++)
-			vx_bspline_weights(f[a], w[a], 0);
+			vx_bspline_weights(f[a], wt3[a], 0);
 		for (int z = 0; z < 4; z++)
 			for (int y = 0; y < 4; y++)
 				for (int x = 0; x < 4; x++) {
 					int64_t s = vx_irr_texel(v, b[0] - 1 + x,
 					    b[1] - 1 + y, b[2] - 1 + z);
-					double wt = w[0][x] * w[1][y] * w[2][z];
+					double wt = wt3[0][x] * wt3[1][y] *
+					    wt3[2][z];
 
 					if (s < 0 || !vx_irr_usable(v, s))
 						continue;
 					wsum += wt;
-					for (int c = 0; c < 3; c++)
-						acc[c] += wt * v->mean[3 * s + c];
+					idx[n] = s;
+					w[n++] = wt;
 				}
 	} else {
 		for (int k = 0; k < 8; k++) {
@@ -449,14 +503,47 @@ vx_irr_lookup(const vx_irrvol *v, const double p[3], vx_irr_interp m,
 			if (s < 0 || !vx_irr_usable(v, s))
 				continue;
 			wsum += wt;
-			for (int c = 0; c < 3; c++)
-				acc[c] += wt * v->mean[3 * s + c];
+			idx[n] = s;
+			w[n++] = wt;
 		}
 	}
-	if (!(wsum > 0))
+	*ws = wsum;
+	return wsum > 0 ? n : 0;
+}
+
+int
+vx_irr_weights(const vx_irrvol *v, const double p[3], vx_irr_interp m,
+    const vx_grid *g, double iso, int64_t idx[64], double w[64])
+{
+	double ws;
+	int n = weights(v, p, m, g, iso, idx, w, &ws);
+
+	for (int k = 0; k < n; k++)
+		w[k] /= ws;
+	return n;
+}
+
+int
+vx_irr_lookup(const vx_irrvol *v, const double p[3], vx_irr_interp m,
+    const vx_grid *g, double iso, double *out)
+{
+	int64_t idx[64];
+	double w[64], ws;
+	int n = weights(v, p, m, g, iso, idx, w, &ws), nc = v->ncomp;
+
+	for (int c = 0; c < nc; c++)
+		out[c] = 0;
+	for (int k = 0; k < n; k++) {
+		const float *t = v->mean + (size_t)nc * (size_t)idx[k];
+
+		for (int c = 0; c < nc; c++)
+			out[c] += w[k] * t[c];
+	}
+	if (n == 0)
 		return 0;
-	for (int c = 0; c < 3; c++)
-		rgb[c] = acc[c] / wsum;
+	if (ws != 1)      /* nearest modes give one weight of 1 exactly */
+		for (int c = 0; c < nc; c++)
+			out[c] /= ws;
 	return 1;
 }
 
@@ -510,6 +597,8 @@ same_lattice(const vx_irrvol *a, const vx_irrvol *b, vx_err *e)
 		    b->store));
 	if (a->fixed != b->fixed)
 		return vx_err_set(e, VX_EDATA, "fixed-point bits differ");
+	if (a->sh_order != b->sh_order || a->channels != b->channels)
+		return vx_err_set(e, VX_EDATA, "texel contents differ");
 	return 0;
 }
 
@@ -520,7 +609,7 @@ same_samples(const vx_irrvol *a, const vx_irr_acc *x, const vx_irrvol *b,
     const vx_irr_acc *y)
 {
 	return a->first == b->first && x->count == y->count &&
-	    memcmp(x->sum, y->sum, sizeof x->sum) == 0 &&
+	    memcmp(x->sum, y->sum, (size_t)a->ncomp * sizeof *x->sum) == 0 &&
 	    memcmp(x->sq, y->sq, sizeof x->sq) == 0;
 }
 
@@ -534,49 +623,51 @@ vx_irr_merge(vx_irrvol *a, const vx_irrvol *b, vx_err *e)
 		return rc;
 	/* check every texel first, so a refused merge leaves a unchanged */
 	for (size_t br = 0; br < nb; br++) {
-		const vx_irr_acc *pb, *pa;
+		int64_t ob, oa;
 
 		if (b->slot[br] == 0 || a->slot[br] == 0)
 			continue;
-		pb = b->acc + (size_t)(b->slot[br] - 1) * VX_IRR_BRICK3;
-		pa = a->acc + (size_t)(a->slot[br] - 1) * VX_IRR_BRICK3;
-		for (int t = 0; t < VX_IRR_BRICK3; t++)
-			if (pa[t].count > 0 && pb[t].count > 0 &&
-			    !same_samples(a, &pa[t], b, &pb[t]) &&
-			    (uint64_t)a->first + pa[t].count != b->first)
+		ob = (int64_t)(b->slot[br] - 1) * VX_IRR_BRICK3;
+		oa = (int64_t)(a->slot[br] - 1) * VX_IRR_BRICK3;
+		for (int t = 0; t < VX_IRR_BRICK3; t++) {
+			const vx_irr_acc *pa = vx_irr_accp(a, oa + t);
+			const vx_irr_acc *pb = vx_irr_accp(b, ob + t);
+
+			if (pa->count > 0 && pb->count > 0 &&
+			    !same_samples(a, pa, b, pb) &&
+			    (uint64_t)a->first + pa->count != b->first)
 				return vx_err_set(e, VX_EDATA, "sample ranges do "
 				    "not join: a texel has samples [%u, %llu), "
 				    "the other bake starts at %u", a->first,
-				    (unsigned long long)a->first + pa[t].count,
+				    (unsigned long long)a->first + pa->count,
 				    b->first);
+		}
 	}
 	for (size_t br = 0; br < nb; br++) {
-		vx_irr_acc *pa;
-		const vx_irr_acc *pb;
+		int64_t ob, oa;
 
 		if (b->slot[br] == 0)
 			continue;
 		if ((rc = vx_irr_want_brick(a, br, e)) != 0)
 			return rc;
-		pb = b->acc + (size_t)(b->slot[br] - 1) * VX_IRR_BRICK3;
-		pa = a->acc + (size_t)(a->slot[br] - 1) * VX_IRR_BRICK3;
+		ob = (int64_t)(b->slot[br] - 1) * VX_IRR_BRICK3;
+		oa = (int64_t)(a->slot[br] - 1) * VX_IRR_BRICK3;
 		for (int t = 0; t < VX_IRR_BRICK3; t++) {
-			if (pb[t].count == 0) {
-				pa[t].flags |= pb[t].flags;
-				continue;
-			}
-			if (same_samples(a, &pa[t], b, &pb[t])) {
-				pa[t].flags |= pb[t].flags;
-				continue;
-			}
-			if (pa[t].count == 0) {
-				uint32_t fl = pa[t].flags;
+			vx_irr_acc *pa = vx_irr_accp(a, oa + t);
+			const vx_irr_acc *pb = vx_irr_accp(b, ob + t);
 
-				pa[t] = pb[t];
-				pa[t].flags |= fl;
+			if (pb->count == 0 || same_samples(a, pa, b, pb)) {
+				pa->flags |= pb->flags;
 				continue;
 			}
-			vx_irr_acc_merge(&pa[t], &pb[t]);
+			if (pa->count == 0) {
+				uint32_t fl = pa->flags;
+
+				memcpy(pa, pb, vx_irr_acc_bytes(a->ncomp));
+				pa->flags |= fl;
+				continue;
+			}
+			vx_irr_acc_merge(a, pa, pb);
 		}
 	}
 	if ((uint64_t)a->first + a->samples == b->first)
@@ -585,6 +676,22 @@ vx_irr_merge(vx_irrvol *a, const vx_irrvol *b, vx_err *e)
 		a->samples = b->samples;
 	vx_irr_finish(a);
 	return 0;
+}
+
+void
+vx_irr_settle(vx_irrvol *v, int64_t s, const vx_irr_acc *a)
+{
+	double m[VX_IRR_MAX_COMP];
+	float *out = v->mean + (size_t)v->ncomp * (size_t)s;
+
+	vx_irr_acc_mean(v, a, m);
+	for (int c = 0; c < v->ncomp; c++) {
+		out[c] = (float)m[c];
+		if (v->store == VX_IRR_F16)
+			out[c] = vx_half_to_float(vx_half_from_float(out[c]));
+	}
+	v->flags[s] = a->flags & ~(uint32_t)(VX_TEXEL_SAMPLED |
+	    (a->count == 0 ? VX_TEXEL_WANTED : 0));
 }
 
 int
@@ -601,12 +708,13 @@ vx_irr_finalize(vx_irrvol *v, vx_irr_store store, vx_err *e)
 	 * no count, so its wanted bit goes */
 	for (size_t t = 0; t < v->nslot * VX_IRR_BRICK3; t++)
 		v->flags[t] &= ~(uint32_t)(VX_TEXEL_SAMPLED |
-		    (v->acc[t].count == 0 ? VX_TEXEL_WANTED : 0));
+		    (vx_irr_accp(v, (int64_t)t)->count == 0 ?
+		    VX_TEXEL_WANTED : 0));
 	free(v->acc);
 	v->acc = NULL;
 	v->store = store;
 	if (store == VX_IRR_F16) {
-		size_t n = 3 * v->nslot * VX_IRR_BRICK3;
+		size_t n = (size_t)v->ncomp * v->nslot * VX_IRR_BRICK3;
 
 		for (size_t s = 0; s < n; s++)
 			v->mean[s] = vx_half_to_float(vx_half_from_float(
@@ -616,25 +724,33 @@ vx_irr_finalize(vx_irrvol *v, vx_irr_store store, vx_err *e)
 }
 
 size_t
-vx_irr_texel_bytes(vx_irr_store s)
+vx_irr_texel_bytes(vx_irr_store s, int ncomp)
 {
 	switch (s) {
 	case VX_IRR_ACCUM:
-		return 48;
+		return vx_irr_acc_bytes(ncomp);
 	case VX_IRR_F32:
-		return 16;
+		return 4 + 4 * (size_t)ncomp;
 	case VX_IRR_F16:
-		return 8;
+		return 2 + 2 * (size_t)ncomp;
 	default:
 		return 0;
 	}
 }
 
 size_t
+vx_irr_texel_memory(vx_irr_store s, int ncomp)
+{
+	size_t t = 4 + 4 * (size_t)ncomp;       /* flags, mean */
+
+	return s == VX_IRR_ACCUM ? t + vx_irr_acc_bytes(ncomp) : t;
+}
+
+size_t
 vx_irr_bytes(const vx_irrvol *v)
 {
-	return v->nslot * VX_IRR_BRICK3 * vx_irr_texel_bytes(v->store) +
-	    nbricks(v) * sizeof *v->slot;
+	return v->nslot * VX_IRR_BRICK3 * vx_irr_texel_memory(v->store,
+	    v->ncomp) + nbricks(v) * sizeof *v->slot;
 }
 
 /* ---- the IRRV chunk ---- */
@@ -647,7 +763,7 @@ vx_irr_to_chunk(const vx_irrvol *v, int zlevel, vx_chunk *c, vx_err *e)
 	vx_hdr h;
 	int rc;
 
-	rec = vx_irr_texel_bytes(v->store);
+	rec = vx_irr_texel_bytes(v->store, v->ncomp);
 	if (vx_mul_size(&n, v->nslot * VX_IRR_BRICK3, rec) != 0 ||
 	    vx_add_size(&n, n, mapn) != 0)
 		return vx_err_set(e, VX_ENOMEM, "irradiance volume too large");
@@ -662,6 +778,9 @@ vx_irr_to_chunk(const vx_irrvol *v, int zlevel, vx_chunk *c, vx_err *e)
 	    (long long)v->dims[0], (long long)v->dims[1],
 	    (long long)v->dims[2])) ||
 	    (rc = vx_hdr_set(&h, "scale", e, "%.17g", v->scale)) ||
+	    (v->sh_order > 0 &&
+	    ((rc = vx_hdr_set(&h, "order", e, "%d", v->sh_order)) ||
+	    (rc = vx_hdr_set(&h, "channels", e, "%d", v->channels)))) ||
 	    (rc = vx_hdr_set(&h, "brick", e, "%d", VX_IRR_BRICK)) ||
 	    (rc = vx_hdr_set(&h, "bricks", e, "%zu", v->nslot)) ||
 	    (rc = vx_hdr_set(&h, "store", e, "%s",
@@ -694,23 +813,26 @@ vx_irr_to_chunk(const vx_irrvol *v, int zlevel, vx_chunk *c, vx_err *e)
 			continue;
 		base = (size_t)(v->slot[b] - 1) * VX_IRR_BRICK3;
 		for (size_t t = base; t < base + VX_IRR_BRICK3; t++) {
+			int nc = v->ncomp;
+
 			if (v->store == VX_IRR_ACCUM) {
-				const vx_irr_acc *a = &v->acc[t];
+				const vx_irr_acc *a = vx_irr_accp(v, (int64_t)t);
 
 				vx_put_le32(q, a->count);
 				vx_put_le32(q + 4, a->flags);
-				for (int ch = 0; ch < 3; ch++)
+				for (int ch = 0; ch < nc; ch++)
 					vx_put_le64(q + 8 + 8 * ch,
 					    (uint64_t)a->sum[ch]);
-				vx_put_le64(q + 32, a->sq[0]);
-				vx_put_le64(q + 40, a->sq[1]);
+				vx_put_le64(q + 8 + 8 * nc, a->sq[0]);
+				vx_put_le64(q + 16 + 8 * nc, a->sq[1]);
 			} else if (v->store == VX_IRR_F32) {
 				vx_put_le32(q, v->flags[t] &
 				    ~(uint32_t)VX_TEXEL_SAMPLED);
-				for (int ch = 0; ch < 3; ch++) {
+				for (int ch = 0; ch < nc; ch++) {
 					uint32_t u;
 
-					memcpy(&u, &v->mean[3 * t + ch], 4);
+					memcpy(&u, &v->mean[(size_t)nc * t +
+					    (size_t)ch], 4);
 					vx_put_le32(q + 4 + 4 * ch, u);
 				}
 			} else {
@@ -718,9 +840,9 @@ vx_irr_to_chunk(const vx_irrvol *v, int zlevel, vx_chunk *c, vx_err *e)
 
 				q[0] = (unsigned char)(f & 0xff);
 				q[1] = (unsigned char)(f >> 8);
-				for (int ch = 0; ch < 3; ch++) {
+				for (int ch = 0; ch < nc; ch++) {
 					uint16_t hv = vx_half_from_float(
-					    v->mean[3 * t + ch]);
+					    v->mean[(size_t)nc * t + (size_t)ch]);
 
 					q[2 + 2 * ch] = (unsigned char)(hv & 0xff);
 					q[3 + 2 * ch] = (unsigned char)(hv >> 8);
@@ -729,12 +851,14 @@ vx_irr_to_chunk(const vx_irrvol *v, int zlevel, vx_chunk *c, vx_err *e)
 			q += rec;
 		}
 	}
-	rc = vx_payload_make(c, VX_CHUNK_IRRAD, &h, body, n, zlevel, e);
+	rc = vx_payload_make(c, v->sh_order ? VX_CHUNK_SHXFER : VX_CHUNK_IRRAD,
+	    &h, body, n, zlevel, e);
 out:
 	free(body);
 	vx_hdr_free(&h);
 	if (rc != 0)
-		vx_err_push(e, "irradiance volume");
+		vx_err_push(e, v->sh_order ? "SH transfer volume" :
+		    "irradiance volume");
 	return rc;
 }
 
@@ -791,6 +915,22 @@ from_chunk(vx_irrvol *v, const vx_chunk *c, vx_err *e)
 	vx_hdr_init(&h);
 	if ((rc = vx_payload_parse(c, &h, &body, &bodylen, e)) != 0)
 		goto out;
+	if (memcmp(c->type, VX_CHUNK_SHXFER, 4) == 0) {
+		int64_t o[1], ch[1];
+
+		if ((rc = vx_hdr_get_i64(&h, "order", o, 1, e)) != 0 ||
+		    (rc = vx_hdr_get_i64(&h, "channels", ch, 1, e)) != 0)
+			goto out;
+		if (o[0] < 1 || o[0] > 16 || (ch[0] != 1 && ch[0] != 3)) {
+			rc = vx_err_set(e, VX_EDATA, "order %lld, channels "
+			    "%lld: order 1 to 16, channels 1 or 3",
+			    (long long)o[0], (long long)ch[0]);
+			goto out;
+		}
+		v->sh_order = (int)o[0];
+		v->channels = (int)ch[0];
+		v->ncomp = v->channels * v->sh_order * v->sh_order;
+	}
 	if ((s = vx_hdr_get(&h, "volume")) == NULL || !*s ||
 	    strlen(s) >= sizeof v->volume) {
 		rc = vx_err_set(e, VX_EDATA, "volume: missing or too long");
@@ -901,7 +1041,7 @@ from_chunk(vx_irrvol *v, const vx_chunk *c, vx_err *e)
 		goto out;
 	}
 	mapn = (nb + 7) / 8;
-	rec = vx_irr_texel_bytes(v->store);
+	rec = vx_irr_texel_bytes(v->store, v->ncomp);
 	expect = mapn + (size_t)nstored * VX_IRR_BRICK3 * rec;
 	if ((rc = vx_body_fits(&h, bodylen, expect, e)) != 0)
 		goto out;
@@ -937,24 +1077,27 @@ from_chunk(vx_irrvol *v, const vx_chunk *c, vx_err *e)
 			goto out;
 		base = (size_t)(v->slot[b] - 1) * VX_IRR_BRICK3;
 		for (size_t t = base; t < base + VX_IRR_BRICK3; t++, q += rec) {
+			int nc = v->ncomp;
+
 			if (v->store == VX_IRR_ACCUM) {
-				vx_irr_acc *a = &v->acc[t];
+				vx_irr_acc *a = vx_irr_accp(v, (int64_t)t);
 
 				a->count = vx_le32(q);
 				a->flags = vx_le32(q + 4);
-				for (int k = 0; k < 3; k++) {
+				for (int k = 0; k < nc; k++) {
 					a->sum[k] = (int64_t)vx_le64(q + 8 + 8 * k);
-					if (a->sum[k] < 0) {
+					if (a->sum[k] < (v->sh_order ?
+					    -INT64_MAX : 0)) {
 						rc = vx_err_set(e, VX_EDATA,
 						    "a negative irradiance sum");
 						goto out;
 					}
 				}
-				a->sq[0] = vx_le64(q + 32);
-				a->sq[1] = vx_le64(q + 40);
+				a->sq[0] = vx_le64(q + 8 + 8 * nc);
+				a->sq[1] = vx_le64(q + 16 + 8 * nc);
 				v->flags[t] = a->flags;
 			} else {
-				for (int k = 0; k < 3; k++) {
+				for (int k = 0; k < nc; k++) {
 					float fv;
 
 					if (v->store == VX_IRR_F32) {
@@ -966,13 +1109,16 @@ from_chunk(vx_irrvol *v, const vx_chunk *c, vx_err *e)
 						    q[2 + 2 * k] |
 						    (unsigned)q[3 + 2 * k] << 8));
 					}
-					if (!(fv >= 0) || !isfinite(fv)) {
+					if (!isfinite(fv) || (v->sh_order == 0 &&
+					    !(fv >= 0))) {
 						rc = vx_err_set(e, VX_EDATA,
-						    "irradiance %g: must be "
-						    "finite and >= 0", fv);
+						    v->sh_order ? "coefficient %g: "
+						    "must be finite" : "irradiance "
+						    "%g: must be finite and >= 0",
+						    fv);
 						goto out;
 					}
-					v->mean[3 * t + k] = fv;
+					v->mean[(size_t)nc * t + (size_t)k] = fv;
 				}
 				v->flags[t] = v->store == VX_IRR_F32 ?
 				    vx_le32(q) : (uint32_t)(q[0] | q[1] << 8);
@@ -995,13 +1141,14 @@ vx_irr_from_chunk(vx_irrvol *v, const vx_chunk *c, vx_err *e)
 	vx_irr_init(v);
 	if ((rc = from_chunk(v, c, e)) != 0) {
 		vx_irr_free(v);
-		vx_err_push(e, "irradiance volume");
+		vx_err_push(e, memcmp(c->type, VX_CHUNK_SHXFER, 4) == 0 ?
+		    "SH transfer volume" : "irradiance volume");
 	}
 	return rc;
 }
 
-int
-vx_irr_from_stream(vx_irrvol *v, const vx_stream *s, const char *volume,
+static int
+find(vx_irrvol *v, const vx_stream *s, const char *tag, const char *volume,
     long *index, vx_err *e)
 {
 	long i = -1;
@@ -1010,7 +1157,7 @@ vx_irr_from_stream(vx_irrvol *v, const vx_stream *s, const char *volume,
 	vx_irr_init(v);
 	if (index != NULL)
 		*index = -1;
-	while ((i = vx_stream_find(s, VX_CHUNK_IRRAD, (size_t)(i + 1))) >= 0) {
+	while ((i = vx_stream_find(s, tag, (size_t)(i + 1))) >= 0) {
 		if ((rc = vx_irr_from_chunk(v, &s->chunk[i], e)) != 0)
 			return rc;
 		if (volume == NULL || strcmp(v->volume, volume) == 0) {
@@ -1021,4 +1168,18 @@ vx_irr_from_stream(vx_irrvol *v, const vx_stream *s, const char *volume,
 		vx_irr_free(v);
 	}
 	return 0;
+}
+
+int
+vx_irr_from_stream(vx_irrvol *v, const vx_stream *s, const char *volume,
+    long *index, vx_err *e)
+{
+	return find(v, s, VX_CHUNK_IRRAD, volume, index, e);
+}
+
+int
+vx_irr_sh_from_stream(vx_irrvol *v, const vx_stream *s, const char *volume,
+    long *index, vx_err *e)
+{
+	return find(v, s, VX_CHUNK_SHXFER, volume, index, e);
 }

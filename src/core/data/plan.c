@@ -132,6 +132,7 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 	int k, nl = s->nlight, ns = s->nsurface;
 	double layers, segments;
 	char name[VX_PLAN_NAME], text[VX_PLAN_REASON];
+	const char *baked;
 
 	if (nl > VX_SCENE_MAX_LIGHTS)
 		nl = VX_SCENE_MAX_LIGHTS;
@@ -174,7 +175,12 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 	}
 	p->composite = ntransp > 0;
 	p->irradiance = s->has_illumination &&
-	    s->illumination == VX_ILLUM_IRRADIANCE;
+	    (s->illumination == VX_ILLUM_IRRADIANCE ||
+	    s->illumination == VX_ILLUM_SH);
+	p->sh = s->has_illumination && s->illumination == VX_ILLUM_SH;
+	baked = p->sh ? "illumination sh: in the SH transfer volume and "
+	    "lighting" : "illumination irradiance: baked into the irradiance "
+	    "volume";
 	p->pathtrace = s->has_illumination &&
 	    s->illumination == VX_ILLUM_PATHTRACE;
 	p->specular = (fx & VX_FX_SPECULAR) && nspec > 0 && !p->irradiance &&
@@ -210,10 +216,12 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 		}
 		if (p->irradiance) {
 			vx_plan_add(p, name, VX_PLAN_OFF, 0, "%s",
-			    l->type == VX_LIGHT_HEADLIGHT ? "illumination "
-			    "irradiance: a headlight is not part of the baked "
-			    "light" : "illumination irradiance: baked into the "
-			    "irradiance volume");
+			    l->type == VX_LIGHT_HEADLIGHT ? "a headlight is not "
+			    "part of the baked light" : p->sh ?
+			    "illumination sh: the SH lighting (SHLC, or the "
+			    "scene's environment or sky) lights the transfer "
+			    "volume; point and directional lights are not part "
+			    "of it" : baked);
 			continue;
 		}
 		if (l->type == VX_LIGHT_ENVIRONMENT) {
@@ -272,8 +280,7 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 
 	/* Effects, on or off, with the reason. */
 	if (p->irradiance)
-		vx_plan_add(p, "shadows", VX_PLAN_OFF, 0, "illumination "
-		    "irradiance: baked into the irradiance volume");
+		vx_plan_add(p, "shadows", VX_PLAN_OFF, 0, "%s", baked);
 	else if (p->pathtrace)
 		vx_plan_add(p, "shadows", (fx & VX_FX_SHADOWS) ? VX_PLAN_ON :
 		    VX_PLAN_OFF, 0, "illumination pathtrace: %s",
@@ -302,7 +309,8 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 		    "surface is opaque: first hit only, no compositing");
 	if (p->irradiance || p->pathtrace)
 		vx_plan_add(p, "specular", VX_PLAN_OFF, 0, "illumination %s: "
-		    "diffuse only", p->irradiance ? "irradiance" : "pathtrace");
+		    "diffuse only", p->sh ? "sh" : p->irradiance ? "irradiance" :
+		    "pathtrace");
 	else if (p->specular)
 		vx_plan_add(p, "specular", VX_PLAN_ON, 0, "Blinn-Phong on %d "
 		    "surface%s with ks > 0", nspec, nspec > 1 ? "s" : "");
@@ -331,8 +339,7 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 
 	/* Reserved: asked for, but not computed by this renderer yet. */
 	if (p->irradiance && (fx & VX_FX_INTERREFLECTION)) {
-		vx_plan_add(p, "interreflection", VX_PLAN_OFF, 0, "illumination "
-		    "irradiance: baked into the irradiance volume");
+		vx_plan_add(p, "interreflection", VX_PLAN_OFF, 0, "%s", baked);
 	} else if (p->pathtrace) {
 		int nb = (fx & VX_FX_INTERREFLECTION) && s->has_interreflection ?
 		    s->bounces : 0;
@@ -364,15 +371,17 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 		    layers, "pathtrace: albedo E / pi, E from %d paths per pixel "
 		    "sample (cosine-weighted, counter-based), the reference",
 		    s->pt_samples);
+	else if (p->sh)
+		vx_plan_add(p, "illumination", VX_PLAN_ON, 0, "sh: albedo E / "
+		    "pi, E the dot product of the SH lighting with the "
+		    "transfer vector interpolated (%s) from the SH transfer "
+		    "volume; no rays beyond the primary ones",
+		    vx_enum_str(&vx_interp_enum, s->interp));
 	else if (p->irradiance)
 		vx_plan_add(p, "illumination", VX_PLAN_ON, 0, "irradiance: "
 		    "albedo E / pi, E interpolated (%s) from the irradiance "
 		    "volume; no rays beyond the primary ones",
 		    vx_enum_str(&vx_interp_enum, s->interp));
-	else if (s->has_illumination && s->illumination == VX_ILLUM_SH)
-		vx_plan_add(p, "illumination", VX_PLAN_UNSUPPORTED, 0,
-		    "SH lookup (order %d) not supported by raycast yet: lights "
-		    "evaluated at each hit", s->sh_order);
 	if (s->ntf_opacity > 0 || s->ntf_color > 0)
 		vx_plan_add(p, "transfer function", VX_PLAN_OFF, 0, "for direct "
 		    "volume rendering: not used by raycast");

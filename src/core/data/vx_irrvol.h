@@ -67,14 +67,25 @@ typedef enum vx_irr_store {
 	VX_IRR_STORE_LAST
 } vx_irr_store;
 
-/* One texel's accumulators: 48 bytes. */
+/* One texel's accumulators: 24 bytes and ncomp sums (48 bytes for an
+ * irradiance volume).  Records lie vx_irr_acc_bytes(ncomp) apart: use
+ * vx_irr_accp, never index an array of vx_irr_acc. */
 typedef struct vx_irr_acc {
 	uint32_t count;                /* samples taken */
 	uint32_t flags;                /* VX_TEXEL_* */
-	int64_t sum[3];                /* sum of RGB estimates, 2^-fixed units */
 	uint64_t sq[2];                /* sum of squared luminance estimates,
 	                                  2^-2fixed units, 128 bits (lo, hi) */
+	int64_t sum[];                 /* per component: sum of the
+	                                  estimates, 2^-fixed units */
 } vx_irr_acc;
+
+#define VX_IRR_MAX_COMP  (3 * 16 * 16)   /* RGB SH of order 16 */
+
+static inline size_t
+vx_irr_acc_bytes(int ncomp)
+{
+	return sizeof(vx_irr_acc) + (size_t)ncomp * sizeof(int64_t);
+}
 
 typedef struct vx_irrvol {
 	/* the volume it belongs to */
@@ -91,13 +102,21 @@ typedef struct vx_irrvol {
 	size_t nslot;                  /* bricks stored */
 	size_t cap;                    /* bricks the storage has room for */
 	vx_irr_store store;
+	/* what a texel holds: irradiance (sh_order 0: RGB, ncomp 3), or the
+	 * SH transfer vector of order sh_order (n^2 coefficients a channel,
+	 * channels 1 or 3, channel k's coefficient i at k n^2 + i; the SHTV
+	 * chunk; values may be negative) */
+	int sh_order;
+	int channels;
+	int ncomp;                     /* values a texel: 3, or channels n^2 */
 	int fixed;                     /* fraction bits of the accumulators */
 	uint32_t first;                /* the first sample index of this bake's
 	                                  range (each texel: [first, first+count)) */
 	/* storage, nslot * VX_IRR_BRICK3 texels, brick by brick, x fastest
 	 * inside a brick: acc for VX_IRR_ACCUM; mean (3 floats a texel) and
-	 * flags for every store (mean derived from acc by vx_irr_finish) */
-	vx_irr_acc *acc;
+	 * flags for every store (mean derived from acc by vx_irr_finish);
+	 * mean holds ncomp floats a texel */
+	unsigned char *acc;            /* records of vx_irr_acc_bytes(ncomp) */
 	float *mean;
 	uint32_t *flags;
 	/* how it was baked: text kept verbatim (formats/irradiance.md);
@@ -127,6 +146,19 @@ int vx_irr_lattice(const int64_t vdims[3], double s, int64_t dims[3],
  * at scale s with no brick stored yet. */
 int vx_irr_setup(vx_irrvol *v, const vx_grid *g, uint32_t vcrc, double s,
     vx_irr_store store, vx_err *e);
+
+/* vx_irr_setup_sh: vx_irr_setup for an SH transfer volume of order n
+ * (1..VX_SHLIGHT_MAX_ORDER, 16) with 1 or 3 channels. */
+int vx_irr_setup_sh(vx_irrvol *v, const vx_grid *g, uint32_t vcrc, double s,
+    vx_irr_store store, int order, int channels, vx_err *e);
+
+/* vx_irr_accp: the accumulators of storage index s (ACCUM store). */
+static inline vx_irr_acc *
+vx_irr_accp(const vx_irrvol *v, int64_t s)
+{
+	return (vx_irr_acc *)(void *)(v->acc + (size_t)s *
+	    vx_irr_acc_bytes(v->ncomp));
+}
 
 /* vx_irr_want_brick: make brick b (index into bdims) stored, texels zeroed
  * (count 0, flags 0).  Idempotent.  Not thread-safe: allocate every brick
@@ -166,21 +198,30 @@ void vx_irr_texel_point(const vx_irrvol *v, int64_t i, int64_t j, int64_t k,
 
 /* ---- accumulating ---- */
 
-/* vx_irr_acc_add: add one sample's RGB estimate (finite, >= 0; others are
- * taken as 0) to a, in v's fixed point, saturating (and flagging) on
- * overflow. */
-void vx_irr_acc_add(vx_irr_acc *a, const double rgb[3], int fixed);
+/* vx_irr_acc_add: add one sample's estimate val[0..ncomp-1] to a, in v's
+ * fixed point, saturating (and flagging) on overflow.  Irradiance: values
+ * that are not finite or negative are taken as 0; SH: values are signed,
+ * a NaN is taken as 0.  The squared sum is of the sample's luminance:
+ * irradiance, Rec. 709 weights of its RGB; SH, of its channels' first
+ * (constant) coefficient. */
+void vx_irr_acc_add(const vx_irrvol *v, vx_irr_acc *a, const double *val);
 /* vx_irr_acc_merge: a += b (counts, sums, squares; flags ORed). */
-void vx_irr_acc_merge(vx_irr_acc *a, const vx_irr_acc *b);
-/* vx_irr_acc_mean / vx_irr_acc_stderr: mean RGB; the standard error of the
- * mean luminance divided by the mean luminance (0 for fewer than 2 samples
- * or a zero mean: callers check count). */
-void vx_irr_acc_mean(const vx_irr_acc *a, int fixed, double rgb[3]);
-double vx_irr_acc_relerr(const vx_irr_acc *a, int fixed);
+void vx_irr_acc_merge(const vx_irrvol *v, vx_irr_acc *a, const vx_irr_acc *b);
+/* vx_irr_acc_mean: the mean of each component (0 without samples);
+ * vx_irr_acc_relerr: the standard error of the mean luminance divided by
+ * the mean luminance (0 for fewer than 2 samples or a mean luminance that
+ * is not positive: callers check count). */
+void vx_irr_acc_mean(const vx_irrvol *v, const vx_irr_acc *a, double *out);
+double vx_irr_acc_relerr(const vx_irrvol *v, const vx_irr_acc *a);
 
 /* vx_irr_finish: derive mean[] and flags[] (VX_TEXEL_SAMPLED included)
  * from the accumulators (ACCUM store); a no-op for final stores. */
 void vx_irr_finish(vx_irrvol *v);
+
+/* vx_irr_settle: give texel s of a final store what vx_irr_finalize
+ * would keep of accumulators a: the mean (rounded through binary16 for
+ * F16) and the flags (the wanted bit only when a holds samples). */
+void vx_irr_settle(vx_irrvol *v, int64_t s, const vx_irr_acc *a);
 
 /* vx_irr_usable: 1 if storage index s holds an irradiance to draw. */
 static inline int
@@ -207,12 +248,18 @@ typedef enum vx_irr_interp {
 	VX_IRR_INTERP_LAST
 } vx_irr_interp;
 
-/* vx_irr_lookup: irradiance at index-space point p (of the volume) by
+/* vx_irr_lookup: the texel value (ncomp components: RGB irradiance, or
+ * the transfer vector) at index-space point p (of the volume) by
  * interpolation mode m; for NEAREST_ISO, g is the volume (its trilinear
  * value at each texel is the texel's isovalue) and iso the hit's isovalue.
- * Returns 1 with rgb set, or 0 when no usable texel is in reach (rgb 0). */
+ * Returns 1 with out[0..ncomp-1] set, or 0 when no usable texel is in
+ * reach (out 0). */
 int vx_irr_lookup(const vx_irrvol *v, const double p[3], vx_irr_interp m,
-    const vx_grid *g, double iso, double rgb[3]);
+    const vx_grid *g, double iso, double *out);
+/* vx_irr_weights: the texels a lookup combines and their weights (summing
+ * to 1): at most 64; returns how many (0: none usable). */
+int vx_irr_weights(const vx_irrvol *v, const double p[3], vx_irr_interp m,
+    const vx_grid *g, double iso, int64_t idx[64], double w[64]);
 /* vx_irr_reach: call fn for every texel the lookup at p by mode m reads
  * (inside the lattice; present or not): what lazy illumination must have
  * baked before the lookup. */
@@ -234,7 +281,10 @@ int vx_irr_merge(vx_irrvol *a, const vx_irrvol *b, vx_err *e);
  * accumulators dropped. */
 int vx_irr_finalize(vx_irrvol *v, vx_irr_store store, vx_err *e);
 
-/* ---- the IRRV chunk ---- */
+/* ---- the IRRV and SHTV chunks ----
+ * An irradiance volume is written as IRRV, an SH transfer volume as SHTV
+ * (the same layout with keys order and channels: formats/irradiance.md).
+ * vx_irr_from_chunk reads either. */
 int vx_irr_to_chunk(const vx_irrvol *v, int zlevel, vx_chunk *c, vx_err *e);
 int vx_irr_from_chunk(vx_irrvol *v, const vx_chunk *c, vx_err *e);
 /* vx_irr_from_stream: the IRRV chunk for volume `volume` (NULL: the first);
@@ -242,9 +292,15 @@ int vx_irr_from_chunk(vx_irrvol *v, const vx_chunk *c, vx_err *e);
  * and v stays empty). */
 int vx_irr_from_stream(vx_irrvol *v, const vx_stream *s, const char *volume,
     long *index, vx_err *e);
+/* vx_irr_sh_from_stream: the same for the SHTV chunk. */
+int vx_irr_sh_from_stream(vx_irrvol *v, const vx_stream *s,
+    const char *volume, long *index, vx_err *e);
 
-/* sizes: bytes per stored texel for a store, and the whole volume's */
-size_t vx_irr_texel_bytes(vx_irr_store s);
+/* sizes: bytes per stored texel for a store and ncomp components (in the
+ * chunk; in memory a final store keeps 4 bytes a component and its flags),
+ * and the whole volume's in memory */
+size_t vx_irr_texel_bytes(vx_irr_store s, int ncomp);
+size_t vx_irr_texel_memory(vx_irr_store s, int ncomp);
 size_t vx_irr_bytes(const vx_irrvol *v);
 
 /* The names (vx_enum.h): stores "accum", "f32", "f16"; interpolations

@@ -55,6 +55,9 @@ typedef struct vx_plan {
 	                       from the irradiance volume (IRRV): lights,
 	                       shadows, ambient and specular are baked in or
 	                       left out */
+	int sh;             /* 1 (with irradiance 1): E is the dot product of
+	                       SH lighting with the transfer vector read from
+	                       an SH transfer volume (SHTV) */
 	int pathtrace;      /* 1: each hit is shaded by albedo E / pi, E
 	                       estimated by path tracing (vx_gi.h) with
 	                       pt_samples paths: the reference */

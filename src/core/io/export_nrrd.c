@@ -145,12 +145,15 @@ put_escaped(FILE *f, const char *s)
 	}
 }
 
-/* What a header describes: a scalar volume, or (rgb) a first axis of 3
- * colour components before the three space axes. */
+/* What a header describes: a scalar volume, or (rgb) a first axis of
+ * ncomp components before the three space axes: 3 colour components
+ * (kind RGB-color) or another count (an SH transfer's coefficients, kind
+ * list). */
 typedef struct nrrd_geom {
 	const char *content;
 	const char *type;
 	int rgb;
+	int ncomp;
 	int64_t dims[3];
 	double spacing[3];
 	double origin[3];
@@ -174,16 +177,20 @@ put_header(const nrrd_geom *g, FILE *f, const vx_nrrd_opts *o)
 	fprintf(f, "\ntype: %s\n", g->type);
 	fprintf(f, "dimension: %d\n", g->rgb ? 4 : 3);
 	fputs("space: 3D-right-handed\n", f);
-	fprintf(f, "sizes: %s%lld %lld %lld\n", g->rgb ? "3 " : "",
-	    (long long)g->dims[0], (long long)g->dims[1],
-	    (long long)g->dims[2]);
+	if (g->rgb)
+		fprintf(f, "sizes: %d %lld %lld %lld\n", g->ncomp,
+		    (long long)g->dims[0], (long long)g->dims[1],
+		    (long long)g->dims[2]);
+	else
+		fprintf(f, "sizes: %lld %lld %lld\n", (long long)g->dims[0],
+		    (long long)g->dims[1], (long long)g->dims[2]);
 	/* reals with a '.' whatever LC_NUMERIC says */
 	vx_snprintf_c(line, sizeof line, "space directions: %s(%.17g,0,0) "
 	    "(0,%.17g,0) (0,0,%.17g)\n", g->rgb ? "none " : "", g->spacing[0],
 	    g->spacing[1], g->spacing[2]);
 	fputs(line, f);
-	fprintf(f, "kinds: %sdomain domain domain\n", g->rgb ? "RGB-color " :
-	    "");
+	fprintf(f, "kinds: %sdomain domain domain\n", !g->rgb ? "" :
+	    g->ncomp == 3 ? "RGB-color " : "list ");
 	fprintf(f, "centerings: %snode node node\n", g->rgb ? "??? " : "");
 	fputs("endian: little\n", f);
 	fprintf(f, "encoding: %s\n", o->gzip ? "gzip" : "raw");
@@ -318,9 +325,10 @@ irr_row_le(const vx_irrvol *v, int flags, int bytes, int64_t j, int64_t k,
 				buf[n++] = (unsigned char)(x >> (8 * b));
 			continue;
 		}
-		for (int c = 0; c < 3; c++) {
+		for (int c = 0; c < v->ncomp; c++) {
 			float m = s >= 0 && vx_irr_usable(v, s) ?
-			    v->mean[3 * s + c] : 0.0f;
+			    v->mean[(size_t)v->ncomp * (size_t)s + (size_t)c] :
+			    0.0f;
 			uint32_t u;
 
 			memcpy(&u, &m, 4);
@@ -338,7 +346,7 @@ irr_export(const vx_irrvol *v, const vx_grid *g, int flags, int bytes,
 	static const vx_nrrd_opts none;
 	unsigned char *row;
 	nrrd_geom geom;
-	size_t per = flags ? (size_t)bytes : 12;
+	size_t per = flags ? (size_t)bytes : 4 * (size_t)v->ncomp;
 	sink s;
 	int rc = 0;
 
@@ -367,6 +375,7 @@ irr_export(const vx_irrvol *v, const vx_grid *g, int flags, int bytes,
 	geom.content = v->volume;
 	geom.type = !flags ? "float" : bytes == 1 ? "uint8" : "uint32";
 	geom.rgb = !flags;
+	geom.ncomp = v->sh_order ? v->ncomp : 3;
 	for (int a = 0; a < 3; a++) {
 		geom.dims[a] = v->dims[a];
 		geom.spacing[a] = v->step[a] * g->spacing[a];

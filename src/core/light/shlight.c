@@ -227,3 +227,26 @@ vx_shlight_from_stream(vx_shlight *l, const vx_stream *s, long *idx,
 		    (unsigned long long)s->chunk[i].offset);
 	return rc;
 }
+
+void
+vx_shlight_project(const vx_env *env, int order, double *c)
+{
+	size_t n = vx_env_npixel(env);
+
+	if (env->layout == VX_ENV_LATLONG && env->w == 1 && env->h == 1) {
+		/* a constant sky: Y_0^0 = 1 / (2 sqrt(pi)) is the only band
+		 * with a nonzero integral, 2 sqrt(pi) (one pixel's centre
+		 * would stand for the whole sphere) */
+		for (int k = 0; k < 3; k++)
+			c[k * order * order] += 2 * sqrt(3.14159265358979323846) *
+			    env->scale[k] * env->px[k];
+		return;
+	}
+	for (size_t i = 0; i < n; i++) {
+		double dir[3], om, rgb[3];
+
+		vx_env_pixel(env, i, dir, &om, rgb);
+		if (om > 0)
+			vx_sh_accumulate(order, dir, om, rgb, 3, c);
+	}
+}

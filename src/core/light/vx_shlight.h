@@ -7,6 +7,7 @@
 
 #include <stdint.h>
 
+#include "vx_env.h"
 #include "vx_err.h"
 #include "vx_sh.h"
 #include "vx_stream.h"
@@ -54,5 +55,13 @@ int vx_shlight_from_chunk(vx_shlight *l, const vx_chunk *c, vx_err *e);
  * Errors as vx_shlight_from_chunk, with the chunk's offset. */
 int vx_shlight_from_stream(vx_shlight *l, const vx_stream *s, long *idx,
     vx_err *e);
+
+/* vx_shlight_project: add to c (3 channels of order^2, r's first) the
+ * projection of env's radiance by quadrature over the map's pixels: each
+ * pixel's radiance times its exact solid angle times Y at its centre
+ * (vx_sh.h's basis, with the Condon-Shortley phase); a constant sky (a
+ * 1 x 1 lat-long map, vx_env_sky) exactly: its constant term only.  The
+ * quadrature's error grows with the order for coarse maps. */
+void vx_shlight_project(const vx_env *env, int order, double *c);
 
 #endif

@@ -124,6 +124,18 @@ vx_gi_albedo(const vx_gi *gi, double v, double rgb[3])
 	}
 }
 
+int
+vx_gi_sh_channels(const vx_gi *gi)
+{
+	if (gi->bounces == 0)
+		return 1;
+	for (int i = 0; i < gi->nalbedo; i++)
+		if (gi->albedo_c[i][0] != gi->albedo_c[i][1] ||
+		    gi->albedo_c[i][1] != gi->albedo_c[i][2])
+			return 3;
+	return 1;
+}
+
 /* ---- tracing ---- */
 
 typedef struct first_ctx {
@@ -331,6 +343,46 @@ vx_gi_sample(const vx_gi *gi, const double pi[3], const double n[3],
 	vertex(gi, pw, pi, n, iso, high, D, stream, index, 0, albedo, rgb, st);
 	if (st)
 		st->samples++;
+}
+
+int
+vx_gi_transfer(const vx_gi *gi, const double pi[3], const double n[3],
+    double iso, int high, uint64_t stream, uint64_t index, double w[3],
+    double thru[3], vx_gi_stats *st)
+{
+	double p[3], nn[3], albedo[3];
+
+	memcpy(p, pi, sizeof p);
+	memcpy(nn, n, sizeof nn);
+	vx_gi_albedo(gi, iso, albedo);
+	thru[0] = thru[1] = thru[2] = 1;
+	if (st)
+		st->samples++;
+	for (int depth = 0; ; depth++) {
+		double u[2], lw[3], t[3], b[3], o[3], di[3];
+		first_ctx x;
+
+		offset(gi, p, nn, gi->eps, o);
+		vx_onb(nn, t, b);
+		vx_rng_ld2(gi->seed, stream, index, 3u * (unsigned)depth, u);
+		vx_warp_cosine_hemisphere(u, lw);
+		vx_onb_to_world(nn, t, b, lw, w);
+		vx_unit3(w);
+		vx_world_to_index_dir(gi->g, w, di);
+		if (st)
+			st->rays++;
+		if (!trace(gi, o, di, INFINITY, iso, high, &x, st))
+			return 1;
+		if (st)
+			st->hits++;
+		if (depth >= gi->bounces || !(albedo[0] > 0 || albedo[1] > 0 ||
+		    albedo[2] > 0))
+			return 0;
+		for (int a = 0; a < 3; a++)
+			thru[a] *= albedo[a];
+		vx_iso_normal(gi->g, &x.hit, w, nn);
+		memcpy(p, x.hit.p, sizeof p);
+	}
 }
 
 void

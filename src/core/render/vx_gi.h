@@ -116,6 +116,10 @@ void vx_gi_set_env(vx_gi *gi, const vx_gi_env *env, int importance);
 
 /* vx_gi_albedo: the albedo at data value v. */
 void vx_gi_albedo(const vx_gi *gi, double v, double rgb[3]);
+/* vx_gi_sh_channels: the channels an SH transfer of gi needs: 3 when
+ * paths bounce (bounces > 0) off an albedo whose channels differ
+ * somewhere, else 1. */
+int vx_gi_sh_channels(const vx_gi *gi);
 
 /* vx_gi_direct: the delta lights' irradiance D at world point pw (index
  * point pi) with world normal n toward the lit side (high: that of higher
@@ -133,6 +137,20 @@ void vx_gi_direct(const vx_gi *gi, const double pw[3], const double pi[3],
 void vx_gi_sample(const vx_gi *gi, const double pi[3], const double n[3],
     double iso, int high, const double D[3], uint64_t stream,
     uint64_t index, double rgb[3], vx_gi_stats *st);
+
+/* vx_gi_transfer: sample `index` of the radiance-transfer path at index
+ * point pi with unit world normal n toward the lit side, for SH transfer
+ * volumes (Wyman et al. eq. 4-8): the lights of gi play no part.  From pi
+ * (offset it first) a cosine-weighted direction (pair 3d, as
+ * vx_gi_sample's) is traced; where it hits the isosurface and bounces
+ * remain, the path continues from the hit with the throughput multiplied
+ * by the albedo at iso.  Returns 1 when the path escapes, with w the world
+ * direction it leaves in and thru its throughput (1 1 1 without a bounce);
+ * 0 when it ends on a surface (w, thru unspecified).  The transfer
+ * estimate of coefficient i is then pi thru Y_i(w). */
+int vx_gi_transfer(const vx_gi *gi, const double pi[3], const double n[3],
+    double iso, int high, uint64_t stream, uint64_t index, double w[3],
+    double thru[3], vx_gi_stats *st);
 
 void vx_gi_stats_add(vx_gi_stats *a, const vx_gi_stats *b);
 

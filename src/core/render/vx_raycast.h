@@ -66,6 +66,8 @@ typedef struct vx_raycast_opts {
 	const vx_irrvol *irr;    /* the plan's irradiance volume (volumes
 	                            only; required when plan.irradiance) */
 	vx_irr_interp irr_interp;   /* how it is read */
+	const double *shl;       /* the plan's SH lighting when plan.sh
+	                            (vx_surface.h) */
 	vx_irr_need_fn irr_need; /* non-NULL: a collecting pass for lazy
 	                            illumination: instead of reading irr,
 	                            each shaded point reports the texels its

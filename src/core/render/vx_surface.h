@@ -73,8 +73,21 @@ typedef struct vx_surfaces {
 	int timing;              /* 1: count the shadow rays' cycles */
 	/* illumination in place of the lights (volumes; the plan says
 	 * which): */
-	const vx_irrvol *irr;    /* irradiance: the baked volume, */
+	const vx_irrvol *irr;    /* irradiance: the baked volume, or an SH
+	                            transfer volume (irr->sh_order > 0), */
 	vx_irr_interp irr_interp;     /* read so; */
+	const double *shl;       /* SH: the lighting's radiance coefficients
+	                            in vx_sh.h's basis, 3 channels of
+	                            irr->sh_order^2 each (r's first): E of
+	                            channel c = sum over i of shl[c n^2 + i]
+	                            times the transfer's coefficient i of
+	                            channel c (of channel 0 when it has one) */
+	float *sh_e;             /* SH: per stored texel, its E (3 floats),
+	                            computed the first time a lookup reads it
+	                            (the dot product once a texel, not once a
+	                            hit); sh_done[s] says it is there.  Set up
+	                            by the renderer for the frame */
+	unsigned char *sh_done;
 	vx_irr_need_fn irr_need; /* non-NULL: a collecting pass (lazy
 	                            illumination): each shaded point reports
 	                            the texels its lookup reads (vx_irr_reach;

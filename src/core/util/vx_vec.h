@@ -6,6 +6,8 @@
 
 #include <math.h>
 
+#define VX_PI 3.14159265358979323846
+
 static inline double
 vx_dot3(const double a[3], const double b[3])
 {
