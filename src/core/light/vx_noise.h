@@ -4,8 +4,8 @@
  *
  * Counter-based like the samplers of vx_rng.h: the gradient at lattice
  * point (i, j, k) is drawn from vx_rng_hash(seed, i, j, k), so a value is
- * a pure function of (seed, point) with no table and no state; the same
- * bits at any thread count and on every platform with IEEE doubles.  (It
+ * a pure function of (seed, point) with no table and no state: the same
+ * bits at any thread count and in any order of evaluation.  (It
  * lives in light/, beside vx_rng.h whose hash it uses; kernels/ is below
  * light/ and may not include it.)
  *
