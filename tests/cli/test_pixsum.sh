@@ -3,7 +3,7 @@
 # tet meshes, linear and bricked, flat and hierarchical walks, every root
 # solver, shadows, transparent layers, textures, several macrocell sizes,
 # perspective and orthographic cameras, 1 and 2 threads, MIP, depth and
-# normals) is written as PFM and its SHA-256 compared with
+# normals, direct volume rendering) is written as PFM and its SHA-256 compared with
 # tests/cli/pixsums.txt.  Any change of a single bit in any picture fails
 # here: a change meant to alter pictures rewrites the list with
 #     VX_PIXSUM_WRITE=1 sh tests/cli/test_pixsum.sh
@@ -51,6 +51,11 @@ mp() {   # mp NAME STREAM ARGS...: value and depth as PFM
 	    | tonemap --pfm -o "$out/$name.pfm" - || echo "$name: failed" >&2
 	names="$names $name.pfm $name.depth.pfm"
 }
+dv() {   # dv NAME STREAM ARGS...: dvr's colour over the background as PFM
+	name=$1 stream=$2; shift 2
+	dvr --pfm "$out/$name.pfm" -o /dev/null "$@" "$stream" || echo "$name: failed" >&2
+	names="$names $name.pfm"
+}
 rc ml "$T/ml.vx" --iso 0.5 --size 96x96 --view 20,30
 rc ml-flat "$T/ml.vx" --iso 0.5 --size 64x64 --view 20,30 --flat
 rc ml-neubauer "$T/ml.vx" --iso 0.5 --size 64x64 --view 20,30 --solver neubauer
@@ -65,6 +70,15 @@ rc mesh-tex "$T/s5tex.vx" --iso 0.6 --name density --size 64x64 \
     --set "surface iso 0.6 ks 0 texture tex window -1.5 0.5"
 mp mip-ml "$T/ml.vx" --size 64x64 --view 20,30
 mp mip-ml-front "$T/ml.vx" --size 64x64 --view front -j 2
+dv dvr-torus "$T/torus.vx" --size 64x64 --view 40,60 --light-size 64 -j 2 \
+    --set "transfer opacity 0 0.3 0.3 0.1 0.45 0" \
+    --set "transfer transport 0 0.9 0.7 0.5 0.45 1 1 1" \
+    --set "medium phase henyey-greenstein g 0.4" \
+    --light "directional direction 1 0.5 -1" --effects "volumetric-shadows scattering"
+dv dvr-ml-ortho "$T/ml.vx" --size 64x64 --view 20,30 --ortho --light-size 48 \
+    --set "transfer opacity 0 0 0.45 0 0.55 0.4 1 0.4" --set "transfer surface 0 1" \
+    --set "transfer color 0 0.2 0.5 1 1 1 0.6 0.3" --set "light point position 2 -3 2" \
+    --effects "volumetric-shadows specular"
 if [ -n "$have_ch2" ]; then
 	rc ch2-127-j1 "$T/ch2-b.vx" --scene $HL --set "$CAM_CH2" --iso 127.5 --size 128x128 -j 1
 	rc ch2-127-j2 "$T/ch2-b.vx" --scene $HL --set "$CAM_CH2" --iso 127.5 --size 128x128 -j 2
@@ -76,6 +90,7 @@ if [ -n "$have_ch2" ]; then
 	rc layers "$T/ch2-b.vx" --scene $S/head-layers.scn --size 160x120
 	rc ortho "$T/ch2-b.vx" --scene $S/head.scn --size 96x96 --ortho --view top
 	mp mip-ch2 "$T/ch2-b.vx" --size 96x96 --view 33,21 -j 2
+	dv dvr-head "$T/ch2-b.vx" --scene $S/head-dvr.scn --size 96x96 --light-size 96 -j 2
 fi
 
 if [ -n "${VX_PIXSUM_WRITE:-}" ]; then

@@ -216,6 +216,11 @@ static void ex_illum_sh(vx_scene *s)
 	s->sh_order = 4;
 	s->interp = VX_INTERP_TRICUBIC;
 }
+static void ex_occlusion(vx_scene *s)
+{
+	s->has_occlusion = 1;
+	s->occlusion_distance = 2.5;
+}
 static void ex_illum_irr(vx_scene *s)
 {
 	s->has_illumination = 1;
@@ -231,6 +236,31 @@ static void ex_transfer(vx_scene *s)
 	s->ntf_color = 1;
 	s->tf_color[0][0] = 7; s->tf_color[0][1] = 1;
 	s->tf_color[0][2] = 0.5; s->tf_color[0][3] = 0;
+}
+static void ex_transfer_more(vx_scene *s)
+{
+	s->ntf_transport = 2;
+	s->tf_transport[0][0] = 0; s->tf_transport[0][1] = 1;
+	s->tf_transport[0][2] = 0.6; s->tf_transport[0][3] = 0.3;
+	s->tf_transport[1][0] = 100; s->tf_transport[1][1] = 0.9;
+	s->tf_transport[1][2] = 0.8; s->tf_transport[1][3] = 0.7;
+	s->ntf_surface = 2;
+	s->tf_surface[0][0] = 0; s->tf_surface[0][1] = 0;
+	s->tf_surface[1][0] = 80; s->tf_surface[1][1] = 1;
+	s->ntf_gradient = 1;
+	s->tf_gradient[0][0] = 2.5; s->tf_gradient[0][1] = 0.5;
+	s->has_tf_step = 1;
+	s->tf_step = 0.25;
+	strcpy(s->tf_file, "my tf.json");
+	s->tf_file_format = VX_TFF_PARAVIEW;
+}
+/* the last of each list wins; none clears every list, the step, the file */
+static void ex_transfer_none(vx_scene *s)
+{
+	s->ntf_surface = 1;
+	s->tf_surface[0][0] = 3; s->tf_surface[0][1] = 1;
+	strcpy(s->tf_file, "b.txf");
+	s->tf_file_format = VX_TFF_AUTO;
 }
 static void ex_medium(vx_scene *s)
 {
@@ -303,8 +333,17 @@ static const struct {
 	{ "interreflection bounces 3 samples 64", ex_interreflection },
 	{ "illumination sh order 4 interpolation tricubic", ex_illum_sh },
 	{ "illumination irradiance interpolation nearest-iso", ex_illum_irr },
+	{ "occlusion\nocclusion distance 2.5", ex_occlusion },
 	{ "transfer opacity 0 0 50 0.2 50 1\ntransfer color 7 1 0.5 0",
 	    ex_transfer },
+	{ "transfer transport 0 1 0.6 0.3 100 0.9 0.8 0.7\n"
+	    "transfer surface 0 0 80 1\ntransfer gradient 2.5 0.5\n"
+	    "transfer step 0.25\ntransfer file \"my tf.json\" format paraview",
+	    ex_transfer_more },
+	{ "transfer opacity 0 1\ntransfer step 0\ntransfer file a.vp\n"
+	    "transfer none\ntransfer surface 1 0\ntransfer surface 3 1\n"
+	    "transfer file b.txf format miter\ntransfer file b.txf",
+	    ex_transfer_none },
 	{ "medium phase henyey-greenstein g -0.3 albedo 0.9 0.8 0.7",
 	    ex_medium },
 	{ "x-future-light glow 3 \"two words\" # kept\nx-note", ex_ext },
@@ -468,11 +507,27 @@ static const struct {
 	{ "illumination irradiance order 3", 1, "sh only" },
 	{ "illumination local interpolation nearest", 1, "does not apply" },
 	{ "illumination sh order 0", 1, "outside 1..16" },
+	{ "occlusion distance -1", 1, "outside (0" },
+	{ "occlusion radius 3", 1, "unknown key" },
 	{ "transfer opacity 0 0 1", 1, "groups of 2" },
 	{ "transfer color 0 0 0", 1, "groups of 4" },
 	{ "transfer opacity 5 0 4 1", 1, "must not decrease" },
 	{ "transfer opacity 0 1.5", 1, "outside [0, 1]" },
-	{ "transfer alpha 0 1", 1, "expected opacity" },
+	{ "transfer alpha 0 1", 1, "expected opacity, color, transport" },
+	{ "transfer transport 0 1 1", 1, "groups of 4 numbers (value r g b)" },
+	{ "transfer transport 0 1 1 -0.5", 1, "transport: -0.5 outside [0, 1]" },
+	{ "transfer surface 0 2", 1, "weight: 2 outside [0, 1]" },
+	{ "transfer surface 0", 1, "groups of 2 numbers (value weight)" },
+	{ "transfer gradient -1 1", 1, "gradient magnitude -1 is negative" },
+	{ "transfer gradient 0 1 2 nan", 1, "expected a number, got 'nan'" },
+	{ "transfer step", 1, "transfer step: expected one number" },
+	{ "transfer step -1", 1, "step: -1 outside [0, inf]" },
+	{ "transfer step 1 2", 1, "transfer step: expected one number" },
+	{ "transfer file", 1, "transfer file: expected a file name" },
+	{ "transfer file \"\"", 1, "transfer file: empty name" },
+	{ "transfer file a.json format csv", 1, "unknown value 'csv' (one of: "
+	  "auto, paraview, slicer, miter)" },
+	{ "transfer file a.json colour red", 1, "unknown key 'colour'" },
 	{ "medium g 0.5", 1, "henyey-greenstein phase only" },
 	{ "medium phase henyey-greenstein g 1", 1, "outside (-1, 1)" },
 	{ "medium phase rayleigh", 1, "unknown value" },
@@ -571,9 +626,15 @@ static const char *const full_scene =
     "surface iso -0 colormap hot\n"
     "surface iso 255 texture auto\n"
     "interreflection bounces 0 samples 1\n"
+    "occlusion distance 1e-3\n"
     "illumination sh order 2 interpolation nearest\n"
     "transfer opacity 0 0 0.5 1\n"
     "transfer color 0 0 0 0 1 1 1 1\n"
+    "transfer transport 0 1 0.5 0.25 1 0.1 0.2 0.3\n"
+    "transfer surface 0.25 0 0.75 1\n"
+    "transfer gradient 0 0 1e-3 1\n"
+    "transfer step 0.1\n"
+    "transfer file \"tf dir/x.vp\" format slicer\n"
     "medium phase isotropic albedo 0.5 0.5 0.5\n"
     "x-vendor \"kept verbatim\" 1.50\n";
 
@@ -702,6 +763,13 @@ equality(void **state)
 	MUTATE(b.surface[0].m.window[1] = 2);
 	MUTATE(b.surface[1].iso = 0);                 /* -0 vs 0 */
 	MUTATE(b.tf_color[1][2] = 0.5);
+	MUTATE(b.tf_transport[1][3] = 0.5);
+	MUTATE(b.tf_surface[0][0] = 0.5);
+	MUTATE(b.tf_gradient[1][0] = 2e-3);
+	MUTATE(b.tf_step = 0.2);
+	MUTATE(b.has_tf_step = 0);
+	MUTATE(b.tf_file[0] = 'T');
+	MUTATE(b.tf_file_format = VX_TFF_MITER);
 	MUTATE(b.ext[0][3] = 'X');
 	MUTATE(b.effects ^= VX_FX_SCATTERING);
 	MUTATE(b.sh_order = 3);

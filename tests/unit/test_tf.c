@@ -1,6 +1,8 @@
 /* test_tf.c: transfer-function containers (vx_tf.h): list evaluation
  * (clamping, linear interpolation, steps at equal abscissae, NaN), the
- * setters' refusals, and the usability check. */
+ * setters' refusals, the usability check; classification (defaults,
+ * gradient factor, table), opacity correction, the clear-range test that
+ * empty-space skipping relies on, and the scene's transfer lines. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -9,6 +11,7 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "vx_scene.h"
 #include "vx_tf.h"
 
 /* A list with a ramp and a step; the oracle is the definition in vx_tf.h
@@ -116,6 +119,138 @@ check(void **state)
 	assert_null(tf.rgba);
 }
 
+/* A function from the scene text; the oracles are vx_tf.h's rules. */
+static void
+tf_from(vx_tf *tf, const char *text)
+{
+	vx_scene s;
+	vx_err e = { 0 };
+
+	assert_int_equal(vx_scene_parse(&s, text, strlen(text), &e), 0);
+	vx_tf_init(tf);
+	assert_int_equal(vx_tf_apply_scene(tf, &s, &e), 0);
+	assert_int_equal(vx_tf_check(tf, &e), 0);
+}
+
+static void
+classify(void **state)
+{
+	vx_tf tf;
+	vx_tf_sample o;
+
+	(void)state;
+	/* defaults: white, transport 1 - alpha, surface 0 */
+	tf_from(&tf, "transfer opacity 0 0 10 0.5\n");
+	vx_tf_classify(&tf, 5, 0, &o);
+	assert_true(o.color[0] == 1 && o.color[1] == 1 && o.color[2] == 1);
+	assert_true(o.alpha == 0.25);
+	assert_true(o.transport[0] == 0.75 && o.transport[2] == 0.75);
+	assert_true(o.surface == 0);
+	assert_false(vx_tf_needs_gradient(&tf));
+	/* NaN: empty */
+	vx_tf_classify(&tf, NAN, 0, &o);
+	assert_true(o.alpha == 0 && o.transport[1] == 1 && o.color[0] == 0);
+	vx_tf_free(&tf);
+	/* gradient factor scales alpha (and so the default transport); the
+	 * transport list, the surface list and the step from the scene */
+	tf_from(&tf, "transfer opacity 0 0.5\ntransfer gradient 0 0 4 1\n"
+	    "transfer transport 0 1 0.5 0.25\ntransfer surface 0 0 8 1\n"
+	    "transfer step 0.5\ntransfer color 0 0.2 0.4 0.6\n");
+	assert_true(vx_tf_needs_gradient(&tf));
+	assert_true(tf.ref_step == 0.5);
+	vx_tf_classify(&tf, 2, 1, &o);
+	assert_true(o.alpha == 0.125);
+	assert_true(o.transport[0] == 1 && o.transport[1] == 0.5 &&
+	    o.transport[2] == 0.25);
+	assert_true(o.surface == 0.25);
+	assert_true(o.color[1] == 0.4);
+	vx_tf_free(&tf);
+}
+
+/* The table: bilinear between cell centres, clamped at the edges; a
+ * scene opacity list replaces it. */
+static void
+table(void **state)
+{
+	static const float rgba[2 * 2 * 4] = {
+		0, 0, 0, 0,    1, 1, 1, 1,       /* g row 0: v cells 0, 1 */
+		0, 0, 0, 0.5f, 0, 0, 0, 0.5f,    /* g row 1 */
+	};
+	static const int size[2] = { 2, 2 };
+	static const double vr[2] = { 0, 2 }, gr[2] = { 0, 1 };
+	vx_tf tf;
+	vx_tf_sample o;
+	vx_scene s;
+	vx_err e = { 0 };
+
+	(void)state;
+	vx_tf_init(&tf);
+	assert_int_equal(vx_tf_table_set(&tf, size, vr, gr, rgba, &e), 0);
+	vx_tf_classify(&tf, 1, 0.25, &o);     /* midway in v, row 0 */
+	assert_true(o.alpha == 0.5 && o.color[0] == 0.5);
+	vx_tf_classify(&tf, 1, 0.5, &o);      /* midway in both */
+	assert_true(o.alpha == 0.5 && o.color[0] == 0.25);
+	vx_tf_classify(&tf, -9, -9, &o);      /* clamped to cell (0,0) */
+	assert_true(o.alpha == 0 && o.transport[0] == 1);
+	/* no column is clear (row 1 has alpha 0.5 throughout) */
+	assert_false(vx_tf_range_clear(&tf, 0, 0.4));
+	assert_false(vx_tf_range_clear(&tf, 1.5, 2));
+	assert_true(vx_tf_range_clear(&tf, 3, 2));   /* empty range */
+	s = (vx_scene){ 0 };
+	vx_scene_init(&s);
+	s.ntf_opacity = 1;
+	s.tf_opacity[0][0] = 0;
+	s.tf_opacity[0][1] = 0.5;
+	assert_int_equal(vx_tf_apply_scene(&tf, &s, &e), 0);
+	assert_false(tf.has_table);
+	assert_int_equal(vx_tf_check(&tf, &e), 0);
+	vx_tf_free(&tf);
+}
+
+/* vx_tf_range_clear on lists: exact (the maximum of a piecewise-linear
+ * function over an interval is at an end or a control point inside). */
+static void
+clear(void **state)
+{
+	static const struct { double lo, hi; int want; } t[] = {
+		{ 0, 10, 1 },       /* opacity 0 up to 10 */
+		{ 0, 10.5, 0 },     /* the ramp starts */
+		{ 25, 30, 1 },      /* a hat between 10 and 20 only */
+		{ 12, 13, 0 },
+		{ -1e300, 9, 1 },
+		{ 5, 4, 1 },        /* empty */
+		{ NAN, 4, 0 },
+		{ 21, 1e300, 0 },   /* transport < 1 beyond 40 */
+	};
+	vx_tf tf;
+
+	(void)state;
+	tf_from(&tf, "transfer opacity 10 0 15 0.5 20 0\n"
+	    "transfer transport 0 1 1 1 40 1 1 1 41 1 0.5 1\n");
+	for (size_t i = 0; i < sizeof t / sizeof t[0]; i++)
+		assert_int_equal(vx_tf_range_clear(&tf, t[i].lo, t[i].hi),
+		    t[i].want);
+	vx_tf_free(&tf);
+}
+
+/* Opacity correction: two half steps make one reference step; the ends
+ * are exact. */
+static void
+correct(void **state)
+{
+	static const double a[] = { 0.01, 0.3, 0.5, 0.9, 0.999 };
+
+	(void)state;
+	for (size_t i = 0; i < sizeof a / sizeof a[0]; i++) {
+		double h = vx_tf_correct(a[i], 0.5);
+
+		assert_true(fabs(1 - (1 - h) * (1 - h) - a[i]) < 1e-14);
+		assert_true(fabs(vx_tf_correct(a[i], 1) - a[i]) < 1e-15);
+	}
+	assert_true(vx_tf_correct(0, 3) == 0);
+	assert_true(vx_tf_correct(1, 0.01) == 1);
+}
+
 int
 main(void)
 {
@@ -123,6 +258,10 @@ main(void)
 		cmocka_unit_test(eval),
 		cmocka_unit_test(refusals),
 		cmocka_unit_test(check),
+		cmocka_unit_test(classify),
+		cmocka_unit_test(table),
+		cmocka_unit_test(clear),
+		cmocka_unit_test(correct),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -330,8 +330,16 @@ vx_scene_equal(const vx_scene *a, const vx_scene *b)
 	    a->effects != b->effects || a->default_lights != b->default_lights ||
 	    a->nlight != b->nlight || a->nsurface != b->nsurface ||
 	    a->has_interreflection != b->has_interreflection ||
+	    a->has_occlusion != b->has_occlusion ||
+	    (a->has_occlusion && !same(&a->occlusion_distance,
+	    &b->occlusion_distance, 1)) ||
 	    a->has_illumination != b->has_illumination ||
 	    a->ntf_opacity != b->ntf_opacity || a->ntf_color != b->ntf_color ||
+	    a->ntf_transport != b->ntf_transport ||
+	    a->ntf_surface != b->ntf_surface ||
+	    a->ntf_gradient != b->ntf_gradient ||
+	    a->has_tf_step != b->has_tf_step ||
+	    strcmp(a->tf_file, b->tf_file) != 0 ||
 	    a->has_medium != b->has_medium || a->next != b->next)
 		return 0;
 	for (i = 0; i < a->nlight && i < VX_SCENE_MAX_LIGHTS; i++)
@@ -361,6 +369,19 @@ vx_scene_equal(const vx_scene *a, const vx_scene *b)
 	for (i = 0; i < a->ntf_color && i < VX_SCENE_MAX_TF; i++)
 		if (!same(a->tf_color[i], b->tf_color[i], 4))
 			return 0;
+	for (i = 0; i < a->ntf_transport && i < VX_SCENE_MAX_TF; i++)
+		if (!same(a->tf_transport[i], b->tf_transport[i], 4))
+			return 0;
+	for (i = 0; i < a->ntf_surface && i < VX_SCENE_MAX_TF; i++)
+		if (!same(a->tf_surface[i], b->tf_surface[i], 2))
+			return 0;
+	for (i = 0; i < a->ntf_gradient && i < VX_SCENE_MAX_TF; i++)
+		if (!same(a->tf_gradient[i], b->tf_gradient[i], 2))
+			return 0;
+	if (a->has_tf_step && !same(&a->tf_step, &b->tf_step, 1))
+		return 0;
+	if (a->tf_file[0] != '\0' && a->tf_file_format != b->tf_file_format)
+		return 0;
 	if (a->has_medium && (a->phase != b->phase ||
 	    !same(&a->phase_g, &b->phase_g, 1) || !same(a->albedo, b->albedo, 3)))
 		return 0;

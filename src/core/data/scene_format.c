@@ -155,6 +155,22 @@ sb_str(sbuf *b, const char *key, const char *v)
 	sb_put(b, t);
 }
 
+/* format_tf: "transfer NAME" and n points of per numbers, when n > 0. */
+static void
+format_tf(sbuf *b, const char *name, int n, const double *pts, int per)
+{
+	int i, j;
+
+	if (n <= 0)
+		return;
+	sb_put(b, "transfer ");
+	sb_put(b, name);
+	for (i = 0; i < n && i < VX_SCENE_MAX_TF; i++)
+		for (j = 0; j < per; j++)
+			sb_num(b, pts[i * per + j]);
+	sb_put(b, "\n");
+}
+
 static void
 format_camera(sbuf *b, const vx_camera *c)
 {
@@ -294,6 +310,12 @@ vx_scene_format(const vx_scene *s, char **text, size_t *n, vx_err *e)
 		sb_int(&b, "samples", s->samples);
 		sb_put(&b, "\n");
 	}
+	if (s->has_occlusion) {
+		sb_put(&b, "occlusion");
+		if (s->occlusion_distance > 0)
+			sb_key(&b, "distance", &s->occlusion_distance, 1);
+		sb_put(&b, "\n");
+	}
 	if (s->has_illumination) {
 		sb_put(&b, "illumination ");
 		sb_put(&b, vx_enum_str(&vx_illum_enum, s->illumination));
@@ -322,6 +344,24 @@ vx_scene_format(const vx_scene *s, char **text, size_t *n, vx_err *e)
 
 			for (j = 0; j < 4; j++)
 				sb_num(&b, s->tf_color[i][j]);
+		}
+		sb_put(&b, "\n");
+	}
+	format_tf(&b, "transport", s->ntf_transport, &s->tf_transport[0][0], 4);
+	format_tf(&b, "surface", s->ntf_surface, &s->tf_surface[0][0], 2);
+	format_tf(&b, "gradient", s->ntf_gradient, &s->tf_gradient[0][0], 2);
+	if (s->has_tf_step) {
+		sb_put(&b, "transfer");
+		sb_key(&b, "step", &s->tf_step, 1);
+		sb_put(&b, "\n");
+	}
+	if (s->tf_file[0] != '\0') {
+		sb_put(&b, "transfer");
+		sb_str(&b, "file", s->tf_file);
+		if (s->tf_file_format != VX_TFF_AUTO) {
+			sb_put(&b, " format ");
+			sb_put(&b, vx_enum_str(&vx_tf_file_format_enum,
+			    s->tf_file_format));
 		}
 		sb_put(&b, "\n");
 	}

@@ -76,12 +76,6 @@ static const vx_enum_name effect_names[] = {
 };
 const vx_enum vx_effect_enum = { "effect", effect_names, NULL, 0 };
 
-vx_colormap
-vx_colormap_parse(const char *s)
-{
-	return (vx_colormap)vx_enum_val(&vx_colormap_enum, s);
-}
-
 /* ---- numbers (vx_scan.h's grammar, finite) ---- */
 
 static int
@@ -908,6 +902,24 @@ do_interreflection(pctx *P)
 }
 
 static int
+do_occlusion(pctx *P)
+{
+	static const keydef defs[] = { { "distance", K_NUM1 }, { NULL, 0 } };
+	kval kv[1];
+	int rc;
+
+	if ((rc = parse_keys(P, "occlusion", 1, defs, kv)) != 0)
+		return rc;
+	if (kv[0].seen && (rc = need_range(P, "occlusion", "distance",
+	    kv[0].v[0], 0, HUGE_VAL, 1, 0)) != 0)
+		return rc;
+	if (kv[0].seen)
+		P->s->occlusion_distance = kv[0].v[0];
+	P->s->has_occlusion = 1;
+	return 0;
+}
+
+static int
 do_illumination(pctx *P)
 {
 	static const keydef defs[] = {
@@ -957,24 +969,106 @@ do_illumination(pctx *P)
 	return 0;
 }
 
+/* The lists of "transfer": name, numbers per point, what they are. */
+static const struct {
+	const char *name;
+	int per;
+	const char *what;
+} tf_lists[] = {
+	{ "opacity", 2, "value opacity" },
+	{ "color", 4, "value r g b" },
+	{ "transport", 4, "value r g b" },
+	{ "surface", 2, "value weight" },
+	{ "gradient", 2, "gradient-magnitude factor" },
+};
+
+static const vx_enum_name tf_file_names[] = {
+	{ "auto", VX_TFF_AUTO }, { "paraview", VX_TFF_PARAVIEW },
+	{ "slicer", VX_TFF_SLICER }, { "miter", VX_TFF_MITER },
+	{ NULL, VX_TFF_UNKNOWN }
+};
+const vx_enum vx_tf_file_format_enum = { "transfer file format",
+    tf_file_names, "unknown", 0 };
+
+/* tf_slot: where list k of the scene lives and how many points it has. */
+static double *
+tf_slot(vx_scene *s, int k, int **np)
+{
+	switch (k) {
+	case 0: *np = &s->ntf_opacity; return &s->tf_opacity[0][0];
+	case 1: *np = &s->ntf_color; return &s->tf_color[0][0];
+	case 2: *np = &s->ntf_transport; return &s->tf_transport[0][0];
+	case 3: *np = &s->ntf_surface; return &s->tf_surface[0][0];
+	default: *np = &s->ntf_gradient; return &s->tf_gradient[0][0];
+	}
+}
+
+static int
+do_transfer_file(pctx *P)
+{
+	static const keydef defs[] = { { "format", K_WORD }, { NULL, 0 } };
+	kval kv[1];
+	int rc, f = VX_TFF_AUTO;
+
+	if (P->ntok < 3)
+		return perr(P, "transfer file: expected a file name");
+	if (P->tok[2][0] == '\0')
+		return perr(P, "transfer file: empty name");
+	if ((rc = parse_keys(P, "transfer file", 3, defs, kv)) != 0)
+		return rc;
+	if (kv[0].seen && (rc = need_word(P, "transfer file", "format",
+	    kv[0].w, &vx_tf_file_format_enum, &f)) != 0)
+		return rc;
+	if ((rc = copy_name(P, "transfer file", P->s->tf_file,
+	    sizeof P->s->tf_file, P->tok[2])) != 0)
+		return rc;
+	P->s->tf_file_format = (vx_tf_file_format)f;
+	return 0;
+}
+
 static int
 do_transfer(pctx *P)
 {
-	int color, per, npt, i, j, rc;
-	double pts[VX_SCENE_MAX_TF][4];
+	int k, per, npt, i, j, rc, *np;
+	double pts[VX_SCENE_MAX_TF][4], *dst;
+	const char *what;
 
 	if (P->ntok == 2 && !P->quoted[1] && strcmp(P->tok[1], "none") == 0) {
-		P->s->ntf_opacity = P->s->ntf_color = 0;
+		P->s->ntf_opacity = P->s->ntf_color = P->s->ntf_transport = 0;
+		P->s->ntf_surface = P->s->ntf_gradient = 0;
+		P->s->has_tf_step = 0;
+		P->s->tf_step = 0;
+		memset(P->s->tf_file, 0, sizeof P->s->tf_file);
+		P->s->tf_file_format = VX_TFF_UNKNOWN;
 		return 0;
 	}
-	if (P->ntok < 2 || P->quoted[1] || (strcmp(P->tok[1], "opacity") != 0 &&
-	    strcmp(P->tok[1], "color") != 0))
-		return perr(P, "transfer: expected opacity, color or none");
-	color = strcmp(P->tok[1], "color") == 0;
-	per = color ? 4 : 2;
+	if (P->ntok >= 2 && !P->quoted[1] && strcmp(P->tok[1], "file") == 0)
+		return do_transfer_file(P);
+	if (P->ntok >= 2 && !P->quoted[1] && strcmp(P->tok[1], "step") == 0) {
+		double v;
+
+		if (P->ntok != 3 || P->quoted[2] || number(P->tok[2], &v) != 0)
+			return perr(P, "transfer step: expected one number (the "
+			    "reference step in world units, 0: one voxel)");
+		if ((rc = need_range(P, "transfer", "step", v, 0, HUGE_VAL, 0,
+		    0)) != 0)
+			return rc;
+		P->s->tf_step = v;
+		P->s->has_tf_step = 1;
+		return 0;
+	}
+	for (k = 0; k < (int)(sizeof tf_lists / sizeof tf_lists[0]); k++)
+		if (P->ntok >= 2 && !P->quoted[1] &&
+		    strcmp(P->tok[1], tf_lists[k].name) == 0)
+			break;
+	if (k == (int)(sizeof tf_lists / sizeof tf_lists[0]))
+		return perr(P, "transfer: expected opacity, color, transport, "
+		    "surface, gradient, step, file or none");
+	per = tf_lists[k].per;
+	what = k == 4 ? "factor" : k == 3 ? "weight" : tf_lists[k].name;
 	if ((P->ntok - 2) % per != 0 || P->ntok == 2)
 		return perr(P, "transfer %s: expected groups of %d numbers (%s)",
-		    P->tok[1], per, color ? "value r g b" : "value opacity");
+		    P->tok[1], per, tf_lists[k].what);
 	npt = (P->ntok - 2) / per;
 	if (npt > VX_SCENE_MAX_TF)
 		return perr(P, "transfer %s: more than %d points", P->tok[1],
@@ -986,25 +1080,23 @@ do_transfer(pctx *P)
 			if (P->quoted[t] || number(P->tok[t], &pts[i][j]) != 0)
 				return perr(P, "transfer %s: expected a number, got "
 				    "'%.40s'", P->tok[1], P->tok[t]);
-			if (j > 0 && (rc = need_range(P, "transfer",
-			    color ? "color" : "opacity", pts[i][j], 0, 1, 0,
-			    0)) != 0)
+			if (j > 0 && (rc = need_range(P, "transfer", what,
+			    pts[i][j], 0, 1, 0, 0)) != 0)
 				return rc;
 		}
+		if (k == 4 && pts[i][0] < 0)
+			return perr(P, "transfer gradient: gradient magnitude %g "
+			    "is negative", pts[i][0]);
 		if (i > 0 && pts[i][0] < pts[i - 1][0])
 			return perr(P, "transfer %s: values must not decrease "
 			    "(%g after %g)", P->tok[1], pts[i][0], pts[i - 1][0]);
 	}
-	if (color) {
-		memcpy(P->s->tf_color, pts, (size_t)npt * sizeof pts[0]);
-		P->s->ntf_color = npt;
-	} else {
-		for (i = 0; i < npt; i++) {
-			P->s->tf_opacity[i][0] = pts[i][0];
-			P->s->tf_opacity[i][1] = pts[i][1];
-		}
-		P->s->ntf_opacity = npt;
-	}
+	dst = tf_slot(P->s, k, &np);
+	/* the scene's arrays are [VX_SCENE_MAX_TF][per] */
+	for (i = 0; i < npt; i++)
+		for (j = 0; j < per; j++)
+			dst[i * per + j] = pts[i][j];
+	*np = npt;
 	return 0;
 }
 
@@ -1100,6 +1192,7 @@ static const struct {
 	{ "light", do_light },
 	{ "surface", do_surface },
 	{ "interreflection", do_interreflection },
+	{ "occlusion", do_occlusion },
 	{ "illumination", do_illumination },
 	{ "transfer", do_transfer },
 	{ "medium", do_medium },

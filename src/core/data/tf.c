@@ -178,3 +178,145 @@ vx_tf_check(const vx_tf *tf, vx_err *e)
 		    "or not finite", tf->ref_step);
 	return 0;
 }
+
+/* ---- classification ---- */
+
+/* table_at: bilinear RGBA at (v, g) between cell centres, clamped. */
+static void
+table_at(const vx_tf *tf, double v, double g, double out[4])
+{
+	double f[2], w[2];
+	int i0[2], i1[2];
+	double t[2] = { v, g };
+	const double *r[2] = { tf->vrange, tf->grange };
+
+	for (int a = 0; a < 2; a++) {
+		double x = (t[a] - r[a][0]) / (r[a][1] - r[a][0]) *
+		    tf->size[a] - 0.5;
+
+		if (!(x > 0))              /* below the first centre, or NaN */
+			x = 0;
+		if (x > tf->size[a] - 1)
+			x = tf->size[a] - 1;
+		i0[a] = (int)x;
+		i1[a] = i0[a] + 1 < tf->size[a] ? i0[a] + 1 : i0[a];
+		f[a] = x - i0[a];
+		w[a] = 1 - f[a];
+	}
+	for (int c = 0; c < 4; c++) {
+		const float *p = tf->rgba + c;
+		size_t n0 = (size_t)tf->size[0];
+		double a00 = p[4 * (i0[0] + n0 * i0[1])];
+		double a10 = p[4 * (i1[0] + n0 * i0[1])];
+		double a01 = p[4 * (i0[0] + n0 * i1[1])];
+		double a11 = p[4 * (i1[0] + n0 * i1[1])];
+
+		out[c] = w[1] * (w[0] * a00 + f[0] * a10) +
+		    f[1] * (w[0] * a01 + f[0] * a11);
+	}
+}
+
+void
+vx_tf_classify(const vx_tf *tf, double v, double g, vx_tf_sample *o)
+{
+	double x[4];
+
+	if (isnan(v)) {
+		memset(o, 0, sizeof *o);
+		o->transport[0] = o->transport[1] = o->transport[2] = 1;
+		return;
+	}
+	if (tf->has_table) {
+		table_at(tf, v, g, x);
+		o->color[0] = x[0];
+		o->color[1] = x[1];
+		o->color[2] = x[2];
+		o->alpha = x[3];
+	} else {
+		if (tf->color.n > 0)
+			vx_tf_list_eval(&tf->color, v, o->color);
+		else
+			o->color[0] = o->color[1] = o->color[2] = 1;
+		vx_tf_list_eval(&tf->opacity, v, &o->alpha);
+	}
+	if (tf->gradient.n > 0) {
+		vx_tf_list_eval(&tf->gradient, g, x);
+		o->alpha *= x[0];
+	}
+	if (tf->transport.n > 0)
+		vx_tf_list_eval(&tf->transport, v, o->transport);
+	else
+		o->transport[0] = o->transport[1] = o->transport[2] =
+		    1 - o->alpha;
+	if (tf->surface.n > 0)
+		vx_tf_list_eval(&tf->surface, v, &o->surface);
+	else
+		o->surface = 0;
+}
+
+int
+vx_tf_needs_gradient(const vx_tf *tf)
+{
+	return tf->has_table || tf->gradient.n > 0 || tf->surface.n > 0;
+}
+
+/* list_extreme: the largest (want_max) or smallest value of channel c of
+ * l over [lo, hi]: at the ends or at a control point inside. */
+static double
+list_extreme(const vx_tf_list *l, int c, double lo, double hi, int want_max)
+{
+	double y[3], m;
+
+	vx_tf_list_eval(l, lo, y);
+	m = y[c];
+	vx_tf_list_eval(l, hi, y);
+	m = want_max ? fmax(m, y[c]) : fmin(m, y[c]);
+	for (int i = 0; i < l->n; i++)
+		if (l->x[i] >= lo && l->x[i] <= hi) {
+			double t = l->y[(size_t)l->dim * (size_t)i + (size_t)c];
+
+			m = want_max ? fmax(m, t) : fmin(m, t);
+		}
+	return m;
+}
+
+int
+vx_tf_range_clear(const vx_tf *tf, double lo, double hi)
+{
+	if (isnan(lo) || isnan(hi))
+		return 0;
+	if (lo > hi)
+		return 1;
+	if (tf->has_table) {
+		double r = tf->vrange[1] - tf->vrange[0];
+		double x0 = (lo - tf->vrange[0]) / r * tf->size[0] - 0.5;
+		double x1 = (hi - tf->vrange[0]) / r * tf->size[0] - 0.5;
+		int n = tf->size[0];
+		int c0 = x0 < 0 ? 0 : x0 > n - 1 ? n - 1 : (int)floor(x0);
+		int c1 = x1 < 0 ? 0 : x1 > n - 1 ? n - 1 : (int)floor(x1) + 1;
+
+		if (c1 > n - 1)
+			c1 = n - 1;
+		for (int j = 0; j < tf->size[1]; j++)
+			for (int i = c0; i <= c1; i++)
+				if (tf->rgba[4 * ((size_t)i + (size_t)n *
+				    (size_t)j) + 3] != 0)
+					return 0;
+	} else if (list_extreme(&tf->opacity, 0, lo, hi, 1) != 0)
+		return 0;
+	if (tf->transport.n > 0)
+		for (int c = 0; c < 3; c++)
+			if (list_extreme(&tf->transport, c, lo, hi, 0) != 1)
+				return 0;
+	return 1;
+}
+
+double
+vx_tf_correct(double alpha, double r)
+{
+	if (alpha <= 0)
+		return 0;
+	if (alpha >= 1)
+		return 1;
+	return 1 - pow(1 - alpha, r);
+}

@@ -146,6 +146,17 @@ typedef enum vx_phase {
 	VX_PHASE_LAST
 } vx_phase;
 
+/* The file formats "transfer file" names (formats/transfer.md, "Imports");
+ * a tool maps them onto vx_tfimport.h's formats by name. */
+typedef enum vx_tf_file_format {
+	VX_TFF_UNKNOWN = 0,
+	VX_TFF_AUTO,
+	VX_TFF_PARAVIEW,
+	VX_TFF_SLICER,
+	VX_TFF_MITER,
+	VX_TFF_LAST
+} vx_tf_file_format;
+
 typedef struct vx_scene {
 	vx_camera camera;         /* includes the image size (camera.w, .h) */
 	char volume[VX_SCENE_NAME_MAX];   /* isosurface volume; "" the first */
@@ -164,15 +175,32 @@ typedef struct vx_scene {
 	/* ---- reserved: parsed and stored, computed by no renderer yet ---- */
 	int has_interreflection;
 	int bounces, samples;     /* interreflection: bounces >= 0, samples >= 1 */
+	int has_occlusion;        /* ambient occlusion / vicinity shading: */
+	double occlusion_distance;/* > 0: rays longer than this (world units)
+	                             count as open; 0: unlimited */
 	int has_illumination;
 	vx_illum illumination;
 	int sh_order;             /* SH: order n >= 1 (n^2 coefficients) */
 	int pt_samples;           /* pathtrace: paths per pixel sample, >= 1 */
 	vx_interp interp;
-	int ntf_opacity;          /* DVR transfer function: value, opacity */
+	/* the transfer function of direct volume rendering (formats/
+	 * transfer.md); each list 0 points when absent, abscissae
+	 * non-decreasing, values in [0,1] */
+	int ntf_opacity;          /* value, opacity */
 	double tf_opacity[VX_SCENE_MAX_TF][2];
 	int ntf_color;            /* value, r, g, b */
 	double tf_color[VX_SCENE_MAX_TF][4];
+	int ntf_transport;        /* value, r, g, b (the transport colour) */
+	double tf_transport[VX_SCENE_MAX_TF][4];
+	int ntf_surface;          /* value, surface-shading weight */
+	double tf_surface[VX_SCENE_MAX_TF][2];
+	int ntf_gradient;         /* gradient magnitude (>= 0), factor */
+	double tf_gradient[VX_SCENE_MAX_TF][2];
+	int has_tf_step;          /* 1: tf_step was given */
+	double tf_step;           /* reference step, world units, >= 0 (0: one
+	                             voxel along the smallest spacing) */
+	char tf_file[VX_SCENE_PATH_MAX];  /* "transfer file": "" none */
+	vx_tf_file_format tf_file_format; /* with tf_file */
 	int has_medium;
 	vx_phase phase;
 	double phase_g;           /* Henyey-Greenstein asymmetry, (-1, 1) */
@@ -269,9 +297,7 @@ int vx_scene_to_stream(const vx_scene *s, vx_stream *st, vx_err *e);
  * name, NULL). */
 extern const vx_enum vx_light_type_enum, vx_env_layout_enum, vx_falloff_enum,
     vx_illum_enum, vx_interp_enum, vx_phase_enum, vx_colormap_enum,
-    vx_effect_enum;
-/* vx_colormap_parse: shorthand for vx_enum_val(&vx_colormap_enum, s). */
-vx_colormap vx_colormap_parse(const char *s);
+    vx_effect_enum, vx_tf_file_format_enum;
 /* vx_colormap_eval: color for t (clamped to [0,1]) under map m; unknown
  * maps give gray.  The maps are piecewise linear (formats/scene.md). */
 void vx_colormap_eval(vx_colormap m, double t, double rgb[3]);

@@ -5,14 +5,17 @@
  * its gradient magnitude g) to optical properties:
  *   color      RGB albedo in [0,1]               (the paper's colour)
  *   opacity    alpha in [0,1] per reference step (see below)
- *   transport  RGB in [0,1]: the indirect attenuation colour (the paper's
- *              "transport colour": what fraction of each channel forward-
- *              scattered light loses per reference step); absent: equal to
- *              the opacity in every channel (grey attenuation)
+ *   transport  RGB in [0,1]: the paper's "transport colour", the
+ *              complement of the indirect alpha: the fraction of each
+ *              channel of forward-scattered light that goes on through
+ *              one reference step (so light in the material takes on this
+ *              colour); absent: 1 - alpha in every channel (grey, the
+ *              direct light's attenuation)
  *   surface    weight in [0,1] of the surface (Blinn-Phong on the
  *              gradient) term; absent: 0 (pure volume shading)
  *   gradient   opacity factor in [0,1] as a function of g alone (3D
  *              Slicer's gradient opacity); absent: 1
+ * and, with no color list and no table, the colour is white (1, 1, 1).
  * Each of these is a piecewise-linear list of control points over its
  * variable (vx_tf_list), clamped to its end points outside them.  A list's
  * abscissae are non-decreasing; two equal abscissae make a step (the left
@@ -95,5 +98,52 @@ int vx_tf_table_set(vx_tf *tf, const int size[2], const double vrange[2],
  * (neither the list nor a table), a table beside a color or opacity list,
  * a list of the wrong dim, a negative or non-finite ref_step. */
 int vx_tf_check(const vx_tf *tf, vx_err *e);
+
+/* ---- classification (what a renderer calls per sample) ---- */
+
+/* A classified sample, for the reference step. */
+typedef struct vx_tf_sample {
+	double color[3];          /* albedo */
+	double alpha;             /* opacity (gradient factor applied) */
+	double transport[3];      /* transport colour */
+	double surface;           /* surface-shading weight */
+} vx_tf_sample;
+
+/* vx_tf_classify: the optical properties at value v and gradient
+ * magnitude g (ignored unless tf has a table or a gradient list) of a
+ * function that passed vx_tf_check: color from the color list (white when
+ * absent) or the table; alpha from the opacity list or the table, times
+ * the gradient list's factor at g; transport from its list, else 1 - alpha
+ * per channel; surface from its list, else 0.  v NaN: an empty sample
+ * (color 0, alpha 0, transport 1, surface 0). */
+void vx_tf_classify(const vx_tf *tf, double v, double g, vx_tf_sample *o);
+
+/* vx_tf_needs_gradient: 1 when vx_tf_classify looks at g or the renderer
+ * needs the gradient for the surface term: a table, a gradient list or a
+ * surface list. */
+int vx_tf_needs_gradient(const vx_tf *tf);
+
+/* vx_tf_range_clear: 1 when every value in [lo, hi] (any g) classifies to
+ * alpha 0 and transport (1, 1, 1): a sample there changes neither the eye
+ * nor the light, so a renderer may skip it.  Exact for the lists (the
+ * maximum of a piecewise-linear function over an interval is at an end or
+ * a control point inside); for a table, conservative (every alpha in the
+ * columns the interval's bilinear lookups can touch).  lo > hi (an empty
+ * range, as a macrocell with no finite sample has) gives 1; a NaN bound
+ * gives 0. */
+int vx_tf_range_clear(const vx_tf *tf, double lo, double hi);
+
+/* vx_tf_correct: alpha for a step of ratio r = d / ref_step (r >= 0):
+ * 1 - (1 - alpha)^r; alpha 0 gives exactly 0, alpha 1 exactly 1. */
+double vx_tf_correct(double alpha, double r);
+
+/* vx_tf_apply_scene: the scene's transfer lines over tf (which may hold
+ * an imported file's function): each list the scene gives replaces tf's
+ * list of that channel (a color or opacity list drops a 2D table: the
+ * table is colour and opacity together), and "transfer step" replaces
+ * ref_step.  The scene's file is not read here (vx_tfimport.h, from a
+ * tool).  Errors, tf then partly changed: VX_EDATA, VX_ENOMEM. */
+struct vx_scene;
+int vx_tf_apply_scene(vx_tf *tf, const struct vx_scene *s, vx_err *e);
 
 #endif

@@ -64,6 +64,8 @@ int tool_scene_opt(tool_scene_opts *so, int c, const char *val,
 /* Option value parsers: exit 64 with "name: --opt: why" on bad input. */
 double tool_parse_double(const char *opt, const char *s, double lo, double hi);
 long tool_parse_long(const char *opt, const char *s, long lo, long hi);
+/* tool_parse_bits: --bits, a PNG's bits per channel: 8 or 16. */
+int tool_parse_bits(const char *s);
 /* tool_parse_doubles: exactly n comma- or space-separated numbers. */
 void tool_parse_doubles(const char *opt, const char *s, double *out, int n);
 /* tool_parse_enum: the value s names in en; else exits 64 with "name: opt:
@@ -206,5 +208,13 @@ void tool_gi_setup(struct vx_gi *gi, struct vx_scene *s,
  * why") and the default (j <= 0) takes as many as could be made (at least
  * one: the calling thread). */
 int tool_threads(long j);
+
+/* tool_scene_tf: the transfer function of scene s into tf (initialized
+ * here): the scene's "transfer file" read by vx_tf_import (the format by
+ * its name), then the scene's own transfer lines over it
+ * (vx_tf_apply_scene), then vx_tf_check.  Exits with the import's code
+ * ("transfer file NAME: why") or 65 ("transfer: why"). */
+struct vx_tf;
+void tool_scene_tf(struct vx_tf *tf, const struct vx_scene *s);
 
 #endif

@@ -1,0 +1,277 @@
+/* dvr: direct volume rendering with volumetric light by half-angle slicing
+ * (Kniss et al. 2003). */
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tool.h"
+#include "vx_camera.h"
+#include "vx_dvr.h"
+#include "vx_grid.h"
+#include "vx_image.h"
+#include "vx_macro.h"
+#include "vx_plan.h"
+#include "vx_scene.h"
+#include "vx_tf.h"
+
+static const char usage[] =
+    "dvr [--scene FILE] [--size WxH] [--view NAME|AZ,EL] [--ortho]\n"
+    "    [--fov DEG] [--light SPEC] [--lights none] [--effects WORDS]\n"
+    "    [--background R,G,B] [--set LINE] [--name NAME] [--slices N]\n"
+    "    [--light-size N] [--blur-angle DEG] [--blur-samples N] [--seed N]\n"
+    "    [--no-skip] [-j N] [--stats] [--explain] [-n] [--hdr] [-z LEVEL]\n"
+    "    [--pfm FILE] [--bits 8|16] [--exposure STOPS] [-o OUT] [STREAM|-]";
+
+typedef struct opts {
+	const char *in, *out, *name, *pfm;
+	int hdr, zlevel, bits, stats, explain, dry, ortho;
+	long threads;
+	double exposure;
+	vx_dvr_opts d;
+	tool_scene_opts so;
+} opts;
+
+static void
+parse(opts *o, int argc, char **argv)
+{
+	enum { O_ORTHO = 256, O_NAME, O_SLICES, O_LSIZE, O_BANGLE, O_BSAMP,
+	    O_SEED, O_NOSKIP, O_STATS, O_EXPLAIN, O_HDR, O_BITS, O_EXPOSURE,
+	    O_PFM };
+	static const struct option lo[] = {
+		{ "scene", 1, 0, TOOL_O_SCENE },
+		{ "size", 1, 0, TOOL_O_SIZE }, { "view", 1, 0, TOOL_O_VIEW },
+		{ "ortho", 0, 0, O_ORTHO }, { "fov", 1, 0, TOOL_O_FOV },
+		{ "light", 1, 0, TOOL_O_LIGHT }, { "lights", 1, 0, TOOL_O_LIGHTS },
+		{ "effects", 1, 0, TOOL_O_EFFECTS },
+		{ "background", 1, 0, TOOL_O_BG },
+		{ "set", 1, 0, TOOL_O_SET }, { "name", 1, 0, O_NAME },
+		{ "slices", 1, 0, O_SLICES }, { "light-size", 1, 0, O_LSIZE },
+		{ "blur-angle", 1, 0, O_BANGLE },
+		{ "blur-samples", 1, 0, O_BSAMP }, { "seed", 1, 0, O_SEED },
+		{ "no-skip", 0, 0, O_NOSKIP }, { "stats", 0, 0, O_STATS },
+		{ "explain", 0, 0, O_EXPLAIN }, { "dry-run", 0, 0, 'n' },
+		{ "hdr", 0, 0, O_HDR }, { "bits", 1, 0, O_BITS },
+		{ "exposure", 1, 0, O_EXPOSURE }, { "pfm", 1, 0, O_PFM },
+		{ "output", 1, 0, 'o' }, { "threads", 1, 0, 'j' },
+		{ "help", 0, 0, 'h' }, { 0, 0, 0, 0 }
+	};
+	int c;
+
+	memset(o, 0, sizeof *o);
+	o->out = "-";
+	o->bits = 8;
+	o->zlevel = 1;
+	vx_dvr_opts_init(&o->d);
+	while ((c = getopt_long(argc, argv, ":o:j:nhz:", lo, NULL)) != -1) {
+		switch (c) {
+		case 'o': o->out = optarg; break;
+		case 'z': o->zlevel = (int)tool_parse_long("-z", optarg, 0, 9); break;
+		case 'j': o->threads = tool_parse_long("-j", optarg, 0, 4096); break;
+		case 'n': o->dry = o->explain = 1; break;
+		case O_ORTHO: o->ortho = 1; break;
+		case O_NAME: o->name = optarg; break;
+		case O_SLICES:
+			o->d.slices = (int)tool_parse_long("--slices", optarg, 1,
+			    VX_DVR_MAX_SLICES);
+			break;
+		case O_LSIZE:
+			o->d.light_size = (int)tool_parse_long("--light-size",
+			    optarg, 1, VX_DVR_MAX_LIGHT_SIZE);
+			break;
+		case O_BANGLE:
+			o->d.blur_angle = tool_parse_double("--blur-angle", optarg,
+			    0, 89.9);
+			break;
+		case O_BSAMP:
+			o->d.blur_samples = (int)tool_parse_long("--blur-samples",
+			    optarg, 1, VX_DVR_MAX_BLUR);
+			break;
+		case O_SEED:
+			o->d.seed = (uint64_t)tool_parse_long("--seed", optarg, 0,
+			    0x7fffffffffffffffL);
+			break;
+		case O_NOSKIP: o->d.no_skip = 1; break;
+		case O_STATS: o->stats = 1; break;
+		case O_EXPLAIN: o->explain = 1; break;
+		case O_HDR: o->hdr = 1; break;
+		case O_PFM: o->pfm = optarg; break;
+		case O_BITS:
+			o->bits = (int)tool_parse_long("--bits", optarg, 8, 16);
+			if (o->bits != 8 && o->bits != 16)
+				tool_usage_fail(usage, "--bits: 8 or 16");
+			break;
+		case O_EXPOSURE:
+			o->exposure = tool_parse_double("--exposure", optarg, -64, 64);
+			break;
+		default:
+			if (!tool_scene_opt(&o->so, c, optarg, usage))
+				tool_opt_other(c, usage, argv);
+		}
+	}
+	o->in = tool_opt_input(argc, argv, usage);
+}
+
+static void
+explain_geometry(const vx_scene *s, const vx_dvr_decide *d,
+    const vx_dvr_geom *geo, const vx_grid *g, int nthr)
+{
+	const double *a = geo->axis;
+
+	fprintf(stderr, "dvr: %dx%d pixels (%s camera), volume '%s' %lldx%lldx"
+	    "%lld; %d thread%s\n", s->camera.w, s->camera.h,
+	    vx_enum_str(&vx_projection_enum, s->camera.projection), g->name,
+	    (long long)g->dims[0], (long long)g->dims[1],
+	    (long long)g->dims[2], nthr, nthr == 1 ? "" : "s");
+	if (d->light_buffer)
+		fprintf(stderr, "dvr: slicing axis %.4g %.4g %.4g, halfway "
+		    "between the light's direction %.4g %.4g %.4g and the %s "
+		    "%.4g %.4g %.4g (angle between light and view %.1f "
+		    "degrees): the eye composites %s\n", a[0], a[1], a[2],
+		    geo->light_dir[0], geo->light_dir[1], geo->light_dir[2],
+		    geo->back_to_front ? "inverted view" : "view",
+		    geo->back_to_front ? -geo->view_dir[0] : geo->view_dir[0],
+		    geo->back_to_front ? -geo->view_dir[1] : geo->view_dir[1],
+		    geo->back_to_front ? -geo->view_dir[2] : geo->view_dir[2],
+		    acos(fmax(-1, fmin(1, geo->light_dir[0] *
+		    geo->view_dir[0] + geo->light_dir[1] * geo->view_dir[1] +
+		    geo->light_dir[2] * geo->view_dir[2]))) * 180 / M_PI,
+		    geo->back_to_front ? "back to front (the light faces the "
+		    "viewer)" : "front to back");
+	else
+		fprintf(stderr, "dvr: slicing axis %.4g %.4g %.4g, the view "
+		    "direction (no light buffer): the eye composites front to "
+		    "back\n", a[0], a[1], a[2]);
+	fprintf(stderr, "dvr: %d slices %.4g apart (world units along the "
+	    "axis); opacity given for a reference step of %.4g, corrected "
+	    "along each eye and light ray's own path between slices\n",
+	    geo->nslices, geo->dt, geo->ref_step);
+	fprintf(stderr, "dvr: buffers: eye %dx%d RGBA%s\n", s->camera.w,
+	    s->camera.h, d->light_buffer ? (geo->light.projection ==
+	    VX_PERSPECTIVE ? ", light (perspective from the point light) "
+	    "D + RGB, two for ping-pong" : ", light (orthographic along the "
+	    "light) D + RGB, two for ping-pong") : "");
+}
+
+static void
+print_stats(const vx_dvr_stats *st)
+{
+	double es = (double)st->eye_samples, ls = (double)st->light_samples;
+
+	fprintf(stderr, "dvr: %d slices, %d thread%s, %.3f s\n", st->nslices,
+	    st->threads, st->threads == 1 ? "" : "s", st->seconds);
+	fprintf(stderr, "dvr: eye samples %llu (%.1f%% skipped as empty), "
+	    "light samples %llu (%.1f%% skipped), light buffer %dx%d\n",
+	    (unsigned long long)st->eye_samples,
+	    es > 0 ? 100 * (double)st->eye_skipped / es : 0.0,
+	    (unsigned long long)st->light_samples,
+	    ls > 0 ? 100 * (double)st->light_skipped / ls : 0.0,
+	    st->light_size, st->light_size);
+	fprintf(stderr, "dvr: time: set-up %.3f s, eye passes %.3f s, light "
+	    "passes %.3f s\n", st->setup_s, st->eye_s, st->light_s);
+}
+
+int
+main(int argc, char **argv)
+{
+	opts o;
+	vx_stream st;
+	vx_grid g;
+	vx_macro m;
+	vx_scene s;
+	vx_tf tf;
+	vx_plan plan;
+	vx_dvr_decide d;
+	vx_dvr_geom geo;
+	vx_dvr_stats ds;
+	vx_image color;
+	vx_err e = { 0, "" };
+	double lo[3], hi[3];
+	long gi;
+	int nthr;
+	const char *want;
+
+	tool_init("dvr", argc, argv);
+	parse(&o, argc, argv);
+	vx_stream_init(&st);
+	tool_read_stream(&st, o.in);
+	vx_scene_init(&s);
+	tool_scene_opts_load(&s, &o.so, &st);
+	if (o.ortho)
+		s.camera.projection = VX_ORTHOGRAPHIC;
+	want = o.name ? o.name : (s.volume[0] ? s.volume : NULL);
+	vx_grid_init(&g);
+	if (vx_grid_view_stream(&g, &st, want, &gi, &e) != 0)
+		tool_fail_err(&e);
+	if (vx_grid_check_box(&g, &e) != 0)
+		tool_fail_err(&e);
+	tool_scene_tf(&tf, &s);
+	nthr = tool_threads(o.threads);
+	o.d.nthreads = nthr;
+	vx_dvr_plan(&s, &tf, &o.d, &d, &plan);
+	vx_grid_box(&g, lo, hi);
+	if (vx_camera_resolve(&s.camera, lo, hi, &e) != 0)
+		tool_fail_err(&e);
+	if (vx_dvr_geometry(&s, &d, &tf, &g, &o.d, &geo, &e) != 0)
+		tool_fail_err(&e);
+	if (o.explain) {
+		size_t n = vx_plan_format(&plan, NULL, 0) + 1;
+		char *buf = malloc(n);
+
+		if (buf == NULL)
+			tool_fail(VX_ENOMEM, "out of memory");
+		vx_plan_format(&plan, buf, n);
+		fprintf(stderr, "%s", buf);
+		free(buf);
+		explain_geometry(&s, &d, &geo, &g, nthr);
+	}
+	vx_macro_init(&m);
+	if (!o.d.no_skip)
+		tool_macro_load(&m, &st, &g, gi, nthr, o.dry);
+	if (o.dry) {
+		vx_macro_free(&m);
+		vx_tf_free(&tf);
+		vx_grid_free(&g);
+		vx_stream_free(&st);
+		return tool_finish();
+	}
+	vx_image_init(&color);
+	if (vx_dvr_render(&s, &d, &tf, &g, o.d.no_skip ? NULL : &m, &o.d,
+	    &color, &ds, &e) != 0)
+		tool_fail_err(&e);
+	if (o.stats)
+		print_stats(&ds);
+	if (o.pfm) {
+		/* linear RGB over the background: what a PFM can hold */
+		vx_image flat;
+
+		if (vx_image_flatten(&flat, &color, 1, s.background, &e) != 0)
+			tool_fail_err(&e);
+		tool_write_pfm(o.pfm, &flat);
+		vx_image_free(&flat);
+	}
+	if (o.hdr) {
+		static const char *const consumed[] = { VX_CHUNK_VOLUME,
+		    VX_CHUNK_MACRO, VX_CHUNK_SCENE, VX_CHUNK_IMAGE, NULL };
+		vx_stream out;
+		vx_chunk c;
+
+		vx_stream_init(&out);
+		tool_stream_keep(&out, &st, consumed);
+		if (vx_scene_to_stream(&s, &out, &e) != 0 ||
+		    vx_image_to_chunk(&color, o.zlevel, &c, &e) != 0 ||
+		    vx_stream_append(&out, &c, &e) != 0)
+			tool_fail_err(&e);
+		tool_write_stream(&out, o.out);
+		vx_stream_free(&out);
+	} else
+		tool_write_png_radiance(o.out, &color, o.exposure, s.background,
+		    o.bits, &st);
+	vx_image_free(&color);
+	vx_macro_free(&m);
+	vx_tf_free(&tf);
+	vx_grid_free(&g);
+	vx_stream_free(&st);
+	return tool_finish();
+}
