@@ -654,7 +654,10 @@ def tables(res):
                 L.append('| %d | %s | %s | %s | %d | 1/%.1f |' % (
                     b['samples'], fmt_t(b), '%.0f' % pc if pc else '-',
                     fmt_t(lz), lz['paths'], b['cpu'] / lz['cpu']))
-            c = d['cal']['band']
+            c = d['cal'].get('band')
+            if c is None or not d['lazy']:
+                L.append('')
+                continue
             L.append('')
             L.append('Texels: %d wanted; the lazy view reads %d.  '
                      'Calibration: %d samples, %.1f / %.1f s, %.0f paths '
@@ -778,9 +781,10 @@ def main():
         if os.path.exists(jp):
             b.res.update(json.load(open(jp)))
         parts = a.parts.split(',')
-        for p, fn in (('t1', b.table1), ('t2', b.table2),
-                      ('acc', b.accuracy), ('mem', b.memory),
-                      ('sht1', b.sh_table1), ('shcost', b.sh_cost),
+        # sht1 before t2: its 4-sample f32 bake is Table 2's SH store
+        for p, fn in (('t1', b.table1), ('sht1', b.sh_table1),
+                      ('t2', b.table2), ('acc', b.accuracy),
+                      ('mem', b.memory), ('shcost', b.sh_cost),
                       ('shmem', b.sh_memory)):
             if p in parts:
                 fn()
