@@ -351,6 +351,18 @@ chunk_roundtrip(void **state)
 			bad.data[hdr + (nb + 7) / 8 + 8 + 7] = 0x80; /* sum < 0 */
 			assert_int_equal(vx_irr_from_chunk(&w, &bad, &e),
 			    VX_EDATA);
+			/* the in-memory SAMPLED bit in a stored record with no
+			 * samples: ignored, the texel is not usable (fuzz_stream
+			 * found it drawn as irradiance 0) */
+			memcpy(bad.data, c.data, c.len);
+			memset(bad.data + hdr + (nb + 7) / 8, 0, 4);  /* count 0 */
+			bad.data[hdr + (nb + 7) / 8 + 7] |= 0x80;     /* bit 31 */
+			assert_int_equal(vx_irr_from_chunk(&w, &bad, &e), 0);
+			assert_int_equal(vx_irr_accp(&w, 0)->count, 0);
+			assert_false(vx_irr_usable(&w, 0));
+			assert_false(vx_irr_accp(&w, 0)->flags &
+			    VX_TEXEL_SAMPLED);
+			vx_irr_free(&w);
 			free(bad.data);
 		}
 		vx_chunk_free(&c);

@@ -1083,7 +1083,9 @@ from_chunk(vx_irrvol *v, const vx_chunk *c, vx_err *e)
 				vx_irr_acc *a = vx_irr_accp(v, (int64_t)t);
 
 				a->count = vx_le32(q);
-				a->flags = vx_le32(q + 4);
+				/* SAMPLED is derived from count, never stored */
+				a->flags = vx_le32(q + 4) &
+				    ~(uint32_t)VX_TEXEL_SAMPLED;
 				for (int k = 0; k < nc; k++) {
 					a->sum[k] = (int64_t)vx_le64(q + 8 + 8 * k);
 					if (a->sum[k] < (v->sh_order ?
