@@ -4,7 +4,8 @@
  * TETM (vx_tetmesh_from_chunk, and its TLEF leaf grid, one ray through it),
  * TLEF (vx_tetleaf_from_chunk), SCNE (vx_scene_from_chunk), IRRV and SHTV
  * (vx_irr_from_chunk: the lookups a renderer makes, the chunk written back
- * and read back equal, merged with that copy unchanged) and SHLC
+ * and read back equal, merged with that copy unchanged, made final f16
+ * and read back) and SHLC
  * (vx_shlight_from_chunk, written back and read back equal); a stream
  * that reads is written back and must read back to the same chunks. */
 #include <math.h>
@@ -203,6 +204,26 @@ touch_irr(vx_irrvol *v, const vx_grid *g)
 			}
 			if (!same_irr(v, &w))
 				fuzz_fail("irr: a merge with itself changed it");
+			/* made final (as bake-irr --half), it reads back */
+			if (vx_irr_finalize(&w, VX_IRR_F16, &e) != 0)
+				fuzz_fail("irr: finalize failed");
+			if (vx_irr_to_chunk(&w, 0, &c, &e) != 0)
+				fuzz_fail("irr: a final volume cannot be written");
+			{
+				vx_irrvol x;
+
+				if (vx_irr_from_chunk(&x, &c, &e) != 0) {
+					fprintf(stderr, "%s\n", e.msg);
+					fuzz_fail("irr: a final volume does not "
+					    "read back");
+				}
+				x.fixed = w.fixed;   /* kept by accum only */
+				if (!same_irr(&w, &x))
+					fuzz_fail("irr: final round trip changed "
+					    "the volume");
+				vx_irr_free(&x);
+			}
+			vx_chunk_free(&c);
 		}
 		vx_irr_free(&w);
 	}

@@ -363,3 +363,7 @@ VOLM = vchunk("VOLM", [("name", "density"), ("dims", "2 2 2"), ("type", "u8"),
 # (bit 31): it was taken as a usable texel of irradiance 0
 put("stream", "regress-irrv-sampled-bit.vxs", vstream(VOLM, irrv_accum({
     0: (0, 16 | 1 << 31, 0), 1: (4, 16, 4 << 24)})))
+# a mean of 10^6, beyond binary16: made final f16 (bake-irr --half) it was
+# written as an infinity that no reader takes
+put("stream", "regress-irrv-f16-range.vxs", vstream(VOLM, irrv_accum({
+    0: (4, 16, 4 * 10**6 << 24)})))
