@@ -714,7 +714,8 @@ text_irrv(const irrv_info *ii)
 	else
 		printf("    world spacing: unknown (the volume is not in the "
 		    "stream)\n");
-	printf("    store: %s, %zu bytes a texel", vx_irr_store_name(v->store),
+	printf("    store: %s, %zu bytes a texel",
+	    vx_enum_str(&vx_irr_store_enum, v->store),
 	    vx_irr_texel_bytes(v->store, v->ncomp));
 	if (v->store == VX_IRR_ACCUM)
 		printf(", %d fraction bits\n", v->fixed);
@@ -786,8 +787,8 @@ json_irrv(const irrv_info *ii)
 	else
 		fputs("null", stdout);
 	printf(",\"store\":\"%s\",\"texel_bytes\":%zu,\"fixed\":",
-	    vx_irr_store_name(v->store), vx_irr_texel_bytes(v->store,
-	    v->ncomp));
+	    vx_enum_str(&vx_irr_store_enum, v->store),
+	    vx_irr_texel_bytes(v->store, v->ncomp));
 	if (v->store == VX_IRR_ACCUM)
 		printf("%d", v->fixed);
 	else
@@ -950,7 +951,7 @@ text_volume(const vol_info *v, long bins)
 	put_str(g->name);
 	printf("\n    dims: %lld x %lld x %lld %s (%llu samples)\n",
 	    (long long)g->dims[0], (long long)g->dims[1],
-	    (long long)g->dims[2], vx_type_name(g->type),
+	    (long long)g->dims[2], vx_enum_str(&vx_type_enum, g->type),
 	    (unsigned long long)st->count);
 	printf("    spacing: %.17g %.17g %.17g\n", g->spacing[0], g->spacing[1],
 	    g->spacing[2]);
@@ -1100,7 +1101,7 @@ json_volume(const vol_info *v, long bins)
 	json_str(g->name);
 	printf(",\"dims\":[%lld,%lld,%lld],\"type\":\"%s\",\"spacing\":",
 	    (long long)g->dims[0], (long long)g->dims[1],
-	    (long long)g->dims[2], vx_type_name(g->type));
+	    (long long)g->dims[2], vx_enum_str(&vx_type_enum, g->type));
 	json_nums(g->spacing, 3);
 	printf(",\"origin\":");
 	json_nums(g->origin, 3);

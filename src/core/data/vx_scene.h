@@ -164,6 +164,9 @@ typedef struct vx_scene {
 	/* ---- reserved: parsed and stored, computed by no renderer yet ---- */
 	int has_interreflection;
 	int bounces, samples;     /* interreflection: bounces >= 0, samples >= 1 */
+	int has_occlusion;        /* ambient occlusion / vicinity shading: */
+	double occlusion_distance;/* > 0: rays longer than this (world units)
+	                             count as open; 0: unlimited */
 	int has_illumination;
 	vx_illum illumination;
 	int sh_order;             /* SH: order n >= 1 (n^2 coefficients) */
@@ -270,8 +273,6 @@ int vx_scene_to_stream(const vx_scene *s, vx_stream *st, vx_err *e);
 extern const vx_enum vx_light_type_enum, vx_env_layout_enum, vx_falloff_enum,
     vx_illum_enum, vx_interp_enum, vx_phase_enum, vx_colormap_enum,
     vx_effect_enum;
-/* vx_colormap_parse: shorthand for vx_enum_val(&vx_colormap_enum, s). */
-vx_colormap vx_colormap_parse(const char *s);
 /* vx_colormap_eval: color for t (clamped to [0,1]) under map m; unknown
  * maps give gray.  The maps are piecewise linear (formats/scene.md). */
 void vx_colormap_eval(vx_colormap m, double t, double rgb[3]);
