@@ -18,12 +18,15 @@
 scene=../scenes/head-dvr.scn
 rel() { python3 ../../tests/cli/vximg.py relrmse-all "$1" "$2"; }
 D() { dvr --scene "$scene" --size "$DVR_SIZE" --effects "volumetric-shadows specular" "$@"; }
-# the seconds dvr --stats reports, median of RUNS
-dvr_time() {
+# run OUT CMD...: CMD (a dvr) RUNS times, its picture into OUT (--hdr);
+# prints the median of the seconds its --stats line reports
+run() {
+	out=$1
+	shift
 	i=0
 	: > results/.times
 	while [ "$i" -lt "$RUNS" ]; do
-		"$@" --stats 2>&1 >/dev/null | sed -n 's/^dvr: .*threads*, \([0-9.]*\) s$/\1/p' >> results/.times
+		"$@" --stats --hdr results/head.vx 2>&1 > "$out" | sed -n 's/^dvr: .*threads*, \([0-9.]*\) s$/\1/p' >> results/.times
 		i=$((i + 1))
 	done
 	sort -n results/.times | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'
@@ -33,23 +36,23 @@ png() { tonemap -o "results/$2.png" "$1" >/dev/null; }
 # the references, each with its own error: the ray march against itself
 # at half the step, the path tracer against another seed (the noise of
 # one picture is that RMSE / sqrt 2)
-D --reference raymarch --hdr results/head.vx > results/dvr-rm.vx
-D --reference raymarch --march-step 0.5 --hdr results/head.vx > results/dvr-rm2.vx
-D --reference pathtrace --spp "$DVR_SPP" --hdr results/head.vx > results/dvr-pt.vx
+t_rm=$(run results/dvr-rm.vx D --reference raymarch)
+# (the slowest picture, not timed: kept in results/ from run to run as
+# head.vx is; make clean removes it)
+[ -s results/dvr-rm2.vx ] ||
+    D --reference raymarch --march-step 0.5 --hdr results/head.vx > results/dvr-rm2.vx
+t_pt=$(run results/dvr-pt.vx D --reference pathtrace --spp "$DVR_SPP")
 D --reference pathtrace --spp "$DVR_SPP" --seed 2 --hdr results/head.vx > results/dvr-pt2.vx
-t_rm=$(dvr_time D --reference raymarch -o /dev/null results/head.vx)
-t_pt=$(dvr_time D --reference pathtrace --spp "$DVR_SPP" -o /dev/null results/head.vx)
 png results/dvr-rm.vx dvr-raymarch
 png results/dvr-pt.vx dvr-pathtrace
 
 printf 'slices\tlight_size\tseconds\trelrmse_raymarch\trelrmse_pathtrace\n' > results/dvr.tsv
 sweep() {
-	D --slices "$1" --light-size "$2" --hdr results/head.vx > results/dvr-s.vx
-	t=$(dvr_time D --slices "$1" --light-size "$2" -o /dev/null results/head.vx)
+	t=$(run results/dvr-s.vx D --slices "$1" --light-size "$2")
 	printf '%s\t%s\t%s\t%s\t%s\n' "$1" "$2" "$t" \
 	    "$(rel results/dvr-rm.vx results/dvr-s.vx)" \
 	    "$(rel results/dvr-pt.vx results/dvr-s.vx)" >> results/dvr.tsv
-	[ "$1" != 320 ] || [ "$2" != 256 ] || png results/dvr-s.vx dvr-slicing
+	[ "$1" != 320 ] || [ "$2" != 256 ] || { png results/dvr-s.vx dvr-slicing; cp results/dvr-s.vx results/dvr-s320.vx; }
 }
 for n in 80 160 320 640; do sweep $n 256; done
 printf '\n\n' >> results/dvr.tsv
@@ -57,22 +60,19 @@ for l in 64 128 256 512; do sweep 320 $l; done
 
 # multiple scattering: the slicer with its scattering term and without,
 # against the path tracer with up to 16 vertices a path
-dvr --scene "$scene" --size "$DVR_SIZE" --hdr results/head.vx > results/dvr-sc.vx
-dvr --scene "$scene" --size "$DVR_SIZE" --reference pathtrace --spp "$DVR_SPP_MS" \
-    --bounces 16 --hdr results/head.vx > results/dvr-ptm.vx
-t_ptm=$(dvr_time dvr --scene "$scene" --size "$DVR_SIZE" --reference pathtrace \
-    --spp "$DVR_SPP_MS" --bounces 16 -o /dev/null results/head.vx)
-t_sc=$(dvr_time dvr --scene "$scene" --size "$DVR_SIZE" -o /dev/null results/head.vx)
+S() { dvr --scene "$scene" --size "$DVR_SIZE" "$@"; }
+t_sc=$(run results/dvr-sc.vx S)
+t_ptm=$(run results/dvr-ptm.vx S --reference pathtrace --spp "$DVR_SPP_MS" --bounces 16)
 png results/dvr-sc.vx dvr-slicing-scatter
 png results/dvr-ptm.vx dvr-pathtrace-multiple
 {
 	printf 'picture\tagainst\tseconds\trelrmse\n'
 	printf 'raymarch step 1\traymarch step 0.5\t%s\t%s\n' "$t_rm" "$(rel results/dvr-rm2.vx results/dvr-rm.vx)"
-	printf 'pathtrace %s spp\tpathtrace, seed 2 (x sqrt 2)\t%s\t%s\n' "$DVR_SPP" "$t_pt" "$(rel results/dvr-pt2.vx results/dvr-pt.vx)"
+	printf 'pathtrace %s spp\tpathtrace seed 2 (one's noise: this / sqrt 2)\t%s\t%s\n' "$DVR_SPP" "$t_pt" "$(rel results/dvr-pt2.vx results/dvr-pt.vx)"
 	printf 'pathtrace %s spp\traymarch step 0.5\t%s\t%s\n' "$DVR_SPP" "$t_pt" "$(rel results/dvr-rm2.vx results/dvr-pt.vx)"
 	printf 'dvr scattering\tpathtrace 16 bounces, %s spp\t%s\t%s\n' "$DVR_SPP_MS" "$t_sc" "$(rel results/dvr-ptm.vx results/dvr-sc.vx)"
-	printf 'dvr shadows only (320, 256)\tpathtrace 16 bounces, %s spp\t-\t%s\n' "$DVR_SPP_MS" "$(rel results/dvr-ptm.vx results/dvr-s.vx)"
-	printf 'pathtrace 1 bounce\tpathtrace 16 bounces, %s spp\t-\t%s\n' "$DVR_SPP_MS" "$(rel results/dvr-ptm.vx results/dvr-pt.vx)"
+	printf 'dvr shadows only (320, 256)\tpathtrace 16 bounces, %s spp\t-\t%s\n' "$DVR_SPP_MS" "$(rel results/dvr-ptm.vx results/dvr-s320.vx)"
+	printf 'pathtrace 1 bounce\tpathtrace 16 bounces, %s spp\t%s\t%s\n' "$DVR_SPP_MS" "$t_ptm" "$(rel results/dvr-ptm.vx results/dvr-pt.vx)"
 } > results/dvr-refs.tsv
 plot dvr
 cat results/dvr.tsv results/dvr-refs.tsv

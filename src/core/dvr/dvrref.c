@@ -368,8 +368,8 @@ march_pixel(const ctx *c, int x, int y, local_st *ls, float out[4])
 /* ---- path tracer ---- */
 
 /* track: delta tracking from o along unit d inside the box; 1 and the
- * vertex (*t, its classification) at a real collision, 0 when the path
- * leaves. */
+ * vertex w, its classification (and its gradient when want_grad) at a
+ * real collision, 0 when the path leaves. */
 static int
 track(const ctx *c, const double o[3], const double d[3], int want_grad,
     uint64_t stream, uint64_t index, uint32_t *dim, local_st *ls,
@@ -388,11 +388,14 @@ track(const ctx *c, const double o[3], const double d[3], int want_grad,
 			return 0;
 		for (int a = 0; a < 3; a++)
 			w[a] = o[a] + t * d[a];
-		classify(c, w, want_grad, smp, grad);
+		classify(c, w, 0, smp, grad);
 		ls->tentative++;
 		r = vx_rng_uniform(c->o->seed, stream, index, (*dim)++);
-		if (r * c->smax < sigma_t(c, smp->alpha))
+		if (r * c->smax < sigma_t(c, smp->alpha)) {
+			if (want_grad && !c->class_g)
+				classify(c, w, 1, smp, grad);
 			return 1;
+		}
 	}
 }
 
