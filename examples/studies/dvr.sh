@@ -68,11 +68,11 @@ png results/dvr-ptm.vx dvr-pathtrace-multiple
 {
 	printf 'picture\tagainst\tseconds\trelrmse\n'
 	printf 'raymarch step 1\traymarch step 0.5\t%s\t%s\n' "$t_rm" "$(rel results/dvr-rm2.vx results/dvr-rm.vx)"
-	printf 'pathtrace %s spp\tpathtrace seed 2 (one's noise: this / sqrt 2)\t%s\t%s\n' "$DVR_SPP" "$t_pt" "$(rel results/dvr-pt2.vx results/dvr-pt.vx)"
+	printf 'pathtrace %s spp\tpathtrace seed 2 (the noise of one: this / sqrt 2)\t%s\t%s\n' "$DVR_SPP" "$t_pt" "$(rel results/dvr-pt2.vx results/dvr-pt.vx)"
 	printf 'pathtrace %s spp\traymarch step 0.5\t%s\t%s\n' "$DVR_SPP" "$t_pt" "$(rel results/dvr-rm2.vx results/dvr-pt.vx)"
 	printf 'dvr scattering\tpathtrace 16 bounces, %s spp\t%s\t%s\n' "$DVR_SPP_MS" "$t_sc" "$(rel results/dvr-ptm.vx results/dvr-sc.vx)"
 	printf 'dvr shadows only (320, 256)\tpathtrace 16 bounces, %s spp\t-\t%s\n' "$DVR_SPP_MS" "$(rel results/dvr-ptm.vx results/dvr-s320.vx)"
 	printf 'pathtrace 1 bounce\tpathtrace 16 bounces, %s spp\t%s\t%s\n' "$DVR_SPP_MS" "$t_ptm" "$(rel results/dvr-ptm.vx results/dvr-pt.vx)"
 } > results/dvr-refs.tsv
-plot dvr
+SIZE=$DVR_SIZE plot dvr
 cat results/dvr.tsv results/dvr-refs.tsv
