@@ -107,7 +107,8 @@ $(BUILD)/%.o: %.cc Makefile
 # the sanitizers.
 HOT_OBJ := $(addprefix $(BUILD)/src/core/,kernels/macro.o kernels/macrowalk.o \
 	kernels/macrobox.o kernels/cellmask.o kernels/iso.o kernels/cell.o \
-	render/raycast.o render/bins.o render/surface.o data/camera.o)
+	render/raycast.o render/bins.o render/surface.o data/camera.o \
+	data/irrvol.o render/gi.o bake/bake.o light/sh.o light/warp.o light/rng.o)
 ifneq ($(SANITIZE),1)
 $(HOT_OBJ): override CFLAGS += -O3 -fno-math-errno -fno-trapping-math
 endif

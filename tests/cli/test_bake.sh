@@ -188,4 +188,29 @@ if [ -r "$CH2" ]; then
 else
 	skip "the MRI head" "mricron-data not installed"
 fi
+# 8. ambient occlusion and vicinity shading by name (the scene's occlusion
+# directive): a white sky of radiance 1 in place of the lights, no bounces;
+# a convex sphere is open everywhere (radiance = albedo 0.8, the lights
+# given play no part), in the bake, lazily and path traced; the plan says so
+O="occlusion distance 0.5"
+bake-irr --light "point position 0 0 3 intensity 9" --set "$O" --iso 0.5 \
+    --side high --samples 4 "$T/s.vx" > "$T/ao.vx"
+raycast --iso 0.5 --set "$O" --set "illumination irradiance" --size 33x33 \
+    --hdr "$T/ao.vx" > "$T/rao.vx"
+check_close "occlusion: a convex sphere is open: radiance 0.8" \
+    "$(px img "$T/rao.vx" color 13 19 0)" 0.8 1e-5
+bake-irr --light "point position 0 0 3 intensity 9" --set "$O" --iso 0.5 \
+    --side high --samples 4 --lazy "$T/s.vx" |
+    raycast --iso 0.5 --set "$O" --set "illumination irradiance" \
+    --size 33x33 --hdr --lazy > "$T/raol.vx"
+check_eq "occlusion, lazy: the bake's picture" "$(px same "$T/rao.vx" "$T/raol.vx")" same
+raycast --iso 0.5 --set "$O" --set "illumination pathtrace" --spp 2 \
+    --size 33x33 --hdr "$T/s.vx" > "$T/rpt.vx"
+check_close "occlusion, path traced: 0.8" "$(px img "$T/rpt.vx" color 13 19 0)" 0.8 1e-5
+raycast --iso 0.5 --set "$O" --set "illumination pathtrace" --explain -n \
+    "$T/s.vx" 2>"$T/aoe" >/dev/null || true
+check "occlusion: the plan says what it replaces" grep -q "ambient occlusion (rays open past 0.5): a white sky" "$T/aoe"
+expect_fail "occlusion: distance 0 refused" 64 "occlusion: distance: 0 outside (0" \
+    raycast --iso 0.5 --set "occlusion distance 0" "$T/s.vx"
+
 done_testing

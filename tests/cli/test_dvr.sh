@@ -101,8 +101,14 @@ expect_fail "transfer step: negative" 64 "step: -1 outside" \
 expect_fail "transfer file: unknown format" 64 "unknown value 'csv'" \
     dvr --set "transfer file x.json format csv" "$T/s.vx"
 echo "not a transfer function" > "$T/bad.json"
-expect_fail "transfer file: unreadable" 65 "dvr: transfer file: " \
+expect_fail "transfer file: unreadable" 65 "dvr: transfer file $T/bad.json: " \
     dvr --scene "$T/s.scn" --set "transfer file $T/bad.json" "$T/s.vx"
+# a relative transfer file in a scene file lies beside the scene
+mkdir -p "$T/sub"
+cp "$T/bad.json" "$T/sub/bad.json"
+printf 'transfer file bad.json format paraview\n' > "$T/sub/f.scn"
+expect_fail "transfer file: beside the scene" 65 \
+    "dvr: transfer file $T/sub/bad.json: " dvr --scene "$T/sub/f.scn" "$T/s.vx"
 expect_fail "--slices 0" 64 "--slices" dvr --slices 0 "$T/s.vx"
 expect_fail "--light-size 0" 64 "--light-size" dvr --light-size 0 "$T/s.vx"
 expect_fail "--blur-angle 95" 64 "--blur-angle" dvr --blur-angle 95 "$T/s.vx"

@@ -174,7 +174,7 @@ expect_fail "no irradiance volume" 65 "no irradiance volume" \
     vwrite --chunk IRRV -o "$T/x.nrrd" "$T/s.vx"
 expect_fail "the volume left out: no world frame" 65 "its world frame" \
     vwrite --chunk IRRV -o "$T/x.nrrd" "$T/novol.vx"
-expect_fail "--chunk of another kind" 64 "only VOLM and IRRV" \
+expect_fail "--chunk of another kind" 64 "only VOLM, IRRV and SHTV" \
     vwrite --chunk TETM -o "$T/x.nrrd" "$T/b.vx"
 check "a failed run leaves no file" test ! -e "$T/x.nrrd"
 done_testing

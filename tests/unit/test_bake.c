@@ -502,6 +502,74 @@ sh_unoccluded(void **state)
 	}
 }
 
+/* distance from the plane z = 12: the isosurface of value 4 is the two
+ * planes z = 8 and z = 16 bounding a gap of lower values (the lit side) */
+static double
+gap(double x, double y, double z)
+{
+	(void)x;
+	(void)y;
+	return fabs(z - 12);
+}
+
+/* Vicinity shading (the scene's occlusion directive): a texel on the
+ * gap's floor facing the ceiling H above its start point.  A
+ * cosine-weighted ray at angle theta meets the ceiling after H / cos
+ * theta; with the vicinity D it counts as open when that exceeds D, so
+ * E / pi is the cosine-weighted fraction of directions with cos theta <
+ * H / D: (H / D)^2 (D >= H; 1 for D < H).  Oracle:
+ * that integral; the texel's start lies `offset` voxels above the floor
+ * and the rays eps above it.  Also: the lights of the scene play no part. */
+static void
+vicinity(void **state)
+{
+	/* D <= 16: a ray that meets the ceiling within D has gone at most
+	 * sqrt(D^2 - H^2) < 16 sideways, so none leaves through the
+	 * volume's sides (the texel is 16 from them) */
+	static const struct { double D; } t[] = { { 12 }, { 16 }, { 6 } };
+	const double off = 0.5, eps = 1e-3, H = 8 - off - eps;
+
+	(void)state;
+	for (size_t c = 0; c < sizeof t / sizeof *t; c++) {
+		char occ[64];
+		const char *lines[] = { "light point position 16 16 12 "
+		    "intensity 50", "surface iso 4 color 1 1 1", occ, NULL };
+		union { vx_irr_acc a; int64_t w[3 + VX_IRR_MAX_COMP]; } u;
+		vx_grid g;
+		vx_macro m;
+		vx_scene s;
+		vx_gi gi;
+		vx_irrvol v;
+		vx_bake_opts o;
+		vx_err e = { 0, "" };
+		double got[3], want, r;
+
+		snprintf(occ, sizeof occ, "occlusion distance %g", t[c].D);
+		make_box(&g, &m, 33, 25, gap);
+		scene_with(&s, lines);
+		assert_int_equal(vx_gi_setup(&gi, &s, &g, &m, &e), 0);
+		assert_int_equal(gi.nlight, 0);
+		assert_int_equal(gi.bounces, 0);
+		vx_bake_opts_init(&o);
+		o.samples = 4096;
+		o.offset = off;
+		vx_irr_init(&v);
+		assert_int_equal(vx_irr_setup(&v, &g, 0, 1, VX_IRR_ACCUM, &e),
+		    0);
+		memset(&u, 0, sizeof u);
+		vx_bake_texel(&v, &gi, &g, &o, 16, 16, 8, &u.a, NULL);
+		vx_irr_acc_mean(&v, &u.a, got);
+		r = H / t[c].D;
+		want = PI * (r >= 1 ? 1 : r * r);
+		if (!(fabs(got[0] - want) < 0.01 * PI))
+			fail_msg("D %g: E %.6f, want %.6f", t[c].D, got[0], want);
+		assert_true(got[0] == got[1] && got[1] == got[2]);
+		vx_irr_free(&v);
+		vx_macro_free(&m);
+		vx_grid_free(&g);
+	}
+}
+
 int
 main(void)
 {
@@ -512,6 +580,7 @@ main(void)
 		cmocka_unit_test(determinism),
 		cmocka_unit_test(texel_rules),
 		cmocka_unit_test(sh_unoccluded),
+		cmocka_unit_test(vicinity),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

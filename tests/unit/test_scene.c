@@ -216,6 +216,11 @@ static void ex_illum_sh(vx_scene *s)
 	s->sh_order = 4;
 	s->interp = VX_INTERP_TRICUBIC;
 }
+static void ex_occlusion(vx_scene *s)
+{
+	s->has_occlusion = 1;
+	s->occlusion_distance = 2.5;
+}
 static void ex_illum_irr(vx_scene *s)
 {
 	s->has_illumination = 1;
@@ -328,6 +333,7 @@ static const struct {
 	{ "interreflection bounces 3 samples 64", ex_interreflection },
 	{ "illumination sh order 4 interpolation tricubic", ex_illum_sh },
 	{ "illumination irradiance interpolation nearest-iso", ex_illum_irr },
+	{ "occlusion\nocclusion distance 2.5", ex_occlusion },
 	{ "transfer opacity 0 0 50 0.2 50 1\ntransfer color 7 1 0.5 0",
 	    ex_transfer },
 	{ "transfer transport 0 1 0.6 0.3 100 0.9 0.8 0.7\n"
@@ -501,6 +507,8 @@ static const struct {
 	{ "illumination irradiance order 3", 1, "sh only" },
 	{ "illumination local interpolation nearest", 1, "does not apply" },
 	{ "illumination sh order 0", 1, "outside 1..16" },
+	{ "occlusion distance -1", 1, "outside (0" },
+	{ "occlusion radius 3", 1, "unknown key" },
 	{ "transfer opacity 0 0 1", 1, "groups of 2" },
 	{ "transfer color 0 0 0", 1, "groups of 4" },
 	{ "transfer opacity 5 0 4 1", 1, "must not decrease" },
@@ -618,6 +626,7 @@ static const char *const full_scene =
     "surface iso -0 colormap hot\n"
     "surface iso 255 texture auto\n"
     "interreflection bounces 0 samples 1\n"
+    "occlusion distance 1e-3\n"
     "illumination sh order 2 interpolation nearest\n"
     "transfer opacity 0 0 0.5 1\n"
     "transfer color 0 0 0 0 1 1 1 1\n"

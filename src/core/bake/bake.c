@@ -58,6 +58,8 @@ vx_bake_settings(const vx_irrvol *v, const vx_gi *gi, const vx_bake_opts *o,
 		 * albedo and the bounces determine it */
 		PUT("; transfer sh order %d channels %d", v->sh_order,
 		    v->channels);
+		if (gi->vicinity < INFINITY)
+			PUT("; vicinity %.17g", gi->vicinity);
 		goto albedo;
 	}
 	for (int i = 0; i < gi->nlight; i++) {
@@ -76,6 +78,10 @@ vx_bake_settings(const vx_irrvol *v, const vx_gi *gi, const vx_bake_opts *o,
 	if (gi->has_sky)
 		PUT("; sky %.17g %.17g %.17g", gi->sky[0], gi->sky[1],
 		    gi->sky[2]);
+	if (gi->occlusion)
+		PUT("; occlusion");
+	if (gi->vicinity < INFINITY)
+		PUT(" distance %.17g", gi->vicinity);
 	if (gi->has_env)
 		PUT("; environment %s%s", gi->env_id, gi->env_mis ? " mis" : "");
 albedo:

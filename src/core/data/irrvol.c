@@ -242,16 +242,16 @@ mul64(uint64_t a, uint64_t b, uint64_t *lo, uint64_t *hi)
 	*hi = p11 + (p01 >> 32) + (p10 >> 32) + (mid >> 32);
 }
 
-/* q: v in 2^-fixed units, rounded to nearest; *sat set when v is too
- * large for 2^62 units */
-static uint64_t
-quant(double v, int fixed, int *sat)
+/* q: v in units of 1/scale (scale = 2^fixed: the product is exact),
+ * rounded to nearest; *sat set when v is too large for 2^62 units */
+static inline uint64_t
+quant(double v, double scale, int *sat)
 {
 	double s;
 
 	if (!(v > 0))                  /* 0, negative, NaN */
 		return 0;
-	s = ldexp(v, fixed);
+	s = v * scale;
 	if (!(s < 4611686018427387904.0)) {   /* 2^62, and +Inf */
 		*sat = 1;
 		return (uint64_t)1 << 62;
@@ -260,15 +260,15 @@ quant(double v, int fixed, int *sat)
 }
 
 /* qs: the signed quant (NaN is 0) */
-static int64_t
-qs(double v, int fixed, int *sat)
+static inline int64_t
+qs(double v, double scale, int *sat)
 {
-	return v < 0 ? -(int64_t)quant(-v, fixed, sat) :
-	    (int64_t)quant(v, fixed, sat);
+	return v < 0 ? -(int64_t)quant(-v, scale, sat) :
+	    (int64_t)quant(v, scale, sat);
 }
 
 /* add: *a += q, saturating at +-INT64_MAX */
-static void
+static inline void
 add_sat(int64_t *a, int64_t q, int *sat)
 {
 	if (q > 0 && *a > INT64_MAX - q) {
@@ -300,18 +300,18 @@ lum(const vx_irrvol *v, const double *val)
 void
 vx_irr_acc_add(const vx_irrvol *v, vx_irr_acc *a, const double *val)
 {
+	double scale = ldexp(1, v->fixed);
 	int sat = 0;
 	uint64_t qy, lo, hi;
 
-	for (int c = 0; c < v->ncomp; c++) {
-		double x = val[c];
-		int64_t q;
-
-		q = v->sh_order ? qs(x, v->fixed, &sat) :
-		    (int64_t)quant(x, v->fixed, &sat);
-		add_sat(&a->sum[c], q, &sat);
-	}
-	qy = quant(lum(v, val), v->fixed, &sat);
+	if (v->sh_order)
+		for (int c = 0; c < v->ncomp; c++)
+			add_sat(&a->sum[c], qs(val[c], scale, &sat), &sat);
+	else
+		for (int c = 0; c < v->ncomp; c++)
+			add_sat(&a->sum[c], (int64_t)quant(val[c], scale, &sat),
+			    &sat);
+	qy = quant(lum(v, val), scale, &sat);
 	mul64(qy, qy, &lo, &hi);
 	a->sq[0] += lo;
 	hi += a->sq[0] < lo;

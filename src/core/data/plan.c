@@ -382,6 +382,25 @@ vx_scene_plan_isosurface(const vx_scene *s, vx_plan *p)
 		    "albedo E / pi, E interpolated (%s) from the irradiance "
 		    "volume; no rays beyond the primary ones",
 		    vx_enum_str(&vx_interp_enum, s->interp));
+	if (s->has_occlusion) {
+		char dist[48] = "unlimited rays";
+
+		if (s->occlusion_distance > 0)
+			snprintf(dist, sizeof dist, "rays open past %g",
+			    s->occlusion_distance);
+		if ((p->irradiance && !p->sh) || p->pathtrace)
+			vx_plan_add(p, "occlusion", VX_PLAN_ON, 0, "ambient "
+			    "occlusion (%s): a white sky of radiance 1 in place "
+			    "of the lights, no bounces", dist);
+		else if (p->sh)
+			vx_plan_add(p, "occlusion", VX_PLAN_ON, 0, "%s, no "
+			    "bounces, in the transfer (bake-sh); the lighting is "
+			    "the SH lighting's", dist);
+		else
+			vx_plan_add(p, "occlusion", VX_PLAN_UNSUPPORTED, 0,
+			    "ambient occlusion (%s) is computed by illumination "
+			    "irradiance or pathtrace, not by local shading", dist);
+	}
 	if (s->ntf_opacity > 0 || s->ntf_color > 0 || s->ntf_transport > 0 ||
 	    s->ntf_surface > 0 || s->ntf_gradient > 0 || s->tf_file[0] != '\0')
 		vx_plan_add(p, "transfer function", VX_PLAN_OFF, 0, "for direct "

@@ -330,6 +330,9 @@ vx_scene_equal(const vx_scene *a, const vx_scene *b)
 	    a->effects != b->effects || a->default_lights != b->default_lights ||
 	    a->nlight != b->nlight || a->nsurface != b->nsurface ||
 	    a->has_interreflection != b->has_interreflection ||
+	    a->has_occlusion != b->has_occlusion ||
+	    (a->has_occlusion && !same(&a->occlusion_distance,
+	    &b->occlusion_distance, 1)) ||
 	    a->has_illumination != b->has_illumination ||
 	    a->ntf_opacity != b->ntf_opacity || a->ntf_color != b->ntf_color ||
 	    a->ntf_transport != b->ntf_transport ||

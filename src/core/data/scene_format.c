@@ -310,6 +310,12 @@ vx_scene_format(const vx_scene *s, char **text, size_t *n, vx_err *e)
 		sb_int(&b, "samples", s->samples);
 		sb_put(&b, "\n");
 	}
+	if (s->has_occlusion) {
+		sb_put(&b, "occlusion");
+		if (s->occlusion_distance > 0)
+			sb_key(&b, "distance", &s->occlusion_distance, 1);
+		sb_put(&b, "\n");
+	}
 	if (s->has_illumination) {
 		sb_put(&b, "illumination ");
 		sb_put(&b, vx_enum_str(&vx_illum_enum, s->illumination));

@@ -908,6 +908,24 @@ do_interreflection(pctx *P)
 }
 
 static int
+do_occlusion(pctx *P)
+{
+	static const keydef defs[] = { { "distance", K_NUM1 }, { NULL, 0 } };
+	kval kv[1];
+	int rc;
+
+	if ((rc = parse_keys(P, "occlusion", 1, defs, kv)) != 0)
+		return rc;
+	if (kv[0].seen && (rc = need_range(P, "occlusion", "distance",
+	    kv[0].v[0], 0, HUGE_VAL, 1, 0)) != 0)
+		return rc;
+	if (kv[0].seen)
+		P->s->occlusion_distance = kv[0].v[0];
+	P->s->has_occlusion = 1;
+	return 0;
+}
+
+static int
 do_illumination(pctx *P)
 {
 	static const keydef defs[] = {
@@ -1180,6 +1198,7 @@ static const struct {
 	{ "light", do_light },
 	{ "surface", do_surface },
 	{ "interreflection", do_interreflection },
+	{ "occlusion", do_occlusion },
 	{ "illumination", do_illumination },
 	{ "transfer", do_transfer },
 	{ "medium", do_medium },

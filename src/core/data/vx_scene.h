@@ -175,6 +175,9 @@ typedef struct vx_scene {
 	/* ---- reserved: parsed and stored, computed by no renderer yet ---- */
 	int has_interreflection;
 	int bounces, samples;     /* interreflection: bounces >= 0, samples >= 1 */
+	int has_occlusion;        /* ambient occlusion / vicinity shading: */
+	double occlusion_distance;/* > 0: rays longer than this (world units)
+	                             count as open; 0: unlimited */
 	int has_illumination;
 	vx_illum illumination;
 	int sh_order;             /* SH: order n >= 1 (n^2 coefficients) */

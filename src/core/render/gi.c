@@ -86,6 +86,18 @@ vx_gi_setup(vx_gi *gi, const vx_scene *s, const vx_grid *g,
 	}
 	if (s->has_interreflection && (s->effects & VX_FX_INTERREFLECTION))
 		gi->bounces = s->bounces;
+	gi->vicinity = INFINITY;
+	if (s->has_occlusion) {
+		/* the special case: a white sky of radiance 1 and nothing
+		 * else, no bounces; rays longer than the distance are open */
+		gi->occlusion = 1;
+		gi->nlight = 0;
+		gi->has_sky = 1;
+		gi->sky[0] = gi->sky[1] = gi->sky[2] = 1;
+		gi->bounces = 0;
+		if (s->occlusion_distance > 0)
+			gi->vicinity = s->occlusion_distance;
+	}
 	return 0;
 }
 
@@ -297,7 +309,7 @@ vertex(const vx_gi *gi, const double pw[3], const double pi[3],
 	vx_world_to_index_dir(gi->g, w, di);
 	if (st)
 		st->rays++;
-	if (!trace(gi, o, di, INFINITY, iso, high, &x, st)) {
+	if (!trace(gi, o, di, gi->vicinity, iso, high, &x, st)) {
 		double rgb[3] = { 0, 0, 0 };
 
 		if (gi->has_env) {
@@ -371,7 +383,7 @@ vx_gi_transfer(const vx_gi *gi, const double pi[3], const double n[3],
 		vx_world_to_index_dir(gi->g, w, di);
 		if (st)
 			st->rays++;
-		if (!trace(gi, o, di, INFINITY, iso, high, &x, st))
+		if (!trace(gi, o, di, gi->vicinity, iso, high, &x, st))
 			return 1;
 		if (st)
 			st->hits++;

@@ -462,6 +462,22 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	S.sf.gi = o->gi;
 	if ((rc = vx_surfaces_scene(&S.sf, s, p, tex, e)) != 0)
 		return vx_err_push(e, "raycast");
+	S.sf.sh_e = NULL;
+	S.sf.sh_done = NULL;
+	if (S.sf.irr != NULL && S.sf.irr->sh_order > 0 && S.sf.irr_need == NULL) {
+		size_t nt = S.sf.irr->nslot * VX_IRR_BRICK3;
+
+		if (S.sf.shl == NULL)
+			return vx_err_set(e, VX_EINTERNAL, "raycast: SH "
+			    "illumination without lighting");
+		S.sf.sh_done = vx_calloc(nt ? nt : 1, 1, e);
+		S.sf.sh_e = S.sf.sh_done ? vx_malloc(3 * (nt ? nt : 1) *
+		    sizeof *S.sf.sh_e, e) : NULL;
+		if (S.sf.sh_e == NULL) {
+			free(S.sf.sh_done);
+			return vx_err_push(e, "raycast");
+		}
+	}
 	/* not cleared: the tiles write every pixel (empty runs and
 	 * image_pixel; the sparse pass's centres), and a clear of 4 MB would
 	 * be serial work in every frame */
@@ -571,6 +587,8 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	M.cyc[0] = M.cyc[1] = M.cyc[2] = 0;
 	vx_par_each(&team, add_local, &M);
 	vx_par_free(&team);
+	free(S.sf.sh_e);
+	free(S.sf.sh_done);
 	st->mask_built = S.sf.tr.mask ? (uint64_t)vx_cellmask_built(mask) : 0;
 	if (mask == &own)
 		vx_cellmask_free(&own);
@@ -583,6 +601,8 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	return 0;
 fail:
 	vx_par_free(&team);
+	free(S.sf.sh_e);
+	free(S.sf.sh_done);
 	if (mask == &own)
 		vx_cellmask_free(&own);
 	vx_bins_free(&S.bins);

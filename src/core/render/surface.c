@@ -397,32 +397,71 @@ path_traced(const vx_surfaces *S, const vx_hit *h, const vx_material *m,
 	st->gi_rays += gs.rays + gs.shadow_rays;
 }
 
-/* sh_irradiance: E at h from the SH transfer volume and the lighting
- * (Wyman et al. eq. 9): the interpolated transfer vector dotted with the
- * lighting, per channel; negative sums (ringing) are clamped to 0 */
+/* sh_texel: texel s's E under the SH lighting (Wyman et al. eq. 9: its
+ * transfer vector dotted with the lighting, per channel), computed once a
+ * frame: the first lookup to read it stores it (threads that race store
+ * the same bits) */
+static void
+sh_texel(const vx_surfaces *S, int64_t s, float E[3])
+{
+	const vx_irrvol *v = S->irr;
+	uint32_t *e = (uint32_t *)(void *)(S->sh_e + 3 * s);
+
+	if (__atomic_load_n(&S->sh_done[s], __ATOMIC_ACQUIRE)) {
+		for (int c = 0; c < 3; c++) {
+			uint32_t u = __atomic_load_n(&e[c], __ATOMIC_RELAXED);
+
+			memcpy(&E[c], &u, 4);
+		}
+		return;
+	}
+	{
+		int nn = v->sh_order * v->sh_order;
+		const float *t = v->mean + (size_t)v->ncomp * (size_t)s;
+
+		for (int c = 0; c < 3; c++) {
+			const float *tc = t + (v->channels == 3 ? c * nn : 0);
+			const double *lc = S->shl + c * nn;
+			double sum = 0;
+			uint32_t u;
+
+			for (int i = 0; i < nn; i++)
+				sum += lc[i] * tc[i];
+			E[c] = (float)sum;
+			memcpy(&u, &E[c], 4);
+			__atomic_store_n(&e[c], u, __ATOMIC_RELAXED);
+		}
+	}
+	__atomic_store_n(&S->sh_done[s], 1, __ATOMIC_RELEASE);
+}
+
+/* sh_irradiance: E at h from the SH transfer volume and the lighting: the
+ * texels' E (sh_texel) interpolated as irradiance is; a negative result
+ * (ringing of truncated lighting) is clamped to 0 */
 static void
 sh_irradiance(const vx_surfaces *S, const vx_hit *h, double E[3],
     vx_surf_stats *st)
 {
-	const vx_irrvol *v = S->irr;
-	int nn = v->sh_order * v->sh_order;
-	double t[VX_IRR_MAX_COMP];
+	int64_t idx[64];
+	double w[64];
+	int n = vx_irr_weights(S->irr, h->pi, S->irr_interp, S->g,
+	    S->isod[h->iso], idx, w);
 
 	E[0] = E[1] = E[2] = 0;
-	if (!vx_irr_lookup(v, h->pi, S->irr_interp, S->g, S->isod[h->iso],
-	    t)) {
+	if (n == 0) {
 		st->irr_missing++;
 		return;
 	}
-	for (int c = 0; c < 3; c++) {
-		const double *tc = t + (v->channels == 3 ? c * nn : 0);
-		const double *lc = S->shl + c * nn;
-		double sum = 0;
+	for (int k = 0; k < n; k++) {
+		float et[3];
 
-		for (int i = 0; i < nn; i++)
-			sum += lc[i] * tc[i];
-		E[c] = sum > 0 ? sum : 0;
+		sh_texel(S, idx[k], et);
+		for (int c = 0; c < 3; c++)
+			E[c] += w[k] * et[c];
 	}
+	for (int c = 0; c < 3; c++)
+		if (!(E[c] > 0))
+			E[c] = 0;
 }
 
 /* baked: Lambert under the irradiance volume's value at h; with irr_need,

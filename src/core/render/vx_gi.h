@@ -102,6 +102,12 @@ typedef struct vx_gi {
 	                             the calls take the side as an argument */
 	int skipped_headlights;   /* headlights in the scene (view-dependent:
 	                             not part of global illumination) */
+	int occlusion;            /* the scene's occlusion directive: ambient
+	                             occlusion, a white sky of radiance 1 in
+	                             place of every light, no bounces */
+	double vicinity;          /* world distance past which a path's ray
+	                             counts as escaped (vicinity shading,
+	                             obscurance); INFINITY: none */
 } vx_gi;
 
 /* vx_gi_setup: gi from scene s over volume g with hierarchy m (NULL: flat
@@ -109,7 +115,11 @@ typedef struct vx_gi {
  * skipped_headlights and left out), its surfaces' colours as the albedo
  * function (none: 0.8 grey), bounces from its interreflection directive
  * when the interreflection effect is on (else 0).  An environment light is
- * attached afterwards with vx_gi_set_env.  Errors: VX_EUSAGE. */
+ * attached afterwards with vx_gi_set_env.  A scene with the occlusion
+ * directive gets ambient occlusion instead: no light but a white sky of
+ * radiance 1, no bounces, and its distance as the vicinity (then E / pi
+ * is the cosine-weighted open fraction of the hemisphere).  Errors:
+ * VX_EUSAGE. */
 int vx_gi_setup(vx_gi *gi, const vx_scene *s, const vx_grid *g,
     const vx_macro *m, vx_err *e);
 void vx_gi_set_env(vx_gi *gi, const vx_gi_env *env, int importance);

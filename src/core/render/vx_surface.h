@@ -82,6 +82,12 @@ typedef struct vx_surfaces {
 	                            channel c = sum over i of shl[c n^2 + i]
 	                            times the transfer's coefficient i of
 	                            channel c (of channel 0 when it has one) */
+	float *sh_e;             /* SH: per stored texel, its E (3 floats),
+	                            computed the first time a lookup reads it
+	                            (the dot product once a texel, not once a
+	                            hit); sh_done[s] says it is there.  Set up
+	                            by the renderer for the frame */
+	unsigned char *sh_done;
 	vx_irr_need_fn irr_need; /* non-NULL: a collecting pass (lazy
 	                            illumination): each shaded point reports
 	                            the texels its lookup reads (vx_irr_reach;

@@ -44,8 +44,8 @@ tool_gi_setup(vx_gi *gi, vx_scene *s, const vx_grid *g, const vx_macro *m)
 	for (int k = 0; k < s->nlight; k++) {
 		const vx_light *l = &s->light[k];
 
-		if (l->type != VX_LIGHT_ENVIRONMENT)
-			continue;
+		if (l->type != VX_LIGHT_ENVIRONMENT || gi->occlusion)
+			continue;    /* occlusion: a white sky, nothing else */
 		if (nenv++ > 0)
 			tool_fail(VX_EUSAGE, "light %d: one environment light at "
 			    "most (merge the maps)", k + 1);

@@ -17,7 +17,7 @@ tool_scene_tf(vx_tf *tf, const vx_scene *s)
 		if (f == 0)
 			f = VX_TF_FORMAT_AUTO;
 		if (vx_tf_import(s->tf_file, (vx_tf_format)f, tf, &e) != 0) {
-			vx_err_push(&e, "transfer file");
+			vx_err_push(&e, "transfer file %s", s->tf_file);
 			tool_fail_err(&e);
 		}
 	}

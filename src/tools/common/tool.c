@@ -646,6 +646,16 @@ scene_paths(vx_scene *s, const char *file)
 		memmove(l->file + dl, l->file, fl + 1);
 		memcpy(l->file, file, dl);
 	}
+	if (s->tf_file[0] != '\0' && s->tf_file[0] != '/') {
+		size_t fl = strlen(s->tf_file);
+
+		if (dl + fl >= sizeof s->tf_file)
+			tool_fail(VX_EDATA, "%s: transfer file: name longer than "
+			    "%zu bytes with the scene's directory", file,
+			    sizeof s->tf_file - 1);
+		memmove(s->tf_file + dl, s->tf_file, fl + 1);
+		memcpy(s->tf_file, file, dl);
+	}
 }
 
 void
