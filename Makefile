@@ -9,6 +9,7 @@
 #   make fuzz         libFuzzer targets (clang) over the committed corpus
 #   make bench        benchmarks (see examples/bench)
 #   make demo         the README's first command
+#   make cloud        a coarse volume made a cloud by noise (examples/cloud)
 #
 # New modules, programs and tests are picked up by wildcard: a file in a
 # layer folder of src/core/ (LAYERS, in order) joins the library (.c, and
@@ -84,7 +85,7 @@ FUZZ_TIME ?= 30
 .SECONDARY:
 .DELETE_ON_ERROR:
 
-.PHONY: all test unit cli check-layers print-core-inc deps install uninstall fuzz fuzz-build bench demo \
+.PHONY: all test unit cli check-layers print-core-inc deps install uninstall fuzz fuzz-build bench demo cloud \
 	studies clean check-deps
 all: $(LIB) $(TOOLS)
 
@@ -148,7 +149,7 @@ print-core-inc:
 
 # ---- dependencies (Debian) ----
 DEB_BUILD := build-essential pkg-config libpng-dev zlib1g-dev libcmocka-dev libopenexr-dev
-DEB_TEST := mricron-data python3 strace gnuplot-nox blender-data
+DEB_TEST := mricron-data python3 strace gnuplot-nox blender-data teem-apps
 DEB_FUZZ := clang libclang-rt-14-dev libomp-dev
 deps:
 	@missing=""; for p in $(DEB_BUILD) $(DEB_TEST) $(DEB_FUZZ) $(DEB_EXTRA); do \
@@ -220,6 +221,9 @@ bench: all
 
 studies: all
 	$(MAKE) -C examples/studies
+
+cloud: all
+	$(MAKE) -C examples/cloud
 
 clean:
 	rm -rf build bin/*

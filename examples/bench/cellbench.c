@@ -261,7 +261,7 @@ main(int argc, char **argv)
 	    "ns/all", "evals", "err med", "err 99%", "err max", "diff");
 	for (int s = 0; s <= VX_CELL_SOLVER_LAST; s++) {
 		const char *name = s < VX_CELL_SOLVER_LAST ?
-		    vx_cell_solver_name(s) : "cardano";
+		    vx_enum_str(&vx_cell_solver_enum, s) : "cardano";
 		double ns_hit, ns_all, t;
 		long evals = 0;
 		int ne = 0, diff = 0;

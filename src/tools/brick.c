@@ -164,7 +164,8 @@ main(int argc, char **argv)
 		    "%lldx%lldx%lld padded, %zu samples for %.0f (padding "
 		    "%.2f %%), %.3f s\n", tool_name, g.name,
 		    (long long)g.dims[0], (long long)g.dims[1],
-		    (long long)g.dims[2], vx_type_name(g.type), was, spec,
+		    (long long)g.dims[2], vx_enum_str(&vx_type_enum, g.type),
+		    was, spec,
 		    (long long)b.lay.pdims[0], (long long)b.lay.pdims[1],
 		    (long long)b.lay.pdims[2], b.nsample, real,
 		    100.0 * ((double)b.nsample - real) / real, now() - t0);

@@ -118,7 +118,7 @@ print_stats(const vx_macro *m, const vx_grid *g, double tbuild, int nt)
 	fprintf(stderr, "%s: %s: %lldx%lldx%lld %s, %lldx%lldx%lld cells, "
 	    "%d levels", tool_name, g->name, (long long)g->dims[0],
 	    (long long)g->dims[1], (long long)g->dims[2],
-	    vx_type_name(g->type), (long long)m->dims[0][0],
+	    vx_enum_str(&vx_type_enum, g->type), (long long)m->dims[0][0],
 	    (long long)m->dims[0][1], (long long)m->dims[0][2], m->nlev);
 	for (l = 1; l <= m->nlev; l++)
 		fprintf(stderr, "%s %dx%dx%d", l == 1 ? ":" : ",", m->size[l][0],

@@ -76,15 +76,11 @@ parse(opts *o, int argc, char **argv)
 			o->has_window = 1;
 			break;
 		case O_CMAP:
-			if ((o->cmap = vx_colormap_parse(optarg)) ==
-			    VX_COLORMAP_UNKNOWN)
-				tool_usage_fail(usage, "--colormap: unknown map '%s'",
-				    optarg);
+			o->cmap = (vx_colormap)tool_parse_enum("--colormap",
+			    &vx_colormap_enum, optarg);
 			break;
 		case O_BITS:
-			o->bits = (int)tool_parse_long("--bits", optarg, 8, 16);
-			if (o->bits != 8 && o->bits != 16)
-				tool_usage_fail(usage, "--bits: 8 or 16");
+			o->bits = tool_parse_bits(optarg);
 			break;
 		case O_NOLAST: o->lastt = 0; break;
 		case O_EXH: o->exhaustive = 1; break;

@@ -92,9 +92,8 @@ parse(opts *o, int argc, char **argv)
 		case O_ORTHO: o->ortho = 1; break;
 		case O_NAME: o->name = optarg; break;
 		case O_SOLVER:
-			if ((o->solver = vx_cell_solver_parse(optarg)) < 0)
-				tool_usage_fail(usage, "--solver: unknown solver '%s'",
-				    optarg);
+			o->solver = tool_parse_enum("--solver",
+			    &vx_cell_solver_enum, optarg);
 			break;
 		case O_FLAT: o->flat = 1; break;
 		case O_NOMASK: o->nomask = 1; break;
@@ -113,9 +112,7 @@ parse(opts *o, int argc, char **argv)
 		case O_EXPLAIN: o->explain = 1; break;
 		case O_HDR: o->hdr = 1; break;
 		case O_BITS:
-			o->bits = (int)tool_parse_long("--bits", optarg, 8, 16);
-			if (o->bits != 8 && o->bits != 16)
-				tool_usage_fail(usage, "--bits: 8 or 16");
+			o->bits = tool_parse_bits(optarg);
 			break;
 		case O_EXPOSURE:
 			o->exposure = tool_parse_double("--exposure", optarg, -64, 64);
@@ -303,7 +300,7 @@ lazy_bake(vx_irrvol *irr, int have, vx_scene *s, const vx_grid *g,
 	if (irr->store != VX_IRR_ACCUM)
 		tool_fail(VX_EDATA, "--lazy: the stream's %s is final (%s): it "
 		    "cannot take more texels", what(plan),
-		    vx_irr_store_name(irr->store));
+		    vx_enum_str(&vx_irr_store_enum, irr->store));
 	vx_bake_settings(irr, &gi, &bo, settings, sizeof settings);
 	vx_bake_key(settings, key);
 	if (strcmp(key, irr->key) != 0)
@@ -495,7 +492,8 @@ main(int argc, char **argv)
 			    "thread%s\n", s.camera.w, s.camera.h, o.aa * o.aa,
 			    o.aa > 1 ? "s" : "", plan.rays_per_pixel *
 			    s.camera.w * s.camera.h * o.aa * o.aa,
-			    vx_cell_solver_name(o.solver), o.flat ?
+			    vx_enum_str(&vx_cell_solver_enum, o.solver),
+			    o.flat ?
 			    "flat traversal" : o.nomask ?
 			    "hierarchical traversal (no cell mask)" :
 			    "hierarchical traversal with a cell mask (a bit "

@@ -83,9 +83,7 @@ parse(opts *o, int argc, char **argv)
 		case 'o': o->out = optarg; break;
 		case O_NAME: o->name = optarg; break;
 		case O_BITS:
-			o->bits = (int)tool_parse_long("--bits", optarg, 8, 16);
-			if (o->bits != 8 && o->bits != 16)
-				tool_fail(VX_EUSAGE, "--bits: 8 or 16");
+			o->bits = tool_parse_bits(optarg);
 			o->png_only = 1;
 			break;
 		case O_EXPO:

@@ -16,9 +16,10 @@
 #include "vx_stream.h"
 #include "vx_tetimport.h"
 #include "vx_tetleaf.h"
+#include "vx_tfimport.h"
 
 static const char usage[] =
-    "vinfo [--json] [--histogram N] [--chunks] [FILE|-]";
+    "vinfo [--json] [--histogram N] [--chunks] [--transfer FORMAT] [FILE|-]";
 
 #define MAX_BINS 1000
 #define BAR_WIDTH 40
@@ -26,6 +27,7 @@ static const char usage[] =
 typedef struct opts {
 	int json;
 	int chunks_only;
+	int transfer;           /* a vx_tf_format: read FILE as one */
 	long bins;
 	const char *in;
 } opts;
@@ -69,6 +71,7 @@ parse_args(opts *o, int argc, char **argv)
 		{ "json", no_argument, NULL, 'j' },
 		{ "histogram", required_argument, NULL, 'H' },
 		{ "chunks", no_argument, NULL, 'c' },
+		{ "transfer", required_argument, NULL, 'T' },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 },
 	};
@@ -87,6 +90,10 @@ parse_args(opts *o, int argc, char **argv)
 			break;
 		case 'c':
 			o->chunks_only = 1;
+			break;
+		case 'T':
+			o->transfer = tool_parse_enum("--transfer",
+			    &vx_tf_format_enum, optarg);
 			break;
 		default:
 			tool_opt_other(ch, usage, argv);
@@ -714,7 +721,8 @@ text_irrv(const irrv_info *ii)
 	else
 		printf("    world spacing: unknown (the volume is not in the "
 		    "stream)\n");
-	printf("    store: %s, %zu bytes a texel", vx_irr_store_name(v->store),
+	printf("    store: %s, %zu bytes a texel",
+	    vx_enum_str(&vx_irr_store_enum, v->store),
 	    vx_irr_texel_bytes(v->store, v->ncomp));
 	if (v->store == VX_IRR_ACCUM)
 		printf(", %d fraction bits\n", v->fixed);
@@ -786,8 +794,8 @@ json_irrv(const irrv_info *ii)
 	else
 		fputs("null", stdout);
 	printf(",\"store\":\"%s\",\"texel_bytes\":%zu,\"fixed\":",
-	    vx_irr_store_name(v->store), vx_irr_texel_bytes(v->store,
-	    v->ncomp));
+	    vx_enum_str(&vx_irr_store_enum, v->store),
+	    vx_irr_texel_bytes(v->store, v->ncomp));
 	if (v->store == VX_IRR_ACCUM)
 		printf("%d", v->fixed);
 	else
@@ -950,7 +958,7 @@ text_volume(const vol_info *v, long bins)
 	put_str(g->name);
 	printf("\n    dims: %lld x %lld x %lld %s (%llu samples)\n",
 	    (long long)g->dims[0], (long long)g->dims[1],
-	    (long long)g->dims[2], vx_type_name(g->type),
+	    (long long)g->dims[2], vx_enum_str(&vx_type_enum, g->type),
 	    (unsigned long long)st->count);
 	printf("    spacing: %.17g %.17g %.17g\n", g->spacing[0], g->spacing[1],
 	    g->spacing[2]);
@@ -1100,7 +1108,7 @@ json_volume(const vol_info *v, long bins)
 	json_str(g->name);
 	printf(",\"dims\":[%lld,%lld,%lld],\"type\":\"%s\",\"spacing\":",
 	    (long long)g->dims[0], (long long)g->dims[1],
-	    (long long)g->dims[2], vx_type_name(g->type));
+	    (long long)g->dims[2], vx_enum_str(&vx_type_enum, g->type));
 	json_nums(g->spacing, 3);
 	printf(",\"origin\":");
 	json_nums(g->origin, 3);
@@ -1256,6 +1264,107 @@ done:
 	putchar('}');
 }
 
+/* ---- transfer functions (--transfer) ---- */
+
+static void
+text_list(const char *name, const vx_tf_list *l)
+{
+	if (l->n == 0)
+		return;
+	printf("%s: %d point%s over [%.17g, %.17g]\n", name, l->n,
+	    l->n == 1 ? "" : "s", l->x[0], l->x[l->n - 1]);
+	for (int i = 0; i < l->n; i++) {
+		printf("  %.17g", l->x[i]);
+		for (int c = 0; c < l->dim; c++)
+			printf(" %.17g", l->y[l->dim * i + c]);
+		printf("\n");
+	}
+}
+
+static void
+json_list(const char *name, const vx_tf_list *l)
+{
+	printf(",\"%s\":", name);
+	if (l->n == 0) {
+		printf("null");
+		return;
+	}
+	printf("[");
+	for (int i = 0; i < l->n; i++) {
+		printf("%s[", i ? "," : "");
+		json_num(l->x[i]);
+		for (int c = 0; c < l->dim; c++) {
+			printf(",");
+			json_num(l->y[l->dim * i + c]);
+		}
+		printf("]");
+	}
+	printf("]");
+}
+
+/* transfer: read in as a transfer function and print it: each list's
+ * points, the table's size, ranges and the range of each channel. */
+static void
+transfer(const opts *o)
+{
+	double lo[4] = { 1, 1, 1, 1 }, hi[4] = { 0, 0, 0, 0 };
+	const char *name = strcmp(o->in, "-") ? o->in : "<stdin>";
+	vx_err e;
+	vx_tf tf;
+
+	vx_err_clear(&e);
+	if (vx_tf_import(o->in, (vx_tf_format)o->transfer, &tf, &e) != 0)
+		tool_fail_err(&e);
+	if (tf.has_table)
+		for (size_t i = 0; i < (size_t)tf.size[0] * (size_t)tf.size[1];
+		    i++)
+			for (int c = 0; c < 4; c++) {
+				lo[c] = fmin(lo[c], tf.rgba[4 * i + c]);
+				hi[c] = fmax(hi[c], tf.rgba[4 * i + c]);
+			}
+	if (o->json) {
+		printf("{\"input\":");
+		json_str(name);
+		printf(",\"transfer\":{\"ref_step\":");
+		json_num(tf.ref_step);
+		json_list("color", &tf.color);
+		json_list("opacity", &tf.opacity);
+		json_list("gradient", &tf.gradient);
+		printf(",\"table\":");
+		if (tf.has_table) {
+			printf("{\"size\":[%d,%d],\"value_range\":", tf.size[0],
+			    tf.size[1]);
+			json_nums(tf.vrange, 2);
+			printf(",\"gradient_range\":");
+			json_nums(tf.grange, 2);
+			printf(",\"min\":");
+			json_nums(lo, 4);
+			printf(",\"max\":");
+			json_nums(hi, 4);
+			printf("}");
+		} else
+			printf("null");
+		printf("}}\n");
+	} else {
+		printf("transfer: ");
+		put_str(name);
+		printf("\nref_step: %.17g%s\n", tf.ref_step, tf.ref_step == 0 ?
+		    " (one voxel)" : "");
+		text_list("color", &tf.color);
+		text_list("opacity", &tf.opacity);
+		text_list("gradient", &tf.gradient);
+		if (tf.has_table)
+			printf("table: %d x %d cells over value [%.17g, %.17g] and "
+			    "gradient magnitude [%.17g, %.17g]; RGBA from "
+			    "(%g, %g, %g, %g) to (%g, %g, %g, %g)\n", tf.size[0],
+			    tf.size[1], tf.vrange[0], tf.vrange[1], tf.grange[0],
+			    tf.grange[1], lo[0], lo[1], lo[2], lo[3], hi[0], hi[1],
+			    hi[2], hi[3]);
+	}
+	vx_tf_free(&tf);
+	exit(tool_finish());
+}
+
 int
 main(int argc, char **argv)
 {
@@ -1266,6 +1375,8 @@ main(int argc, char **argv)
 
 	tool_init("vinfo", argc, argv);
 	parse_args(&o, argc, argv);
+	if (o.transfer != VX_TF_FORMAT_UNKNOWN)
+		transfer(&o);
 	vx_stream_init(&s);
 	tool_read_stream(&s, o.in);
 	for (i = 0; i < s.n; i++)

@@ -13,6 +13,7 @@
 #include "tool.h"
 #include "vx_grid.h"
 #include "vx_import.h"
+#include "vx_scan.h"
 #include "vx_stream.h"
 #include "vx_tetimport.h"
 #include "vx_tetleaf.h"
@@ -48,15 +49,12 @@ static void
 parse_dims(const char *opt, const char *s, int64_t out[3], int one_ok)
 {
 	double v[3];
-	char *end;
 	int a;
 
 	if (one_ok && strchr(s, ',') == NULL) {
-		double x = vx_strtod(s, &end);
-
-		v[0] = v[1] = v[2] = x;
-		if (end == s || *end != '\0')
+		if (vx_num_f64(s, strlen(s), 0, &v[0]) != 0)
 			tool_fail(VX_EUSAGE, "%s: '%s' is not a size", opt, s);
+		v[1] = v[2] = v[0];
 	} else
 		tool_parse_doubles(opt, s, v, 3);
 	for (a = 0; a < 3; a++) {

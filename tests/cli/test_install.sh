@@ -35,7 +35,7 @@ main(void)
 		return e.code;
 	}
 	printf("%lld %lld %lld %s\n", (long long)g.dims[0], (long long)g.dims[1],
-	    (long long)g.dims[2], vx_type_name(g.type));
+	    (long long)g.dims[2], vx_enum_str(&vx_type_enum, g.type));
 	return 0;
 }
 EOC

@@ -320,3 +320,46 @@ put("tetvtk", "scalar-overflow.vtk", "\x00# vtk DataFile Version 3.0\nx\n"
     "0 0 0 1 0 0 0 1 0 0 0 1\nCELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n10\n"
     "POINT_DATA 4\nSCALARS d double 1\nLOOKUP_TABLE default\n"
     "0.5 1.5 1e999 3.5\n")
+
+# ---- transfer functions (fuzz_tf: first byte 0 auto, 1 paraview, 2 slicer,
+# 3 miter; then the file) ----
+def tf(name, fmt, data):
+    put("tf", name, bytes([fmt]) + (data if isinstance(data, bytes)
+                                     else data.encode()))
+
+
+tf("paraview.json", 1, '[{"ColorSpace": "RGB", "Name": "a", '
+   '"RGBPoints": [0, 1, 0, 0.25, 100, 0, 1, 0.5, 200, 0.25, 0.5, 1], '
+   '"Points": [0, 0, 0.5, 0, 100, 0.5, 0.25, 0.3, 200, 1, 0.5, 1]}]\n')
+for cs in ("HSV", "Lab", "Diverging"):
+    tf("paraview-%s.json" % cs.lower(), 1, '[{"ColorSpace": "%s", '
+       '"RGBPoints": [0, 0.23, 0.3, 0.75, 1, 0.7, 0.02, 0.15, 2, 0.9, 0.9, '
+       '0.2, 2, 0, 0, 0, 3, 0.1, 0.8, 0.9]}]' % cs)
+tf("paraview-ramp.json", 0, '{"Name": "\\u00e9\\ud83d\\ude00", '
+   '"RGBPoints": [-1e3, 0, 0, 0, 1e3, 1, 1, 1], "NanColor": [1, 1, 0]}')
+tf("slicer.vp", 0, "1\n1\n0.7\n0.1\n0.2\n10\n6 0 0 100 0.5 200 1\n"
+   "4 0 0.25 255 1\n12 0 1 0 0.25 100 0 1 0.5 200 0.25 0.5 1\n")
+tf("slicer.vp.json", 2, '{"volumeProperties": [{"components": [{'
+   '"scalarOpacityUnitDistance": 0.5, "disableGradientOpacity": false, '
+   '"rgbTransferFunction": {"points": [{"x": 0, "color": [1, 0, 0], '
+   '"midpoint": 0.3, "sharpness": 0.6}, {"x": 9, "color": [0, 1, 0]}]}, '
+   '"scalarOpacity": {"points": [{"x": 0, "y": 0}, {"x": 9, "y": 1, '
+   '"midpoint": 0.5, "sharpness": 1}, {"x": 20, "y": 0.5}]}, '
+   '"gradientOpacity": {"points": [{"x": 0, "y": 0.5}]}}]}]}\n')
+tf("miter-1d.txf", 3, "NRRD0004\ntype: float\ndimension: 2\nsizes: 4 3\n"
+   "axis mins: nan -50\naxis maxs: nan 250\n"
+   "labels: \"RGBA\" \"gage(scalar:v)\"\nencoding: ascii\n\n"
+   "1 0 0.25 0\n0 1 0.5 0.5\n0.25 0.5 1 1\n")
+tf("miter-2d.txf", 0, b"NRRD0004\ntype: float\ndimension: 3\nsizes: 4 2 3\n"
+   b"centers: ??? node cell\naxis mins: nan 0 0\naxis maxs: nan 2 30\n"
+   b"labels: \"ARGB\" \"gage(gm)\" \"gage(v)\"\nencoding: raw\n"
+   b"endian: little\n\n" + struct.pack("<24f", *[i / 24 for i in range(24)]))
+tf("miter-u8-gzip.txf", 3, b"NRRD0004\ntype: uchar\ndimension: 2\n"
+   b"sizes: 1 4\nold min: 0\nold max: 0.5\naxis mins: nan 0\n"
+   b"axis maxs: nan 1\nlabels: \"A\" \"gage(v)\"\nencoding: gzip\n\n" +
+   gz(bytes([0, 80, 160, 255])))
+tf("bad-count.vp", 2, "1\n1\n0.7\n0.1\n0.2\n10\n8 0 0 1 1\n")
+tf("bad-deep.json", 1, "[" * 40)
+# found by fuzz_tf: a string decoded with a newline reached the message
+tf("found-newline-message.json", 1, '[{"ColorSpace": "a\\nb\\u001b", '
+   '"Points": [0, 0, 0.5, 0]}]')

@@ -764,6 +764,65 @@ case("env-hash-word.scn", V_, 65, "line 1",
      "hash with 15 digits", "light environment file env-good.hdr "
      "hash 0123456789abcde\n")
 
+# ---- transfer functions (vinfo --transfer: vx_tf_import) ----
+TF = "vinfo --transfer auto FILE"
+VP6 = "1\n1\n0.7\n0.1\n0.2\n10\n"
+TXF = ("NRRD0004\ntype: float\ndimension: 2\nsizes: %s\n"
+       "axis mins: nan 0\naxis maxs: nan 1\nlabels: \"%s\" \"%s\"\n"
+       "encoding: %s\n\n")
+case("tf-json-cut.json", TF, 65, "ends inside an array or object",
+     "ParaView JSON cut short", '[{"RGBPoints": [0, 1, 0, 0')
+case("tf-json-deep.json", TF, 65, "nested too deep",
+     "40 nested arrays (32 allowed)", "[" * 40 + "]" * 40)
+case("tf-json-nan.json", TF, 65, "column 26: not a JSON value",
+     "NaN in RGBPoints (not JSON)", '[{"RGBPoints": [0, 1, 0, NaN]}]')
+case("tf-json-inf.json", TF, 65, "beyond the double range",
+     "1e999 in RGBPoints", '[{"RGBPoints": [0, 1, 0, 1e999]}]')
+case("tf-json-count.json", TF, 65, "not a positive multiple of 4",
+     "RGBPoints with 6 numbers", '[{"RGBPoints": [0, 1, 0, 0, 1, 1]}]')
+case("tf-json-range.json", TF, 65,
+     "key \"RGBPoints\" element 6: 1.5 is outside [0, 1]",
+     "a colour of 1.5", '[{"RGBPoints": [0, 1, 0, 0, 1, 1, 1.5, 1]}]')
+case("tf-json-down.json", TF, 65, "less than the one before it",
+     "decreasing x in Points", '[{"Points": [1, 0, 0.5, 0, 0, 1, 0.5, 0]}]')
+case("tf-json-space.json", TF, 65, "\"Step\" is not supported",
+     "ColorSpace Step", '[{"ColorSpace": "Step", "RGBPoints": [0, 1, 0, 0]}]')
+case("tf-vp-count.vp", TF, 65, "the count is 8 but 6 numbers follow it",
+     "Slicer .vp: a count larger than the points given",
+     VP6 + "8 0 0 100 1 200 1\n")
+case("tf-vp-huge.vp", TF, 65, "points (at most 65536)",
+     "Slicer .vp: a count of 2^40", VP6 + "1099511627776 0 0\n")
+case("tf-vp-nan.vp", TF, 65, "'nan' is not a finite number",
+     "Slicer .vp: nan opacity", VP6 + "4 0 nan 1 1\n")
+case("tf-vp-down.vp", TF, 65, "line 7 (scalar opacity): number 3",
+     "Slicer .vp: decreasing x", VP6 + "4 5 0 1 1\n")
+case("tf-vpjson-color.vp.json", TF, 65, "\"color\" has 2 numbers, not 3",
+     "Slicer .vp.json: a colour of two numbers",
+     '{"volumeProperties": [{"components": [{"scalarOpacity": {"points": '
+     '[{"x": 0, "y": 1}]}, "rgbTransferFunction": {"points": [{"x": 0, '
+     '"color": [1, 0]}]}}]}]}')
+case("tf-txf-axis0.nrrd", TF, 65, "axis 0: label \"RGBX\"",
+     "miter txf whose first axis is not a range",
+     TXF % ("4 2", "RGBX", "gage(v)", "ascii") + "0 0 0 0 1 1 1 1\n")
+case("tf-txf-var.nrrd", TF, 65, "label \"gage(hess)\"",
+     "miter txf over a variable that is not read",
+     TXF % ("1 2", "A", "gage(hess)", "ascii") + "0 1\n")
+case("tf-txf-value.nrrd", TF, 65, "A = 1.5 is outside [0, 1]",
+     "miter txf opacity 1.5", TXF % ("1 2", "A", "gage(v)", "ascii") +
+     "0 1.5\n")
+case("tf-txf-cut.nrrd", TF, 65, "truncated", "miter txf raw data cut short",
+     (TXF % ("1 2", "A", "gage(v)", "raw")).replace(
+         "raw\n", "raw\nendian: little\n").encode() + bytes(5))
+case("tf-txf-sizes-lie.nrrd", TF, 65, "truncated",
+     "miter txf claiming 4 x 65536 floats with 8 bytes",
+     (TXF % ("4 65536", "RGBA", "gage(v)", "raw")).replace(
+         "raw\n", "raw\nendian: little\n").encode() + bytes(8))
+case("tf-garbage.txt", TF, 65, "not a transfer function",
+     "text that is none of the formats", "hello\n")
+case("tf-empty.vp", TF, 66, "empty file", "an empty file", b"")
+case("tf-missing.vp", "vinfo --transfer auto NOFILE", 66, "No such file",
+     "a transfer function that does not exist", None)
+
 # ---- no input, usage ----
 case("missing.vxs", "vinfo NOFILE", 66, "No such file",
      "input file does not exist", None)

@@ -1308,9 +1308,10 @@ solver_names(void **state)
 {
 	(void)state;
 	for (int s = 0; s < VX_CELL_SOLVER_LAST; s++)
-		assert_int_equal(vx_cell_solver_parse(vx_cell_solver_name(s)), s);
-	assert_int_equal(vx_cell_solver_parse("cardano"), -1);
-	assert_string_equal(vx_cell_solver_name(99), "unknown");
+		assert_int_equal(vx_enum_val(&vx_cell_solver_enum,
+		    vx_enum_str(&vx_cell_solver_enum, s)), s);
+	assert_int_equal(vx_enum_val(&vx_cell_solver_enum, "cardano"), -1);
+	assert_string_equal(vx_enum_str(&vx_cell_solver_enum, 99), "unknown");
 }
 
 /* vx_cell_normal_thresh: 2^-40 times the range of the corners that are

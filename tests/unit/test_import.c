@@ -183,8 +183,9 @@ check_grid(const char *what, const vx_grid *g, const int64_t dims[3],
 			fail_msg("%s: dims[%d] %lld, want %lld", what, a,
 			    (long long)g->dims[a], (long long)dims[a]);
 	if (g->type != type)
-		fail_msg("%s: type %s, want %s", what, vx_type_name(g->type),
-		    vx_type_name(type));
+		fail_msg("%s: type %s, want %s", what,
+		    vx_enum_str(&vx_type_enum, g->type),
+		    vx_enum_str(&vx_type_enum, type));
 	for (a = 0; a < 3; a++)
 		if (fabs(g->spacing[a] - sp[a]) > 1e-9 ||
 		    fabs(g->origin[a] - org[a]) > 1e-9)

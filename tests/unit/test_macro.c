@@ -2094,9 +2094,11 @@ chunk_errors(void **state)
 {
 	static const struct { const char *hdr; const char *msg; size_t body; } t[] = {
 		{ "levels: 1\n", "leaves", 0 },
-		{ "leaves: cells\n", "levels", 0 },
+		{ "leaves: cells\n", "leaf-dims", 0 },
+		{ "leaves: cells\nleaf-dims: 1 1 1\n", "levels", 0 },
 		{ "leaves: nodes\nlevels: 0\n", "leaves", 0 },
-		{ "leaves: explicit\nlevels: 7\nsizes:\n", "levels", 0 },
+		{ "leaves: explicit\nlevels: 7\nsizes:\nleaf-dims: 2 2 2\n",
+		  "levels", 0 },
 		{ "leaves: explicit\nlevels: 1\nsizes: 2x2\nleaf-dims: 2 2 2\n",
 		  "sizes", 0 },
 		{ "leaves: explicit\nlevels: 1\nsizes: 2x2x2\nleaf-dims: 2 2 2\n"

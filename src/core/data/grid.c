@@ -24,18 +24,6 @@ static const vx_enum_name type_names[] = {
 };
 const vx_enum vx_type_enum = { "type", type_names, "unknown", 0 };
 
-const char *
-vx_type_name(vx_type t)
-{
-	return vx_enum_str(&vx_type_enum, t);
-}
-
-vx_type
-vx_type_parse(const char *s)
-{
-	return (vx_type)vx_enum_val(&vx_type_enum, s);
-}
-
 /* ---- layouts ---- */
 
 void
@@ -509,7 +497,8 @@ volm_hdr(const vx_grid *g, const vx_hdr *extra, vx_hdr *h, vx_err *e)
 	    (rc = vx_hdr_set(h, "dims", e, "%lld %lld %lld",
 	    (long long)g->dims[0], (long long)g->dims[1],
 	    (long long)g->dims[2])) ||
-	    (rc = vx_hdr_set(h, "type", e, "%s", vx_type_name(g->type))) ||
+	    (rc = vx_hdr_set(h, "type", e, "%s",
+	    vx_enum_str(&vx_type_enum, g->type))) ||
 	    (rc = vx_hdr_set(h, "spacing", e, "%.17g %.17g %.17g",
 	    g->spacing[0], g->spacing[1], g->spacing[2])) ||
 	    (rc = vx_hdr_set(h, "origin", e, "%.17g %.17g %.17g",
@@ -600,7 +589,8 @@ from_chunk(vx_grid *g, const vx_chunk *c, int view, vx_err *e)
 	if ((rc = vx_hdr_get_i64(&h, "dims", dims, 3, e)) != 0)
 		goto out;
 	if ((v = vx_hdr_get(&h, "type")) == NULL ||
-	    (type = vx_type_parse(v)) == VX_TYPE_UNKNOWN) {
+	    (type = (vx_type)vx_enum_val(&vx_type_enum, v)) ==
+	    VX_TYPE_UNKNOWN) {
 		rc = vx_err_set(e, VX_EDATA, "missing or unknown type '%.20s'",
 		    v ? v : "");
 		goto out;

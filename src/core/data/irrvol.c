@@ -23,12 +23,6 @@ static const vx_enum_name interp_names[] = {
 };
 const vx_enum vx_irr_interp_enum = { "interpolation", interp_names, "?", 0 };
 
-const char *
-vx_irr_store_name(vx_irr_store s)
-{
-	return vx_enum_str(&vx_irr_store_enum, s);
-}
-
 void
 vx_irr_init(vx_irrvol *v)
 {
@@ -593,8 +587,8 @@ same_lattice(const vx_irrvol *a, const vx_irrvol *b, vx_err *e)
 	if (a->store != VX_IRR_ACCUM || b->store != VX_IRR_ACCUM)
 		return vx_err_set(e, VX_EDATA, "a final (%s) bake cannot be "
 		    "merged or resumed",
-		    vx_irr_store_name(a->store != VX_IRR_ACCUM ? a->store :
-		    b->store));
+		    vx_enum_str(&vx_irr_store_enum, a->store != VX_IRR_ACCUM ?
+		    a->store : b->store));
 	if (a->fixed != b->fixed)
 		return vx_err_set(e, VX_EDATA, "fixed-point bits differ");
 	if (a->sh_order != b->sh_order || a->channels != b->channels)
@@ -701,7 +695,8 @@ vx_irr_finalize(vx_irrvol *v, vx_irr_store store, vx_err *e)
 		if (store == v->store)
 			return 0;
 		return vx_err_set(e, VX_EUSAGE, "cannot turn a %s bake into %s",
-		    vx_irr_store_name(v->store), vx_irr_store_name(store));
+		    vx_enum_str(&vx_irr_store_enum, v->store),
+		    vx_enum_str(&vx_irr_store_enum, store));
 	}
 	vx_irr_finish(v);
 	/* a texel without samples is not drawn from a final store: it keeps
@@ -784,7 +779,7 @@ vx_irr_to_chunk(const vx_irrvol *v, int zlevel, vx_chunk *c, vx_err *e)
 	    (rc = vx_hdr_set(&h, "brick", e, "%d", VX_IRR_BRICK)) ||
 	    (rc = vx_hdr_set(&h, "bricks", e, "%zu", v->nslot)) ||
 	    (rc = vx_hdr_set(&h, "store", e, "%s",
-	    vx_irr_store_name(v->store))) ||
+	    vx_enum_str(&vx_irr_store_enum, v->store))) ||
 	    (v->store == VX_IRR_ACCUM &&
 	    (rc = vx_hdr_set(&h, "fixed", e, "%d", v->fixed))) ||
 	    (rc = vx_hdr_set(&h, "first-sample", e, "%u", v->first)) ||

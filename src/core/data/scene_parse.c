@@ -76,12 +76,6 @@ static const vx_enum_name effect_names[] = {
 };
 const vx_enum vx_effect_enum = { "effect", effect_names, NULL, 0 };
 
-vx_colormap
-vx_colormap_parse(const char *s)
-{
-	return (vx_colormap)vx_enum_val(&vx_colormap_enum, s);
-}
-
 /* ---- numbers (vx_scan.h's grammar, finite) ---- */
 
 static int

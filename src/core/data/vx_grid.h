@@ -29,11 +29,8 @@ typedef enum vx_type {
 
 size_t vx_type_size(vx_type t);
 /* The names (vx_enum.h): "u8", "u16", "i16", "f32"; VX_TYPE_UNKNOWN and
- * "unknown" for the others.  vx_type_name, vx_type_parse: shorthands for
- * vx_enum_str and vx_enum_val on vx_type_enum. */
+ * "unknown" for the others. */
 extern const vx_enum vx_type_enum;
-const char *vx_type_name(vx_type t);
-vx_type vx_type_parse(const char *s);
 
 /* Largest volume a grid may hold, in samples (padded).  Protects against
  * header words that claim absurd sizes before anything is allocated. */

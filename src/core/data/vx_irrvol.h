@@ -305,9 +305,7 @@ size_t vx_irr_bytes(const vx_irrvol *v);
 
 /* The names (vx_enum.h): stores "accum", "f32", "f16"; interpolations
  * "trilinear", "nearest", "nearest-iso", "tricubic"; -1 and "?" for the
- * others.  vx_irr_store_name: shorthand for vx_enum_str on
- * vx_irr_store_enum. */
+ * others. */
 extern const vx_enum vx_irr_store_enum, vx_irr_interp_enum;
-const char *vx_irr_store_name(vx_irr_store s);
 
 #endif

@@ -298,8 +298,6 @@ int vx_scene_to_stream(const vx_scene *s, vx_stream *st, vx_err *e);
 extern const vx_enum vx_light_type_enum, vx_env_layout_enum, vx_falloff_enum,
     vx_illum_enum, vx_interp_enum, vx_phase_enum, vx_colormap_enum,
     vx_effect_enum, vx_tf_file_format_enum;
-/* vx_colormap_parse: shorthand for vx_enum_val(&vx_colormap_enum, s). */
-vx_colormap vx_colormap_parse(const char *s);
 /* vx_colormap_eval: color for t (clamped to [0,1]) under map m; unknown
  * maps give gray.  The maps are piecewise linear (formats/scene.md). */
 void vx_colormap_eval(vx_colormap m, double t, double rgb[3]);

@@ -91,35 +91,55 @@ vx_import_detect(const void *buf, size_t n, const char *name)
 	return f != VX_FORMAT_UNKNOWN ? f : from_name(name);
 }
 
-int
-vx_import_mem(vx_grid *g, const void *buf, size_t n, const char *name,
-    const char *dir, const vx_import_opts *o, vx_err *e)
+/* refused: why format f, detected from the n bytes at p, cannot be read
+ * with options o (raw data without --raw and --type; a voxlux stream or an
+ * unknown format), or 0 when its reader can take it. */
+static int
+refused(vx_format f, const vx_import_opts *o, const void *p, size_t n,
+    vx_err *e)
 {
-	vx_format f = o->format;
-
-	vx_grid_init(g);
-	if (f == VX_FORMAT_UNKNOWN)
-		f = vx_import_detect(buf, n, name);
 	switch (f) {
 	case VX_FORMAT_RAW:
 		if (o->format != VX_FORMAT_RAW || o->raw.type ==
 		    VX_SCALAR_UNKNOWN)
 			return vx_err_set(e, VX_EUSAGE, "raw data: give its dims "
 			    "and type (vread --raw NX,NY,NZ --type T)");
-		return vx_import_raw_mem(g, buf, n, &o->raw, e);
+		return 0;
 	case VX_FORMAT_NRRD:
-		return vx_import_nrrd_mem(g, buf, n, dir, e);
 	case VX_FORMAT_NIFTI:
-		return vx_import_nifti_mem(g, buf, n, e);
 	case VX_FORMAT_VTK:
-		return vx_import_vtk_mem(g, buf, n, e);
+		return 0;
 	default:
-		if (n >= VX_SIGNATURE_LEN && memcmp(buf, VX_SIGNATURE,
+		if (n >= VX_SIGNATURE_LEN && memcmp(p, VX_SIGNATURE,
 		    VX_SIGNATURE_LEN) == 0)
 			return vx_err_set(e, VX_EDATA, "this is a voxlux stream "
 			    "already, not a volume to import");
 		return vx_err_set(e, VX_EDATA, "unknown format (not NRRD, "
 		    "NIfTI-1 or VTK; for raw data give --raw and --type)");
+	}
+}
+
+int
+vx_import_mem(vx_grid *g, const void *buf, size_t n, const char *name,
+    const char *dir, const vx_import_opts *o, vx_err *e)
+{
+	vx_format f = o->format;
+	int rc;
+
+	vx_grid_init(g);
+	if (f == VX_FORMAT_UNKNOWN)
+		f = vx_import_detect(buf, n, name);
+	if ((rc = refused(f, o, buf, n, e)) != 0)
+		return rc;
+	switch (f) {
+	case VX_FORMAT_RAW:
+		return vx_import_raw_mem(g, buf, n, &o->raw, e);
+	case VX_FORMAT_NRRD:
+		return vx_import_nrrd_mem(g, buf, n, dir, e);
+	case VX_FORMAT_NIFTI:
+		return vx_import_nifti_mem(g, buf, n, e);
+	default:
+		return vx_import_vtk_mem(g, buf, n, e);
 	}
 }
 
@@ -163,26 +183,17 @@ import_stream(vx_grid *g, vx_imp_in *in, const char *name, const char *dir,
 		f = from_magic(p, avail);
 	if (f == VX_FORMAT_UNKNOWN)
 		f = from_name(name);
+	if ((rc = refused(f, o, p, avail, e)) != 0)
+		return rc;
 	switch (f) {
 	case VX_FORMAT_RAW:
-		if (o->format != VX_FORMAT_RAW || o->raw.type ==
-		    VX_SCALAR_UNKNOWN)
-			return vx_err_set(e, VX_EUSAGE, "raw data: give its dims "
-			    "and type (vread --raw NX,NY,NZ --type T)");
 		return vx_imp_read_raw(g, in->top, &o->raw, e);
 	case VX_FORMAT_NRRD:
 		return vx_imp_read_nrrd(g, in->top, dir, e);
 	case VX_FORMAT_NIFTI:
 		return vx_imp_read_nifti(g, in->top, e);
-	case VX_FORMAT_VTK:
-		return vx_imp_read_vtk(g, in->top, e);
 	default:
-		if (avail >= VX_SIGNATURE_LEN && memcmp(p, VX_SIGNATURE,
-		    VX_SIGNATURE_LEN) == 0)
-			return vx_err_set(e, VX_EDATA, "this is a voxlux stream "
-			    "already, not a volume to import");
-		return vx_err_set(e, VX_EDATA, "unknown format (not NRRD, "
-		    "NIfTI-1 or VTK; for raw data give --raw and --type)");
+		return vx_imp_read_vtk(g, in->top, e);
 	}
 }
 

@@ -21,7 +21,10 @@
 
 typedef enum vx_tf_format {
 	VX_TF_FORMAT_UNKNOWN = 0,
-	VX_TF_FORMAT_AUTO,        /* by content (then by the name's suffix) */
+	VX_TF_FORMAT_AUTO,        /* by content: "NRRD" magic: miter; JSON
+	                             with "volumeProperties": slicer, other
+	                             JSON: paraview; text whose first byte
+	                             is a digit: slicer (.vp) */
 	VX_TF_FORMAT_PARAVIEW,
 	VX_TF_FORMAT_SLICER,      /* .vp or .vp.json */
 	VX_TF_FORMAT_MITER,
@@ -30,10 +33,18 @@ typedef enum vx_tf_format {
 
 extern const vx_enum vx_tf_format_enum;   /* auto paraview slicer miter */
 
-/* vx_tf_import: read the file at path in format fmt into tf (initialized
- * by the call; on error tf is left empty).  Errors: VX_ENOINPUT (cannot
- * open), VX_EDATA (malformed or unsupported: the message says what),
- * VX_ENOMEM, VX_EIO. */
+/* vx_tf_import: read the file at path ("-": standard input) in format fmt
+ * into tf (initialized by the call; on error tf is left empty).  A
+ * successful import passes vx_tf_check.  Errors: VX_ENOINPUT (cannot
+ * open, a directory, empty), VX_EDATA (malformed or unsupported: one line
+ * "PATH: line N: key \"RGBPoints\" element 7: ..." saying what and
+ * where), VX_EUSAGE (fmt not a format), VX_ENOMEM, VX_EIO. */
 int vx_tf_import(const char *path, vx_tf_format fmt, vx_tf *tf, vx_err *e);
+
+/* vx_tf_import_mem: the same from the n bytes at buf (messages without a
+ * path); dir is where a txf's detached data file is looked for (NULL:
+ * such a header is refused, so fuzzing opens no files). */
+int vx_tf_import_mem(const void *buf, size_t n, vx_tf_format fmt,
+    const char *dir, vx_tf *tf, vx_err *e);
 
 #endif

@@ -12,18 +12,6 @@ static const vx_enum_name solver_names[] = {
 };
 const vx_enum vx_cell_solver_enum = { "solver", solver_names, "unknown", 0 };
 
-const char *
-vx_cell_solver_name(int solver)
-{
-	return vx_enum_str(&vx_cell_solver_enum, solver);
-}
-
-int
-vx_cell_solver_parse(const char *s)
-{
-	return vx_enum_val(&vx_cell_solver_enum, s);
-}
-
 int
 vx_cell_finite(const float c[8])
 {
@@ -50,59 +38,11 @@ vx_cell_trilinear(const float c[8], const double p[3])
 	return lerp(lerp(e0, e1, p[1]), lerp(e2, e3, p[1]), p[2]);
 }
 
-/* The cubic along the ray.  Derived here again (Parker et al. 1999,
- * Appendix A, is garbled in our copy: its fractions lost their bars, so
- * "x_1 - x_a x_1 - x_0" is (x_1 - x_a)/(x_1 - x_0), and the signs of b_0 and
- * b_1 are swapped: u_0 = (x_1 - x)/(x_1 - x_0) decreases along the ray, so
- * b_0 = -x_b/(x_1 - x_0) and b_1 = +x_b/(x_1 - x_0)).  Its sum over
- * (u_i^a + t u_i^b)(v_j^a + t v_j^b)(w_k^a + t w_k^b) rho_ijk is the same
- * polynomial as the nested interpolation used here, which is cheaper and
- * better conditioned for o near the cell:
- *   x(t) = o_x + t d_x, and likewise y(t), z(t);
- *   edge along x at (y,z) = (j&1, j>>1):  e_j(t) = c[2j] + (c[2j+1] - c[2j]) x(t)
- *     = A_j + B_j t,  A_j = c[2j] + D_j o_x,  B_j = D_j d_x,  D_j = c[2j+1] - c[2j];
- *   face z = s:  P_s(t) = e_{2s} + (e_{2s+1} - e_{2s}) y(t)
- *     = (A_{2s} + dA o_y) + (B_{2s} + dA d_y + dB o_y) t + dB d_y t^2
- *     with dA = A_{2s+1} - A_{2s}, dB = B_{2s+1} - B_{2s};
- *   cell:  f(t) = P_0 + (P_1 - P_0) z(t) - iso, with Q = P_1 - P_0:
- *     k0 = P_0[0] + Q[0] o_z - iso
- *     k1 = P_0[1] + Q[0] d_z + Q[1] o_z
- *     k2 = P_0[2] + Q[1] d_z + Q[2] o_z
- *     k3 = Q[2] d_z.
- * Expanded, k3 = (c7 - c6 - c5 + c4 - c3 + c2 + c1 - c0) d_x d_y d_z: Parker's
- * A.  Every step is linear in (c, iso), so 2^k scaling is exact. */
 void
 vx_cell_poly(const float c[8], const double o[3], const double d[3],
     double iso, double k[4])
 {
-	double A[4], B[4], P[2][3], Q[3];
-	int j, s;
-
-	for (j = 0; j < 4; j++) {
-		double D = (double)c[2 * j + 1] - (double)c[2 * j];
-
-		A[j] = c[2 * j] + D * o[0];
-		B[j] = D * d[0];
-	}
-	for (s = 0; s < 2; s++) {
-		double dA = A[2 * s + 1] - A[2 * s], dB = B[2 * s + 1] - B[2 * s];
-
-		P[s][0] = A[2 * s] + dA * o[1];
-		P[s][1] = B[2 * s] + dA * d[1] + dB * o[1];
-		P[s][2] = dB * d[1];
-	}
-	for (j = 0; j < 3; j++)
-		Q[j] = P[1][j] - P[0][j];
-	k[0] = (P[0][0] + Q[0] * o[2]) - iso;
-	k[1] = P[0][1] + Q[0] * d[2] + Q[1] * o[2];
-	k[2] = P[0][2] + Q[1] * d[2] + Q[2] * o[2];
-	k[3] = Q[2] * d[2];
-}
-
-double
-vx_cell_poly_eval(const double k[4], double t)
-{
-	return ((k[3] * t + k[2]) * t + k[1]) * t + k[0];
+	vx_cell_poly_inline(c, o, d, iso, k);
 }
 
 /* f' and f'' at t */
@@ -142,62 +82,6 @@ vx_cell_face_value(const float c[8], int axis, int side, double u, double v)
 	    c[base | 1 << va[axis]] + c[base | 1 << ua[axis] | 1 << va[axis]]))
 		return NAN;
 	return vx_cell_face_value_fin(c, axis, side ? 1 : 0, u, v);
-}
-
-/* Critical points of the cubic strictly inside (t0, t1), ascending: the
- * zeros of f' = a t^2 + b t + c (a = 3 k3, b = 2 k2, c = k1) by the stable
- * quadratic formula, the discriminant by Kahan's fma difference of products
- * (accurate when the two critical points nearly coincide).  a == 0 (or tiny)
- * needs no special case beyond a == 0 exactly: the large root then leaves
- * the interval and the small one is c/q.  ext[i] is 1 for an extremum (f'
- * changes sign), 0 for the inflection of a double zero of f' (discriminant
- * exactly 0: f is monotone through it, so it is no touch).  Returns their
- * number (0..2). */
-static int
-crit_points(const double k[4], double t0, double t1, double r[2], int ext[2])
-{
-	double a = 3 * k[3], b = 2 * k[2], c = k[1];
-	double x[2];
-	int n = 0, m = 0, i, e2 = 1;
-
-	if (a == 0) {
-		if (b == 0)
-			return 0;
-		x[n++] = -c / b;
-	} else {
-		double w = 4 * a * c, bb = b * b;
-		double disc = bb - w;
-
-		/* Kahan's fma difference of products where it cancels (the
-		 * critical points nearly coincide); fma is a library call */
-		if (fabs(disc) < 0x1p-20 * bb)
-			disc = fma(b, b, -w) + fma(-4 * a, c, w);
-
-		if (disc < 0)
-			return 0;
-		if (disc == 0) {
-			x[n++] = -b / (2 * a);
-			e2 = 0;
-		} else {
-			double q = -0.5 * (b + copysign(sqrt(disc), b));
-
-			x[n++] = q / a;
-			x[n++] = c / q;
-		}
-	}
-	for (i = 0; i < n; i++)
-		if (x[i] > t0 && x[i] < t1) {   /* false for NaN */
-			ext[m] = e2;
-			r[m++] = x[i];
-		}
-	if (m == 2 && r[0] > r[1]) {
-		double s = r[0];
-		r[0] = r[1];
-		r[1] = s;
-	}
-	if (m == 2 && r[0] == r[1])
-		m = 1;
-	return m;
 }
 
 /* ---- exact signs of polynomials in doubles ----
@@ -584,7 +468,7 @@ crit_exact(const double k[4], double t0, double t1, double r[2], int sg[2],
 
 /* monotone: 1 when f' provably keeps one sign on [t0, t1] (t0 < t1,
  * finite, T = max(|t0|, |t1|); k normalized, |k_i| < 2^400), so that f
- * has no critical point there and crit_points need not be called (its
+ * has no critical point there and vx_cell_crit_points need not be called (its
  * square root and divisions are the longest wait of a hit's path).
  * Method: f' = k1 + 2 k2 t + 3 k3 t^2 is a quadratic; on [t0, t1] its
  * Bernstein coefficients are f'(t0), f'(t0) + (L/2) f''(t0) and f'(t1)
@@ -871,8 +755,7 @@ int
 vx_cell_max(const double k[4], double t0, double t1, double *tmax,
     double *fmax)
 {
-	double kk[4], r[2], bt, bf, f, g0 = 0, g1 = 0;
-	int ext[2], m, i;
+	double kk[4], bt, g0 = 0, g1 = 0;
 
 	*tmax = 0;
 	*fmax = -INFINITY;
@@ -881,21 +764,7 @@ vx_cell_max(const double k[4], double t0, double t1, double *tmax,
 		return 0;
 	memcpy(kk, k, sizeof kk);
 	normalize(kk, &g0, &g1);
-	bt = t0;
-	bf = vx_cell_poly_eval(kk, t0);
-	m = crit_points(kk, t0, t1, r, ext);
-	for (i = 0; i < m; i++) {
-		f = vx_cell_poly_eval(kk, r[i]);
-		if (f > bf) {
-			bf = f;
-			bt = r[i];
-		}
-	}
-	f = vx_cell_poly_eval(kk, t1);
-	if (f > bf) {
-		bf = f;
-		bt = t1;
-	}
+	bt = vx_cell_argmax(kk, t0, t1);
 	/* back to the caller's scale (the identity unless normalized),
 	 * rounded down: never above the exact maximum */
 	*tmax = bt;

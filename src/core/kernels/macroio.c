@@ -55,7 +55,7 @@ vx_macro_to_chunk(const vx_macro *m, int zlevel, vx_chunk *c, vx_err *e)
 	    (long long)m->vdims[0], (long long)m->vdims[1],
 	    (long long)m->vdims[2])) ||
 	    (rc = vx_hdr_set(&h, "volume-type", e, "%s",
-	    vx_type_name(m->vtype))) ||
+	    vx_enum_str(&vx_type_enum, m->vtype))) ||
 	    (rc = vx_hdr_set(&h, "volume-crc32", e, "%08x",
 	    (unsigned)m->vcrc)) ||
 	    (m->has_vchunk_crc && (rc = vx_hdr_set(&h, "volume-chunk-crc32",
@@ -91,8 +91,9 @@ out:
 	return rc;
 }
 
-int
-vx_macro_sizes_hdr_parse(const char *v, int nlev, int sizes[][3], vx_err *e)
+/* sizes_parse: a "sizes" value, exactly nlev space-separated AxBxC. */
+static int
+sizes_parse(const char *v, int nlev, int sizes[][3], vx_err *e)
 {
 	const char *p = v;
 	int l, used;
@@ -114,15 +115,56 @@ bad:
 }
 
 int
+vx_macro_hdr_levels_get(const vx_hdr *h, int *nlev,
+    int sizes[VX_MACRO_MAXLEV][3], int64_t dims[VX_MACRO_MAXLEV + 1][3],
+    vx_err *e)
+{
+	const char *v;
+	int64_t nl, dl[3];
+	int l, a, rc;
+
+	if ((rc = vx_hdr_get_i64(h, "levels", &nl, 1, e)) != 0)
+		return rc;
+	if (nl < 0 || nl > VX_MACRO_MAXLEV)
+		return vx_err_set(e, VX_EDATA, "levels %lld: expected 0..%d",
+		    (long long)nl, VX_MACRO_MAXLEV);
+	if ((v = vx_hdr_get(h, "sizes")) == NULL)
+		return vx_err_set(e, VX_EDATA, "missing sizes");
+	if ((rc = sizes_parse(v, (int)nl, sizes, e)) != 0)
+		return rc;
+	for (l = 1; l <= nl; l++) {
+		char key[16];
+
+		for (a = 0; a < 3; a++) {
+			int s = sizes[l - 1][a];
+
+			if (s < 1 || s > VX_MACRO_MAXSIZE)
+				return vx_err_set(e, VX_EDATA, "sizes: edge %d "
+				    "out of 1..%d", s, VX_MACRO_MAXSIZE);
+			dims[l][a] = (dims[l - 1][a] + s - 1) / s;
+		}
+		snprintf(key, sizeof key, "dims-%d", l);
+		if ((rc = vx_hdr_get_i64(h, key, dl, 3, e)) != 0)
+			return rc;
+		if (dl[0] != dims[l][0] || dl[1] != dims[l][1] ||
+		    dl[2] != dims[l][2])
+			return vx_err_set(e, VX_EDATA, "%s does not follow from "
+			    "leaf-dims and sizes", key);
+	}
+	*nlev = (int)nl;
+	return 0;
+}
+
+int
 vx_macro_from_chunk(vx_macro *m, const vx_chunk *c, vx_err *e)
 {
 	int sizes[VX_MACRO_MAXLEV][3];
+	int64_t dims[VX_MACRO_MAXLEV + 1][3], *n = dims[0];
 	const unsigned char *body;
 	size_t bodylen, nbytes, k;
-	int64_t n[3], nl, dl[3];
 	const char *v;
 	unsigned char *tmp = NULL;
-	int explicit_leaves, l, a, rc;
+	int explicit_leaves, nl, l, a, rc;
 	vx_hdr h;
 
 	vx_macro_init(m);
@@ -136,19 +178,7 @@ vx_macro_from_chunk(vx_macro *m, const vx_chunk *c, vx_err *e)
 		goto out;
 	}
 	explicit_leaves = strcmp(v, "explicit") == 0;
-	if ((rc = vx_hdr_get_i64(&h, "levels", &nl, 1, e)) != 0)
-		goto out;
-	if (nl < 0 || nl > VX_MACRO_MAXLEV) {
-		rc = vx_err_set(e, VX_EDATA, "levels %lld: expected 0..%d",
-		    (long long)nl, VX_MACRO_MAXLEV);
-		goto out;
-	}
-	if ((v = vx_hdr_get(&h, "sizes")) == NULL) {
-		rc = vx_err_set(e, VX_EDATA, "missing sizes");
-		goto out;
-	}
-	if ((rc = vx_macro_sizes_hdr_parse(v, (int)nl, sizes, e)) != 0 ||
-	    (rc = vx_hdr_get_i64(&h, "leaf-dims", n, 3, e)) != 0)
+	if ((rc = vx_hdr_get_i64(&h, "leaf-dims", n, 3, e)) != 0)
 		goto out;
 	/* vx_macro_setup checks every size and dim before anything is
 	 * allocated (its allocation is the body's size, checked below first) */
@@ -159,51 +189,25 @@ vx_macro_from_chunk(vx_macro *m, const vx_chunk *c, vx_err *e)
 			    (long long)VX_GRID_MAX_DIM);
 			goto out;
 		}
-	for (l = 0; l < nl; l++)
-		for (a = 0; a < 3; a++)
-			if (sizes[l][a] < 1 || sizes[l][a] > VX_MACRO_MAXSIZE) {
-				rc = vx_err_set(e, VX_EDATA, "sizes: edge %d out "
-				    "of 1..%d", sizes[l][a], VX_MACRO_MAXSIZE);
-				goto out;
-			}
+	if ((rc = vx_macro_hdr_levels_get(&h, &nl, sizes, dims, e)) != 0)
+		goto out;
 	{
 		/* the body size, computed as vx_macro_setup will, checked first */
 		vx_macro g;
 
 		vx_macro_init(&g);
 		nbytes = 0;
-		for (a = 0; a < 3; a++)
-			g.dims[0][a] = n[a];
-		for (l = 1; l <= nl; l++)
-			for (a = 0; a < 3; a++)
-				g.dims[l][a] = (g.dims[l - 1][a] +
-				    sizes[l - 1][a] - 1) / sizes[l - 1][a];
-		for (l = explicit_leaves ? 0 : 1; l <= nl; l++) {
+		memcpy(g.dims, dims, (size_t)(nl + 1) * sizeof dims[0]);
+		for (l = explicit_leaves ? 0 : 1; l <= nl; l++)
 			if (vx_mul_size(&k, ncells(&g, l), 2 * sizeof(float)) ||
 			    vx_add_size(&nbytes, nbytes, k)) {
 				rc = vx_err_set(e, VX_EDATA, "too many cells");
 				goto out;
 			}
-			if (l > 0) {
-				char key[16];
-
-				snprintf(key, sizeof key, "dims-%d", l);
-				if ((rc = vx_hdr_get_i64(&h, key, dl, 3, e)) != 0)
-					goto out;
-				if (dl[0] != g.dims[l][0] ||
-				    dl[1] != g.dims[l][1] ||
-				    dl[2] != g.dims[l][2]) {
-					rc = vx_err_set(e, VX_EDATA, "%s does not "
-					    "follow from leaf-dims and sizes",
-					    key);
-					goto out;
-				}
-			}
-		}
 		if ((rc = vx_body_fits(&h, bodylen, nbytes, e)) != 0)
 			goto out;
 	}
-	if ((rc = vx_macro_setup(m, n, (int)nl, sizes, explicit_leaves,
+	if ((rc = vx_macro_setup(m, n, nl, sizes, explicit_leaves,
 	    e)) != 0)
 		goto out;
 	if (!explicit_leaves) {
@@ -228,7 +232,8 @@ vx_macro_from_chunk(vx_macro *m, const vx_chunk *c, vx_err *e)
 			}
 		memcpy(m->vdims, vd, sizeof vd);
 		if ((v = vx_hdr_get(&h, "volume-type")) == NULL ||
-		    (m->vtype = vx_type_parse(v)) == VX_TYPE_UNKNOWN) {
+		    (m->vtype = (vx_type)vx_enum_val(&vx_type_enum, v)) ==
+		    VX_TYPE_UNKNOWN) {
 			rc = vx_err_set(e, VX_EDATA, "volume-type '%.20s' unknown",
 			    v ? v : "");
 			goto out;
@@ -357,6 +362,21 @@ vx_macro_find_owned(const vx_stream *s, const char *type, const char *name,
 }
 
 int
+vx_macro_stream_find(const vx_stream *s, const char *type, const char *name,
+    int *status, long *index, long *i, vx_err *e)
+{
+	*status = VX_MACRO_ABSENT;
+	if (index != NULL)
+		*index = -1;
+	if (vx_macro_find_owned(s, type, name, i, e) != 0)
+		return vx_err_push(e, memcmp(type, VX_CHUNK_TETLEAF, 4) == 0 ?
+		    "leaf grid" : "macrocells");
+	if (index != NULL)
+		*index = *i;
+	return 0;
+}
+
+int
 vx_macro_from_stream(vx_macro *m, const vx_stream *s, const vx_grid *g,
     long src, int *status, long *index, vx_err *e)
 {
@@ -364,15 +384,9 @@ vx_macro_from_stream(vx_macro *m, const vx_stream *s, const vx_grid *g,
 	int rc;
 
 	vx_macro_init(m);
-	*status = VX_MACRO_ABSENT;
-	if (index != NULL)
-		*index = -1;
-	if (vx_macro_find_owned(s, VX_CHUNK_MACRO, g->name, &i, e) != 0)
-		return vx_err_push(e, "macrocells");
-	if (i < 0)
-		return 0;
-	if (index != NULL)
-		*index = i;
+	if ((rc = vx_macro_stream_find(s, VX_CHUNK_MACRO, g->name, status,
+	    index, &i, e)) != 0 || i < 0)
+		return rc;
 	if ((rc = vx_macro_from_chunk(m, &s->chunk[i], e)) != 0)
 		return rc;
 	/* the very bytes it was built from: their samples' CRC is the one

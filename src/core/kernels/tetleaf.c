@@ -443,6 +443,22 @@ near_visit(void *p, const vx_leaf_visit *v)
 }
 
 int
+vx_tetleaf_walk_setup(const vx_tetleaf *lg, const double o[3],
+    const double d[3], const double *iso, int niso, double lo[3],
+    double ld[3], float vals[64])
+{
+	int a, k, nv = niso <= 64 ? niso : 0;
+
+	for (k = 0; k < nv; k++)
+		vals[k] = (float)iso[k];
+	for (a = 0; a < 3; a++) {
+		lo[a] = (o[a] - lg->bmin[a]) / lg->cell[a];
+		ld[a] = d[a] / lg->cell[a];
+	}
+	return nv;
+}
+
+int
 vx_tetleaf_nearest(const vx_tetleaf *lg, const vx_tetmesh *m,
     const double o[3], const double d[3], const double *iso, int niso,
     double tmin, double tmax, vx_tethit *hit, vx_trav_stats *st)
@@ -450,21 +466,13 @@ vx_tetleaf_nearest(const vx_tetleaf *lg, const vx_tetmesh *m,
 	float vals[64];
 	double lo[3], ld[3];
 	near_ctx c;
-	int a, k, nv;
+	int nv;
 
 	if (lg->off == NULL || niso <= 0)
 		return 0;
-	/* the hierarchy culls with float isovalues: rounding is monotone and
-	 * leaf bounds are floats, so min <= iso <= max implies the same for
-	 * (float)iso, and the interpolated values stay within the vertex
-	 * values (vx_tet_segment clamps them) */
-	nv = niso <= 64 ? niso : 0;  /* more: no culling */
-	for (k = 0; k < nv; k++)
-		vals[k] = (float)iso[k];
-	for (a = 0; a < 3; a++) {
-		lo[a] = (o[a] - lg->bmin[a]) / lg->cell[a];
-		ld[a] = d[a] / lg->cell[a];
-	}
+	/* the interpolated values stay within the vertex values
+	 * (vx_tet_segment clamps them) */
+	nv = vx_tetleaf_walk_setup(lg, o, d, iso, niso, lo, ld, vals);
 	memset(&c, 0, sizeof c);
 	c.lg = lg;
 	c.m = m;

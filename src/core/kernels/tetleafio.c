@@ -153,12 +153,11 @@ vx_tetleaf_from_chunk(vx_tetleaf *lg, vx_tetleaf_ident *idp,
 	unsigned char *tmp = NULL;
 	float *leaf = NULL;
 	size_t bodylen, nleaf, noff, nidx, ncell, nbytes, k, i;
-	int64_t n[3], nl, ne, dl[3], cdims[VX_MACRO_MAXLEV + 1][3];
+	int64_t n[3], ne, cdims[VX_MACRO_MAXLEV + 1][3];
 	double org[3], cell[3];
 	vx_tetleaf_ident id;
-	const char *v;
 	vx_hdr h;
-	int l, a, rc;
+	int nl, l, a, rc;
 
 	vx_tetleaf_init(lg);
 	vx_hdr_init(&h);
@@ -168,8 +167,7 @@ vx_tetleaf_from_chunk(vx_tetleaf *lg, vx_tetleaf_ident *idp,
 	if ((rc = vx_hdr_get_i64(&h, "leaf-dims", n, 3, e)) != 0 ||
 	    (rc = vx_hdr_get_f64(&h, "leaf-origin", org, 3, e)) != 0 ||
 	    (rc = vx_hdr_get_f64(&h, "leaf-size", cell, 3, e)) != 0 ||
-	    (rc = vx_hdr_get_i64(&h, "entries", &ne, 1, e)) != 0 ||
-	    (rc = vx_hdr_get_i64(&h, "levels", &nl, 1, e)) != 0)
+	    (rc = vx_hdr_get_i64(&h, "entries", &ne, 1, e)) != 0)
 		goto out;
 	nleaf = 1;
 	for (a = 0; a < 3; a++) {
@@ -197,41 +195,11 @@ vx_tetleaf_from_chunk(vx_tetleaf *lg, vx_tetleaf_ident *idp,
 		    (long long)ne);
 		goto out;
 	}
-	if (nl < 0 || nl > VX_MACRO_MAXLEV) {
-		rc = vx_err_set(e, VX_EDATA, "levels %lld: expected 0..%d",
-		    (long long)nl, VX_MACRO_MAXLEV);
-		goto out;
-	}
-	if ((v = vx_hdr_get(&h, "sizes")) == NULL) {
-		rc = vx_err_set(e, VX_EDATA, "missing sizes");
-		goto out;
-	}
-	if ((rc = vx_macro_sizes_hdr_parse(v, (int)nl, sizes, e)) != 0)
+	if ((rc = vx_macro_hdr_levels_get(&h, &nl, sizes, cdims, e)) != 0)
 		goto out;
 	ncell = nleaf;
-	for (l = 1; l <= nl; l++) {
-		char key[16];
-
-		for (a = 0; a < 3; a++) {
-			int s = sizes[l - 1][a];
-			if (s < 1 || s > VX_MACRO_MAXSIZE) {
-				rc = vx_err_set(e, VX_EDATA, "sizes: edge %d out "
-				    "of 1..%d", s, VX_MACRO_MAXSIZE);
-				goto out;
-			}
-			cdims[l][a] = (cdims[l - 1][a] + s - 1) / s;
-		}
-		snprintf(key, sizeof key, "dims-%d", l);
-		if ((rc = vx_hdr_get_i64(&h, key, dl, 3, e)) != 0)
-			goto out;
-		if (dl[0] != cdims[l][0] || dl[1] != cdims[l][1] ||
-		    dl[2] != cdims[l][2]) {
-			rc = vx_err_set(e, VX_EDATA, "%s does not follow from "
-			    "leaf-dims and sizes", key);
-			goto out;
-		}
+	for (l = 1; l <= nl; l++)
 		ncell += (size_t)(cdims[l][0] * cdims[l][1] * cdims[l][2]);
-	}
 	noff = nleaf + 1;
 	nidx = (size_t)ne;
 	/* at most 4 (2^31 + 1) + 4 (2^32) + 8 * 7 * 2^31 bytes: fits */
@@ -289,7 +257,7 @@ vx_tetleaf_from_chunk(vx_tetleaf *lg, vx_tetleaf_ident *idp,
 	}
 	lg->nleaf = nleaf;
 	/* the geometry of the levels, then their stored ranges */
-	if ((rc = vx_macro_build_explicit(&lg->mc, n, leaf, (int)nl,
+	if ((rc = vx_macro_build_explicit(&lg->mc, n, leaf, nl,
 	    (const int (*)[3])sizes, 1, e)) != 0)
 		goto out;
 	for (l = 1; l <= nl; l++) {
@@ -335,17 +303,12 @@ vx_tetleaf_from_stream(vx_tetleaf *lg, const vx_stream *s,
 {
 	vx_tetleaf_ident id;
 	long i;
+	int rc;
 
 	vx_tetleaf_init(lg);
-	*status = VX_MACRO_ABSENT;
-	if (index != NULL)
-		*index = -1;
-	if (vx_macro_find_owned(s, VX_CHUNK_TETLEAF, m->name, &i, e) != 0)
-		return vx_err_push(e, "leaf grid");
-	if (i < 0)
-		return 0;
-	if (index != NULL)
-		*index = i;
+	if ((rc = vx_macro_stream_find(s, VX_CHUNK_TETLEAF, m->name, status,
+	    index, &i, e)) != 0 || i < 0)
+		return rc;
 	if (vx_tetleaf_from_chunk(lg, &id, &s->chunk[i], e) != 0)
 		return vx_err_push(e, "chunk TLEF at %llu",
 		    (unsigned long long)s->chunk[i].offset);

@@ -281,21 +281,14 @@ vx_tetleaf_trace(const vx_tetleaf *lg, const vx_tetmesh *m,
 	float vals[64];
 	double lo[3], ld[3];
 	trace_ctx x;
-	int a, k, nv, rc;
+	int nv, rc;
 
 	if (st != NULL)
 		st->rays++;
 	if (lg->off == NULL || niso <= 0)
 		return 0;
 	_Static_assert(NSEG == 64, "the valid mask has 64 bits");
-	/* culling as in vx_tetleaf_nearest (float isovalues, up to 64) */
-	nv = niso <= 64 ? niso : 0;
-	for (k = 0; k < nv; k++)
-		vals[k] = (float)iso[k];
-	for (a = 0; a < 3; a++) {
-		lo[a] = (o[a] - lg->bmin[a]) / lg->cell[a];
-		ld[a] = d[a] / lg->cell[a];
-	}
+	nv = vx_tetleaf_walk_setup(lg, o, d, iso, niso, lo, ld, vals);
 	/* everything but the cache, which is marked empty by x.valid */
 	memset(&x, 0, offsetof(trace_ctx, cache));
 	x.lg = lg;

@@ -35,6 +35,13 @@
 
 #include "vx_enum.h"
 
+/* The inline kernels below are inlined in every caller (GCC, Clang). */
+#if defined(__GNUC__)
+#define VX_CELL_INLINE static inline __attribute__((always_inline))
+#else
+#define VX_CELL_INLINE static inline
+#endif
+
 /* Root solvers: the accuracy knob of vx_cell_first_root.  All three isolate
  * the first root identically (same hit or miss decision, same bracket);
  * they differ only in how the bracket is refined.  0 is EXACT, the default. */
@@ -68,11 +75,8 @@ enum {
 };
 
 /* The solvers' names (vx_enum.h): "exact", "neubauer", "linear"; -1 and
- * "unknown" for the others.  vx_cell_solver_name, vx_cell_solver_parse:
- * shorthands for vx_enum_str and vx_enum_val on vx_cell_solver_enum. */
+ * "unknown" for the others. */
 extern const vx_enum vx_cell_solver_enum;
-const char *vx_cell_solver_name(int solver);
-int vx_cell_solver_parse(const char *s);
 
 /* vx_cell_finite: 1 if all eight corners are finite, else 0.  A cell with a
  * NaN or infinite corner has no surface: callers skip it (the functions
@@ -92,7 +96,141 @@ void vx_cell_poly(const float c[8], const double o[3], const double d[3],
     double iso, double k[4]);
 
 /* vx_cell_poly_eval: f(t) by Horner's rule. */
-double vx_cell_poly_eval(const double k[4], double t);
+static inline double
+vx_cell_poly_eval(const double k[4], double t)
+{
+	return ((k[3] * t + k[2]) * t + k[1]) * t + k[0];
+}
+
+/* vx_cell_poly_inline: vx_cell_poly itself (the same operations in the
+ * same order, so the same bits), inlined where the caller wants it (MIP's
+ * cell walks).
+ *
+ * The cubic along the ray.  Derived here again (Parker et al. 1999,
+ * Appendix A, is garbled in our copy: its fractions lost their bars, so
+ * "x_1 - x_a x_1 - x_0" is (x_1 - x_a)/(x_1 - x_0), and the signs of b_0 and
+ * b_1 are swapped: u_0 = (x_1 - x)/(x_1 - x_0) decreases along the ray, so
+ * b_0 = -x_b/(x_1 - x_0) and b_1 = +x_b/(x_1 - x_0)).  Its sum over
+ * (u_i^a + t u_i^b)(v_j^a + t v_j^b)(w_k^a + t w_k^b) rho_ijk is the same
+ * polynomial as the nested interpolation used here, which is cheaper and
+ * better conditioned for o near the cell:
+ *   x(t) = o_x + t d_x, and likewise y(t), z(t);
+ *   edge along x at (y,z) = (j&1, j>>1):  e_j(t) = c[2j] + (c[2j+1] - c[2j]) x(t)
+ *     = A_j + B_j t,  A_j = c[2j] + D_j o_x,  B_j = D_j d_x,  D_j = c[2j+1] - c[2j];
+ *   face z = s:  P_s(t) = e_{2s} + (e_{2s+1} - e_{2s}) y(t)
+ *     = (A_{2s} + dA o_y) + (B_{2s} + dA d_y + dB o_y) t + dB d_y t^2
+ *     with dA = A_{2s+1} - A_{2s}, dB = B_{2s+1} - B_{2s};
+ *   cell:  f(t) = P_0 + (P_1 - P_0) z(t) - iso, with Q = P_1 - P_0:
+ *     k0 = P_0[0] + Q[0] o_z - iso
+ *     k1 = P_0[1] + Q[0] d_z + Q[1] o_z
+ *     k2 = P_0[2] + Q[1] d_z + Q[2] o_z
+ *     k3 = Q[2] d_z.
+ * Expanded, k3 = (c7 - c6 - c5 + c4 - c3 + c2 + c1 - c0) d_x d_y d_z: Parker's
+ * A.  Every step is linear in (c, iso), so 2^k scaling is exact. */
+VX_CELL_INLINE void
+vx_cell_poly_inline(const float c[8], const double o[3], const double d[3],
+    double iso, double k[4])
+{
+	double A[4], B[4], P[2][3], Q[3];
+	int j, s;
+
+	for (j = 0; j < 4; j++) {
+		double D = (double)c[2 * j + 1] - (double)c[2 * j];
+
+		A[j] = c[2 * j] + D * o[0];
+		B[j] = D * d[0];
+	}
+	for (s = 0; s < 2; s++) {
+		double dA = A[2 * s + 1] - A[2 * s], dB = B[2 * s + 1] - B[2 * s];
+
+		P[s][0] = A[2 * s] + dA * o[1];
+		P[s][1] = B[2 * s] + dA * d[1] + dB * o[1];
+		P[s][2] = dB * d[1];
+	}
+	for (j = 0; j < 3; j++)
+		Q[j] = P[1][j] - P[0][j];
+	k[0] = (P[0][0] + Q[0] * o[2]) - iso;
+	k[1] = P[0][1] + Q[0] * d[2] + Q[1] * o[2];
+	k[2] = P[0][2] + Q[1] * d[2] + Q[2] * o[2];
+	k[3] = Q[2] * d[2];
+}
+
+/* vx_cell_crit_points: the critical points of the cubic k strictly inside
+ * (t0, t1), ascending, into r: the zeros of f' = a t^2 + b t + c (a = 3 k3,
+ * b = 2 k2, c = k1) by the stable quadratic formula, the discriminant by
+ * Kahan's fma difference of products (accurate when the two critical points
+ * nearly coincide).  a == 0 (or tiny) needs no special case beyond a == 0
+ * exactly: the large root then leaves the interval and the small one is
+ * c/q.  ext[i] is 1 for an extremum (f' changes sign), 0 for the
+ * inflection of a double zero of f' (discriminant exactly 0: f is monotone
+ * through it, so it is no touch; ext may be NULL).  Returns their number
+ * (0..2). */
+VX_CELL_INLINE int
+vx_cell_crit_points(const double k[4], double t0, double t1, double r[2],
+    int ext[2])
+{
+	double a = 3 * k[3], b = 2 * k[2], c = k[1];
+	double x[2];
+	int n = 0, m = 0, i, e2 = 1;
+
+	if (a == 0) {
+		if (b != 0)
+			x[n++] = -c / b;
+	} else {
+		double w = 4 * a * c, bb = b * b;
+		double disc = bb - w;
+
+		/* Kahan's fma difference of products where it cancels (the
+		 * critical points nearly coincide); fma is a library call */
+		if (fabs(disc) < 0x1p-20 * bb)
+			disc = fma(b, b, -w) + fma(-4 * a, c, w);
+		/* disc < 0 or NaN: none */
+		if (disc == 0) {
+			x[n++] = -b / (2 * a);
+			e2 = 0;
+		} else if (disc > 0) {
+			double q = -0.5 * (b + copysign(sqrt(disc), b));
+
+			x[n++] = q / a;
+			x[n++] = c / q;
+		}
+	}
+	for (i = 0; i < 2; i++)    /* a fixed count: unrolled where inlined */
+		if (i < n && x[i] > t0 && x[i] < t1) {   /* false for NaN */
+			if (ext)
+				ext[m] = e2;
+			r[m++] = x[i];
+		}
+	if (m == 2 && r[0] > r[1]) {
+		double s = r[0];
+		r[0] = r[1];
+		r[1] = s;
+	}
+	if (m == 2 && r[0] == r[1])
+		m = 1;
+	return m;
+}
+
+/* vx_cell_argmax: where the cubic k is largest among t0, its critical
+ * points strictly inside (t0, t1) and t1, by Horner's values, the smallest
+ * t among equal values: vx_cell_max's *tmax for a k it need not rescale.
+ * For finite k, t0, t1 with t0 <= t1. */
+VX_CELL_INLINE double
+vx_cell_argmax(const double k[4], double t0, double t1)
+{
+	double r[2], bt = t0, bf = vx_cell_poly_eval(k, t0), f;
+	int m = vx_cell_crit_points(k, t0, t1, r, NULL), i;
+
+	for (i = 0; i < m; i++) {
+		f = vx_cell_poly_eval(k, r[i]);
+		if (f > bf) {
+			bf = f;
+			bt = r[i];
+		}
+	}
+	f = vx_cell_poly_eval(k, t1);
+	return f > bf ? t1 : bt;
+}
 
 /* vx_cell_face_value: the bilinear value on face (axis, side) (axis 0..2,
  * side 0 or 1: the face where coordinate `axis` is `side`) at in-face

@@ -15,9 +15,15 @@
  * (MCEL and TLEF), in this order: levels, sizes, dims-1 .. dims-L, range. */
 int vx_macro_hdr_levels(const vx_macro *m, vx_hdr *h, vx_err *e);
 
-/* vx_macro_sizes_hdr_parse: a chunk header's "sizes" value, exactly nlev
- * space-separated AxBxC (the MCEL and TLEF headers); 0 or VX_EDATA. */
-int vx_macro_sizes_hdr_parse(const char *v, int nlev, int sizes[][3],
+/* vx_macro_hdr_levels_get: what vx_macro_hdr_levels wrote, read back
+ * from h (MCEL and TLEF) and checked, given the leaf dims dims[0] (each
+ * 0..VX_GRID_MAX_DIM): *nlev from "levels" (0..VX_MACRO_MAXLEV), sizes[l -
+ * 1] (level l's edges, each 1..VX_MACRO_MAXSIZE) from "sizes" (exactly
+ * *nlev space-separated AxBxC), and dims[l] for l = 1..*nlev, each
+ * dims[l - 1] over the edges rounded up, which "dims-l" must repeat; 0 or
+ * VX_EDATA. */
+int vx_macro_hdr_levels_get(const vx_hdr *h, int *nlev,
+    int sizes[VX_MACRO_MAXLEV][3], int64_t dims[VX_MACRO_MAXLEV + 1][3],
     vx_err *e);
 
 /* vx_macro_to_chunk: the MCEL chunk of m (zlevel 0 raw, 1..9 zlib). */
@@ -48,6 +54,13 @@ enum {
 	VX_MACRO_LOADED,         /* found, matches the volume, loaded */
 	VX_MACRO_STALE           /* found, but built over other samples */
 };
+
+/* vx_macro_stream_find: the opening of vx_macro_from_stream and
+ * vx_tetleaf_from_stream: *status = VX_MACRO_ABSENT, and *i (and *index
+ * when not NULL) the chunk vx_macro_find_owned finds, -1 when none; its
+ * error is pushed under "macrocells" (MCEL) or "leaf grid" (TLEF). */
+int vx_macro_stream_find(const vx_stream *s, const char *type,
+    const char *name, int *status, long *index, long *i, vx_err *e);
 
 /* vx_macro_from_stream: find the MCEL chunk belonging to volume g (same
  * name) and load it if it matches g (vx_macro_matches).  src: the index in

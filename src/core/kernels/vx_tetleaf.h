@@ -179,6 +179,16 @@ int vx_tetleaf_nearest(const vx_tetleaf *lg, const vx_tetmesh *m,
     const double o[3], const double d[3], const double *iso, int niso,
     double tmin, double tmax, vx_tethit *hit, vx_trav_stats *st);
 
+/* vx_tetleaf_walk_setup: what vx_tetleaf_nearest and vx_tetleaf_trace
+ * hand vx_macro_traverse: the ray o + t d in lg's leaf-index space (lo,
+ * ld) and the isovalues as floats in vals (rounding is monotone and leaf
+ * bounds are floats, so min <= iso <= max implies the same for (float)iso,
+ * and the interpolated values stay within the vertex values); returns
+ * their count, niso, or 0 (no culling) when there are more than 64. */
+int vx_tetleaf_walk_setup(const vx_tetleaf *lg, const double o[3],
+    const double d[3], const double *iso, int niso, double lo[3],
+    double ld[3], float vals[64]);
+
 /* ---- every crossing along a ray (tettrace.c) ---- */
 
 typedef struct vx_tettrace_stats {

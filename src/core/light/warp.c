@@ -39,27 +39,29 @@ vx_warp_cosine_hemisphere(const double u[2], double w[3])
 	return w[2] / PI;
 }
 
-double
-vx_warp_uniform_hemisphere(const double u[2], double w[3])
+/* at_height: the unit vector w of height z (in [-1, 1]) and azimuth
+ * 2 pi v */
+static void
+at_height(double z, double v, double w[3])
 {
-	double z = 1 - u[0], r = sqrt(fmax(0.0, 1 - z * z));
-	double phi = 2 * PI * u[1];
+	double r = sqrt(fmax(0.0, 1 - z * z)), phi = 2 * PI * v;
 
 	w[0] = r * cos(phi);
 	w[1] = r * sin(phi);
 	w[2] = z;
+}
+
+double
+vx_warp_uniform_hemisphere(const double u[2], double w[3])
+{
+	at_height(1 - u[0], u[1], w);
 	return 1 / (2 * PI);
 }
 
 double
 vx_warp_uniform_sphere(const double u[2], double w[3])
 {
-	double z = 1 - 2 * u[0], r = sqrt(fmax(0.0, 1 - z * z));
-	double phi = 2 * PI * u[1];
-
-	w[0] = r * cos(phi);
-	w[1] = r * sin(phi);
-	w[2] = z;
+	at_height(1 - 2 * u[0], u[1], w);
 	return 1 / (4 * PI);
 }
 

@@ -354,8 +354,8 @@ macro_walk(mip_ctx *x, int l, double ta, double tb, const int64_t clo[3],
  * layout's offset tables (only the stepped axis's offsets change), their
  * maximum is taken in the sample type and converted only for a cell that
  * is solved, integer samples skip the finiteness test (always finite), the
- * cubic and its maximum are poly0() and max0(), and the best value lives in
- * registers. */
+ * cubic and its maximum are vx_cell_poly_inline() and max0(), and the best
+ * value lives in registers. */
 MIP_INLINE void
 cells_walk_t(mip_ctx *x, double ta, double tb, const int64_t clo[3],
     const int64_t chi[3], const vx_type ty)

@@ -96,50 +96,15 @@ clamp_fold(double fm, double tt, double lo, double hi, double *best,
 	}
 }
 
-/* poly0: vx_cell_poly(c, o, d, 0, k), the same operations in the same
- * order (test_mip checks the bits). */
-MIP_INLINE void
-poly0(const float c[8], const double o[3], const double d[3], double k[4])
-{
-	double A[4], B[4], P[2][3], Q[3];
-	int j, s;
-
-	for (j = 0; j < 4; j++) {
-		double D = (double)c[2 * j + 1] - (double)c[2 * j];
-
-		A[j] = c[2 * j] + D * o[0];
-		B[j] = D * d[0];
-	}
-	for (s = 0; s < 2; s++) {
-		double dA = A[2 * s + 1] - A[2 * s], dB = B[2 * s + 1] - B[2 * s];
-
-		P[s][0] = A[2 * s] + dA * o[1];
-		P[s][1] = B[2 * s] + dA * d[1] + dB * o[1];
-		P[s][2] = dB * d[1];
-	}
-	for (j = 0; j < 3; j++)
-		Q[j] = P[1][j] - P[0][j];
-	k[0] = (P[0][0] + Q[0] * o[2]) - 0.0;
-	k[1] = P[0][1] + Q[0] * d[2] + Q[1] * o[2];
-	k[2] = P[0][2] + Q[1] * d[2] + Q[2] * o[2];
-	k[3] = Q[2] * d[2];
-}
-
-MIP_INLINE double
-horner(const double k[4], double t)
-{
-	return ((k[3] * t + k[2]) * t + k[1]) * t + k[0];
-}
-
-/* max0: vx_cell_max(k, 0, t1, tm, fm), the same operations in the same
- * order where vx_cell_max does not rescale k (its normalize() is the
- * identity unless some |k| >= 2^400 or all are <= 2^-400: those go to
- * vx_cell_max itself); test_mip checks the bits. */
+/* max0: vx_cell_max(k, 0, t1, tm, fm) inlined, the same operations in
+ * the same order (vx_cell_argmax) where vx_cell_max does not rescale k (its
+ * normalize() is the identity unless some |k| >= 2^400 or all are
+ * <= 2^-400: those go to vx_cell_max itself); test_mip checks the bits. */
 MIP_INLINE int
 max0(const double k[4], double t1, double *tm, double *fm)
 {
-	int i, big = 0, small = 1, n = 0, m = 0;
-	double r[2], x[2], bt, bf, f;
+	int i, big = 0, small = 1;
+	double bt;
 
 	if (!(isfinite(k[0]) && isfinite(k[1]) && isfinite(k[2]) &&
 	    isfinite(k[3]) && isfinite(t1)) || 0 > t1) {
@@ -155,51 +120,7 @@ max0(const double k[4], double t1, double *tm, double *fm)
 	}
 	if (big || small)
 		return vx_cell_max(k, 0, t1, tm, fm);
-	bt = 0;
-	bf = horner(k, 0);
-	/* cell.c's crit_points: zeros of f' strictly inside (0, t1) */
-	{
-		double a = 3 * k[3], b = 2 * k[2], c = k[1];
-
-		if (a == 0) {
-			if (b != 0)
-				x[n++] = -c / b;
-		} else {
-			double w = 4 * a * c, bb = b * b;
-			double disc = bb - w;
-
-			if (fabs(disc) < 0x1p-20 * bb)
-				disc = fma(b, b, -w) + fma(-4 * a, c, w);
-			if (disc == 0) {
-				x[n++] = -b / (2 * a);
-			} else if (disc > 0) {
-				double q = -0.5 * (b + copysign(sqrt(disc), b));
-
-				x[n++] = q / a;
-				x[n++] = c / q;
-			}
-		}
-		for (i = 0; i < n; i++)
-			if (x[i] > 0 && x[i] < t1)
-				r[m++] = x[i];
-		if (m == 2 && r[0] > r[1]) {
-			double s = r[0];
-			r[0] = r[1];
-			r[1] = s;
-		}
-		if (m == 2 && r[0] == r[1])
-			m = 1;
-	}
-	for (i = 0; i < m; i++) {
-		f = horner(k, r[i]);
-		if (f > bf) {
-			bf = f;
-			bt = r[i];
-		}
-	}
-	f = horner(k, t1);
-	if (f > bf)
-		bt = t1;
+	bt = vx_cell_argmax(k, 0, t1);
 	*tm = bt;
 	*fm = vx_cell_poly_low(k, bt);
 	if (!isfinite(*fm)) {
@@ -227,7 +148,7 @@ solve_cell(const float v[8], const int64_t c[3], const double o[3],
 	}
 	for (int i = 0; i < 3; i++)
 		ol[i] = (o[i] + t * d[i]) - (double)c[i];
-	poly0(v, ol, d, k);
+	vx_cell_poly_inline(v, ol, d, 0, k);
 	if (max0(k, t1 - t, &tm, &fm))
 		clamp_fold(fm, t + tm, lo, hi, best, tbest, found);
 }

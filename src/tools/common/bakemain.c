@@ -283,7 +283,7 @@ print_stats(const vx_bake_stats *bs, const vx_irrvol *v, int nthr)
 	fprintf(stderr, "%s: time: plan %.3f s, bake %.3f s; storage "
 	    "%s%s, %zu bytes per texel in the stream (%zu in memory), %zu "
 	    "bricks of %d^3, %.1f MB in memory\n", me, bs->plan_s, bs->bake_s,
-	    vx_irr_store_name(v->store), contents(v),
+	    vx_enum_str(&vx_irr_store_enum, v->store), contents(v),
 	    vx_irr_texel_bytes(v->store, v->ncomp),
 	    vx_irr_texel_memory(v->store, v->ncomp), v->nslot, VX_IRR_BRICK,
 	    (double)vx_irr_bytes(v) / 1e6);
@@ -399,7 +399,7 @@ tool_bake_main(int argc, char **argv, int want_sh)
 				tool_fail(VX_EDATA, "the stream's %s "
 				    "is final (%s): it cannot take more samples "
 				    "(use --fresh to bake anew)", what(),
-				    vx_irr_store_name(old.store));
+				    vx_enum_str(&vx_irr_store_enum, old.store));
 			if (o.has_first && o.first != old.first)
 				tool_fail(VX_EUSAGE, "--first-sample %u: the "
 				    "stream's bake starts at %u", o.first,
@@ -470,7 +470,7 @@ tool_bake_main(int argc, char **argv, int want_sh)
 		fprintf(stderr, "%s: plan: storage %s%s: %zu bytes a texel in "
 		    "memory (%zu in the stream), %llu bricks of %d^3: %.1f MB "
 		    "in memory (limit %.1f MB, --max-memory)\n", me,
-		    vx_irr_store_name(o.store), contents(&v),
+		    vx_enum_str(&vx_irr_store_enum, o.store), contents(&v),
 		    vx_irr_texel_memory(v.store, v.ncomp),
 		    vx_irr_texel_bytes(o.store, v.ncomp),
 		    (unsigned long long)bs.bricks, VX_IRR_BRICK,

@@ -16,6 +16,7 @@
 #include "vx_imageio.h"
 #include "vx_macro.h"
 #include "vx_macroio.h"
+#include "vx_scan.h"
 #include "vx_scene.h"
 #include "vx_tetleaf.h"
 #include "vx_tonemap.h"
@@ -153,11 +154,9 @@ tool_usage_fail(const char *usage, const char *fmt, ...)
 double
 tool_parse_double(const char *opt, const char *s, double lo, double hi)
 {
-	char *end;
 	double v;
 
-	v = vx_strtod(s, &end);     /* '.' whatever the locale: ',' separates */
-	if (end == s || *end != '\0' || errno == ERANGE || isnan(v))
+	if (vx_num_f64(s, strlen(s), 0, &v) != 0)
 		tool_fail(VX_EUSAGE, "%s: '%s' is not a number", opt, s);
 	if (v < lo || v > hi)
 		tool_fail(VX_EUSAGE, "%s: %s is out of range [%g, %g]", opt, s,
@@ -168,34 +167,42 @@ tool_parse_double(const char *opt, const char *s, double lo, double hi)
 long
 tool_parse_long(const char *opt, const char *s, long lo, long hi)
 {
-	char *end;
-	long v;
+	int64_t v;
 
-	errno = 0;
-	v = strtol(s, &end, 10);
-	if (end == s || *end != '\0' || errno == ERANGE)
+	if (vx_num_i64(s, strlen(s), INT64_MIN, INT64_MAX, &v) != 0)
 		tool_fail(VX_EUSAGE, "%s: '%s' is not an integer", opt, s);
 	if (v < lo || v > hi)
 		tool_fail(VX_EUSAGE, "%s: %s is out of range [%ld, %ld]", opt, s,
 		    lo, hi);
-	return v;
+	return (long)v;
+}
+
+int
+tool_parse_bits(const char *s)
+{
+	long v = tool_parse_long("--bits", s, 8, 16);
+
+	if (v != 8 && v != 16)
+		tool_fail(VX_EUSAGE, "--bits: 8 or 16");
+	return (int)v;
 }
 
 void
 tool_parse_doubles(const char *opt, const char *s, double *out, int n)
 {
 	const char *p = s;
-	char *end;
 	int i;
 
 	for (i = 0; i < n; i++) {
+		size_t w;
+
 		while (*p == ' ' || *p == ',')
 			p++;
-		out[i] = vx_strtod(p, &end);
-		if (end == p || errno == ERANGE || !isfinite(out[i]))
+		w = strcspn(p, " ,");
+		if (vx_num_f64(p, w, 0, &out[i]) != 0)
 			tool_fail(VX_EUSAGE, "%s: '%s': expected %d numbers", opt,
 			    s, n);
-		p = end;
+		p += w;
 	}
 	while (*p == ' ')
 		p++;

@@ -64,6 +64,8 @@ int tool_scene_opt(tool_scene_opts *so, int c, const char *val,
 /* Option value parsers: exit 64 with "name: --opt: why" on bad input. */
 double tool_parse_double(const char *opt, const char *s, double lo, double hi);
 long tool_parse_long(const char *opt, const char *s, long lo, long hi);
+/* tool_parse_bits: --bits, a PNG's bits per channel: 8 or 16. */
+int tool_parse_bits(const char *s);
 /* tool_parse_doubles: exactly n comma- or space-separated numbers. */
 void tool_parse_doubles(const char *opt, const char *s, double *out, int n);
 /* tool_parse_enum: the value s names in en; else exits 64 with "name: opt:
