@@ -58,21 +58,28 @@ for n in 80 160 320 640; do sweep $n 256; done
 printf '\n\n' >> results/dvr.tsv
 for l in 64 128 256 512; do sweep 320 $l; done
 
-# multiple scattering: the slicer with its scattering term and without,
-# against the path tracer with up to 16 vertices a path
-S() { dvr --scene "$scene" --size "$DVR_SIZE" "$@"; }
-t_sc=$(run results/dvr-sc.vx S)
-t_ptm=$(run results/dvr-ptm.vx S --reference pathtrace --spp "$DVR_SPP_MS" --bounces 16)
-png results/dvr-sc.vx dvr-slicing-scatter
-png results/dvr-ptm.vx dvr-pathtrace-multiple
 {
 	printf 'picture\tagainst\tseconds\trelrmse\n'
 	printf 'raymarch step 1\traymarch step 0.5\t%s\t%s\n' "$t_rm" "$(rel results/dvr-rm2.vx results/dvr-rm.vx)"
 	printf 'pathtrace %s spp\tpathtrace seed 2 (the noise of one: this / sqrt 2)\t%s\t%s\n' "$DVR_SPP" "$t_pt" "$(rel results/dvr-pt2.vx results/dvr-pt.vx)"
 	printf 'pathtrace %s spp\traymarch step 0.5\t%s\t%s\n' "$DVR_SPP" "$t_pt" "$(rel results/dvr-rm2.vx results/dvr-pt.vx)"
-	printf 'dvr scattering\tpathtrace 16 bounces, %s spp\t%s\t%s\n' "$DVR_SPP_MS" "$t_sc" "$(rel results/dvr-ptm.vx results/dvr-sc.vx)"
-	printf 'dvr shadows only (320, 256)\tpathtrace 16 bounces, %s spp\t-\t%s\n' "$DVR_SPP_MS" "$(rel results/dvr-ptm.vx results/dvr-s320.vx)"
-	printf 'pathtrace 1 bounce\tpathtrace 16 bounces, %s spp\t%s\t%s\n' "$DVR_SPP_MS" "$t_ptm" "$(rel results/dvr-ptm.vx results/dvr-pt.vx)"
 } > results/dvr-refs.tsv
+
+# multiple scattering, at the scene's medium albedo 1 and at 0.5: the
+# slicer with its scattering term and without, and single scattering,
+# against the path tracer with up to 16 vertices a path
+for a in 1 0.5; do
+	S() { dvr --scene "$scene" --size "$DVR_SIZE" --set "medium albedo $a $a $a" "$@"; }
+	t_sc=$(run results/dvr-sc-$a.vx S)
+	t_ptm=$(run results/dvr-ptm-$a.vx S --reference pathtrace --spp "$DVR_SPP_MS" --bounces 16)
+	m="pathtrace 16 bounces, $DVR_SPP_MS spp, albedo $a"
+	{
+		printf 'dvr scattering\t%s\t%s\t%s\n' "$m" "$t_sc" "$(rel results/dvr-ptm-$a.vx results/dvr-sc-$a.vx)"
+		printf 'dvr shadows only (320, 256)\t%s\t-\t%s\n' "$m" "$(rel results/dvr-ptm-$a.vx results/dvr-s320.vx)"
+		printf 'pathtrace 1 bounce\t%s\t%s\t%s\n' "$m" "$t_ptm" "$(rel results/dvr-ptm-$a.vx results/dvr-pt.vx)"
+	} >> results/dvr-refs.tsv
+done
+png results/dvr-sc-1.vx dvr-slicing-scatter
+png results/dvr-ptm-1.vx dvr-pathtrace-multiple
 SIZE=$DVR_SIZE plot dvr
 cat results/dvr.tsv results/dvr-refs.tsv
