@@ -335,8 +335,9 @@ chandrasekhar_h1(double w, double *m0)
 }
 
 /* 4. multiple scattering: a medium 27 optical depths deep (sigma 0.69 a
- * voxel, depth 39) and 28 voxels wide on each side of the pixels seen,
- * albedo 0.8, isotropic, lit and seen along its normal */
+ * voxel, depth 39) reaching 27 voxels (19 optical depths) beyond the
+ * pixels seen on every side, albedo 0.8, isotropic, lit and seen along
+ * its normal */
 static void
 multiple_scatter(void **state)
 {
