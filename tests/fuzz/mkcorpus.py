@@ -363,3 +363,49 @@ tf("bad-deep.json", 1, "[" * 40)
 # found by fuzz_tf: a string decoded with a newline reached the message
 tf("found-newline-message.json", 1, '[{"ColorSpace": "a\\nb\\u001b", '
    '"Points": [0, 0, 0.5, 0]}]')
+
+# ---- regression seeds of the stream target (formats/stream.md and
+# formats/irradiance.md): inputs fuzz_stream once failed on ----
+def vchunk(typ, keys, body):
+    p = ("".join("%s: %s\n" % kv for kv in keys) + "\n").encode() + body
+    t = typ.encode()
+    return t + struct.pack("<Q", len(p)) + p + struct.pack("<I",
+                                                          zlib.crc32(t + p))
+
+
+def vstream(*chunks):
+    end = b"VEND" + struct.pack("<QI", 0, zlib.crc32(b"VEND"))
+    return b"\x89VXL\r\n\x1a\n" + b"".join(chunks) + end
+
+
+IRR_VOL = bytes([0, 10, 20, 30, 40, 50, 60, 70])
+
+
+def irrv_accum(records):
+    """An accum IRRV of a 2x2x2 lattice (one brick) over a 2x2x2 u8 volume:
+    records maps texel index -> (count, flags, sum)."""
+    body = b"\x01"
+    for t in range(512):
+        n, fl, s = records.get(t, (0, 0, 0))
+        body += struct.pack("<II3qQQ", n, fl, s, s, s, 0, 0)
+    keys = [("volume", "density"), ("volume-dims", "2 2 2"),
+            ("volume-crc32", "%08x" % zlib.crc32(IRR_VOL)),
+            ("lattice-dims", "2 2 2"), ("scale", "1"), ("brick", "8"),
+            ("bricks", "1"), ("store", "accum"), ("fixed", "24"),
+            ("first-sample", "0"), ("samples", "4"), ("offset", "0.5"),
+            ("seed", "1"), ("side", "low"), ("key", "0123456789abcdef"),
+            ("encoding", "zlib")]
+    return vchunk("IRRV", keys, zlib.compress(body, 9))
+
+
+VOLM = vchunk("VOLM", [("name", "density"), ("dims", "2 2 2"), ("type", "u8"),
+                       ("spacing", "1 1 1"), ("origin", "0 0 0"),
+                       ("layout", "linear"), ("encoding", "raw")], IRR_VOL)
+# a record without samples whose flags carry the in-memory SAMPLED bit
+# (bit 31): it was taken as a usable texel of irradiance 0
+put("stream", "regress-irrv-sampled-bit.vxs", vstream(VOLM, irrv_accum({
+    0: (0, 16 | 1 << 31, 0), 1: (4, 16, 4 << 24)})))
+# a mean of 10^6, beyond binary16: made final f16 (bake-irr --half) it was
+# written as an infinity that no reader takes
+put("stream", "regress-irrv-f16-range.vxs", vstream(VOLM, irrv_accum({
+    0: (4, 16, 4 * 10**6 << 24)})))

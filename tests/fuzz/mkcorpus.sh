@@ -23,6 +23,27 @@ python3 -c 'import sys; d = bytearray(open(sys.argv[1], "rb").read()); d[40] ^= 
 python3 tests/cli/mkstream.py add "$out/stream/imag-rgb.vxs" \
     "$out/stream/unknown-critical.vxs" ZZZZ "whatever"
 bin/vread --synth sphere --size 3 --split 6 | bin/macrocell -o "$out/stream/tetm-tlef.vxs"
+# irradiance and SH transfer volumes of a small sphere, every store (zlib;
+# one raw f16 of each kind so records can be mutated in place), and SH
+# lighting turned by sh-rotate
+bin/vread --synth sphere --size 8 >"$tmp/s8.vxs"
+# (standard input, so the history names no scratch path)
+irr() { bin/bake-irr --light sky --iso 0.5 --side high --samples 4 --scale 0.3 "$@" <"$tmp/s8.vxs" 2>/dev/null; }
+shtv() { bin/bake-sh --iso 0.5 --side high --samples 4 --scale 0.3 "$@" <"$tmp/s8.vxs" 2>/dev/null; }
+irr -z 9 >"$out/stream/irrv-accum.vxs"
+irr -z 9 --final >"$out/stream/irrv-f32.vxs"
+irr -z 9 --half >"$out/stream/irrv-f16.vxs"
+irr -z 0 --half --scale 0.15 >"$out/stream/irrv-f16-raw.vxs"
+shtv -z 9 --order 1 --channels 1 >"$out/stream/shtv-o1c1-accum.vxs"
+shtv -z 9 --order 3 --channels 3 >"$out/stream/shtv-o3c3-accum.vxs"
+shtv -z 0 --order 1 --channels 1 --scale 0.15 >"$out/stream/shtv-o1c1-accum-raw.vxs"
+shtv -z 9 --order 3 --channels 3 --final >"$out/stream/shtv-o3c3-f32.vxs"
+shtv -z 9 --order 3 --channels 1 --half >"$out/stream/shtv-o3c1-f16.vxs"
+shtv -z 0 --order 1 --channels 3 --half --scale 0.15 >"$out/stream/shtv-o1c3-f16-raw.vxs"
+bin/sh-rotate --env tests/malformed/env-good.hdr --order 3 --axis 0,0,1,30 \
+    -o "$out/stream/shlc.vxs"
+shtv -z 9 --order 2 --channels 1 | bin/sh-rotate --env tests/malformed/env-good.hdr \
+    --order 2 --euler 10,20,30 - >"$out/stream/shtv-shlc.vxs"
 bin/vread --synth torus --size 4,3,2 | bin/vwrite -o "$out/nrrd/vwrite.nrrd"
 bin/vread --synth linear --size 2 | bin/vwrite --gzip -o "$out/nrrd/vwrite-gzip.nrrd"
 bin/tonemap --pfm -o "$out/pfm/tonemap.pfm" "$tmp/img.vxs"

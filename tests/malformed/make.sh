@@ -670,6 +670,170 @@ for name, phrase, what, data in TL:
     case(name, "raycast --iso 1 --size 8x8 -o OUT FILE", 65, phrase,
          "(as above)", None)
 
+# ---- IRRV, SHTV (formats/irradiance.md) and SHLC (formats/shlight.md) ----
+# The good stream: good.vxs's volume (2x2x2 u8, 0 10 .. 70), a scene that
+# draws it lit by the chunk, and a 2x2x2 lattice in one brick, f16 store
+# (raw: 1 map byte and 512 records of 2 + 2K bytes), every texel wanted
+# with value 1.  A case breaks one thing; each is read by vinfo (IRRV and
+# SHTV), raycast, vwrite --chunk and the baker (which reads the stream's
+# bake to resume it).
+IRR_VOL = bytes([0, 10, 20, 30, 40, 50, 60, 70])
+IRR_KEYS = [("volume", "density"), ("volume-dims", "2 2 2"),
+            ("volume-crc32", "%08x" % zlib.crc32(IRR_VOL)),
+            ("lattice-dims", "2 2 2"), ("scale", "1"), ("brick", "8"),
+            ("bricks", "1"), ("store", "f16"), ("first-sample", "0"),
+            ("samples", "4"), ("offset", "0.5"), ("seed", "1"),
+            ("side", "low"), ("key", "0123456789abcdef"),
+            ("encoding", "raw")]
+
+
+def irr_body(store="f16", ncomp=3, val=1.0, nmap=1, mapbits=1, nbrick=1):
+    """The map and nbrick bricks; lattice texels (x, y, z < 2) wanted."""
+    out = bytes([mapbits]) + bytes(nmap - 1)
+    for _ in range(nbrick):
+        for t in range(512):
+            x, y, z = t % 8, t // 8 % 8, t // 64
+            inside = x < 2 and y < 2 and z < 2
+            fl, v = (16, val) if inside else (0, 0.0)
+            if store == "f16":
+                out += struct.pack("<H%de" % ncomp, fl, *[v] * ncomp)
+            elif store == "f32":
+                out += struct.pack("<I%df" % ncomp, fl, *[v] * ncomp)
+            else:
+                n = 4 if inside else 0
+                s = int(v * n * (1 << 24))
+                out += struct.pack("<II%dqQQ" % ncomp, n, fl,
+                                   *[s] * ncomp, 0, 0)
+    return out
+
+
+def irrv(typ="IRRV", body=None, **kw):
+    """An IRRV (or SHTV) chunk: the keys above with kw replacing (None
+    drops); SHTV adds order 1, channels 1 unless kw says."""
+    keys = []
+    extra = [("order", "1"), ("channels", "1")] if typ == "SHTV" else []
+    for k, v in IRR_KEYS[:5] + extra + IRR_KEYS[5:]:
+        v = kw.pop(k.replace("-", "_"), v)
+        if v is not None:
+            keys.append("%s: %s" % (k, v))
+    keys += ["%s: %s" % (k.replace("_", "-"), v) for k, v in kw.items()]
+    if body is None:
+        body = irr_body(ncomp=3 if typ == "IRRV" else 1)
+    return chunk(typ, payload(keys, body))
+
+
+def lit(c, illum="irradiance"):
+    """The good volume, a scene that draws it lit by c, and c."""
+    return stream(volm(body=IRR_VOL),
+                  scne("surface iso 35\nillumination %s\nlight sky\n" % illum),
+                  c)
+
+
+IR = [
+    ("irrv-map-bricks.vxs", "brick map has 0 bricks", "bricks 1, the map's "
+     "bit is clear", lit(irrv(body=irr_body(mapbits=0)))),
+    ("irrv-map-past.vxs", "bits past the last brick", "a map bit past the "
+     "one brick", lit(irrv(body=irr_body(mapbits=3)))),
+    ("irrv-bricks-more.vxs", "bricks 2: the lattice has 1", "bricks 2 of "
+     "a one-brick lattice", lit(irrv(bricks="2"))),
+    ("irrv-body-short.vxs", "body", "raw body one byte short",
+     lit(irrv(body=irr_body()[:-1]))),
+    ("irrv-body-long.vxs", "body", "raw body one byte long",
+     lit(irrv(body=irr_body() + b"\0"))),
+    ("irrv-zlib-bomb.vxs", "zlib body", "lattice 2^20 x 2^14 x 1 (2^28 "
+     "bricks, a 32 MiB map) with a 12-byte zlib body",
+     lit(irrv(body=zlib.compress(bytes(64)), encoding="zlib", bricks="0",
+              lattice_dims="1048576 16384 1", volume_dims="2 2 1"))),
+    ("irrv-lattice-fit.vxs", "do not fit volume-dims", "lattice-dims 2 2 1 "
+     "for volume-dims 2 2 2", lit(irrv(lattice_dims="2 2 1"))),
+    ("irrv-lattice-zero.vxs", "do not fit volume-dims", "lattice-dims 0 2 2",
+     lit(irrv(lattice_dims="0 2 2"))),
+    ("irrv-lattice-huge.vxs", "do not fit volume-dims", "lattice-dims "
+     "2^21 2 2", lit(irrv(lattice_dims="2097152 2 2"))),
+    ("irrv-texels.vxs", "too many texels", "lattice-dims 2^20 2^20 2^20 "
+     "(2^60 texels, at most 2^34)",
+     lit(irrv(lattice_dims="1048576 1048576 1048576"))),
+    ("irrv-store.vxs", "store 'f64'", "store f64",
+     lit(irrv(store="f64"))),
+    ("irrv-fixed.vxs", "fixed 41: at most 40", "accum store, fixed 41",
+     lit(irrv(store="accum", fixed="41", body=irr_body("accum")))),
+    ("irrv-key.vxs", "key: not 16 hex digits", "key of 15 hex digits",
+     lit(irrv(key="0123456789abcde"))),
+    ("irrv-key-upper.vxs", "key: not 16 hex digits", "key in upper case",
+     lit(irrv(key="0123456789ABCDEF"))),
+    ("irrv-nan-f32.vxs", "irradiance nan", "a NaN irradiance (f32 store)",
+     lit(irrv(store="f32", body=irr_body("f32", val=float("nan"))))),
+    ("irrv-negative-f16.vxs", "irradiance -1", "irradiance -1 (f16 store)",
+     lit(irrv(body=irr_body(val=-1.0)))),
+    ("irrv-inf-f16.vxs", "irradiance inf", "irradiance +inf (f16 store)",
+     lit(irrv(body=irr_body(val=float("inf"))))),
+    ("irrv-negative-sum.vxs", "negative irradiance sum", "an accum sum "
+     "of -4 (2^-24 units)",
+     lit(irrv(store="accum", fixed="24", body=irr_body("accum", val=-1.0)))),
+    ("shtv-order-0.vxs", "order 0", "SHTV order 0",
+     lit(irrv("SHTV", order="0"), "sh")),
+    ("shtv-order-17.vxs", "order 17", "SHTV order 17",
+     lit(irrv("SHTV", order="17"), "sh")),
+    ("shtv-channels-2.vxs", "channels 2", "SHTV channels 2",
+     lit(irrv("SHTV", channels="2"), "sh")),
+    ("shtv-order-body.vxs", "body", "order 2 (4 coefficients a texel), "
+     "a body sized for order 1", lit(irrv("SHTV", order="2"), "sh")),
+    ("shtv-nan-f32.vxs", "coefficient nan", "a NaN coefficient (f32 store)",
+     lit(irrv("SHTV", store="f32", body=irr_body("f32", ncomp=1,
+                                                 val=float("nan"))), "sh")),
+]
+for name, phrase, what, data in IR:
+    sh = name.startswith("shtv")
+    case(name, T + " (listing)", 65, phrase, what, data)
+    case(name, "raycast --size 8x8 -o OUT FILE", 65, phrase, "(as above)",
+         None)
+    case(name, "vwrite --chunk %s -o OUT FILE" % ("SHTV" if sh else "IRRV"),
+         65, phrase, "(as above)", None)
+    case(name, ("bake-sh --iso 35 -o OUT FILE" if sh else
+                "bake-irr --light sky --iso 35 -o OUT FILE"), 65, phrase,
+         "(as above)", None)
+
+
+def shlc(order=1, channels="3", rot="1 0 0 0 1 0 0 0 1", coef=None,
+         phase="condon-shortley", body=None):
+    """An SHLC chunk of the given order: coefficient 0 of each channel 1."""
+    if body is None:
+        n = 3 * order * order
+        c = coef if coef is not None else \
+            [1.0 if i % (order * order) == 0 else 0.0 for i in range(n)]
+        body = struct.pack("<%dd" % n, *c)
+    return chunk("SHLC", payload([
+        "order: %d" % order, "channels: %s" % channels, "phase: " + phase,
+        "source-hash: none", "rotation: " + rot, "encoding: raw"], body))
+
+
+def sh_lit(c):
+    """The good volume lit by a good SHTV and c."""
+    return stream(volm(body=IRR_VOL),
+                  scne("surface iso 35\nillumination sh\n"), irrv("SHTV"), c)
+
+
+SL = [
+    ("shlc-channels.vxs", "channels 1: must be 3", "SHLC channels 1",
+     sh_lit(shlc(channels="1"))),
+    ("shlc-order-0.vxs", "order 0 outside", "SHLC order 0",
+     sh_lit(shlc(order=0, body=b""))),
+    ("shlc-order-17.vxs", "order 17 outside", "SHLC order 17",
+     sh_lit(shlc(order=17, body=b""))),
+    ("shlc-rotation.vxs", "not a rotation", "rotation 1 0 0 0 1 0 0 0 2 "
+     "(not orthogonal)", sh_lit(shlc(rot="1 0 0 0 1 0 0 0 2"))),
+    ("shlc-reflection.vxs", "not a rotation", "rotation diag(1, 1, -1) "
+     "(a reflection)", sh_lit(shlc(rot="1 0 0 0 1 0 0 0 -1"))),
+    ("shlc-nan.vxs", "not finite", "a NaN coefficient",
+     sh_lit(shlc(coef=[float("nan"), 0, 0]))),
+    ("shlc-body-short.vxs", "body", "raw body one byte short",
+     sh_lit(shlc(body=struct.pack("<3d", 1, 1, 1)[:-1]))),
+]
+for name, phrase, what, data in SL:
+    case(name, "raycast --size 8x8 -o OUT FILE", 65, phrase, what, data)
+    case(name, "sh-rotate --euler 0,0,90 -o OUT FILE", 65, phrase,
+         "(as above)", None)
+
 # ---- HDR images (tonemap reads them) and environment maps (vscene) ----
 HDRH = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n"
 

@@ -351,6 +351,18 @@ chunk_roundtrip(void **state)
 			bad.data[hdr + (nb + 7) / 8 + 8 + 7] = 0x80; /* sum < 0 */
 			assert_int_equal(vx_irr_from_chunk(&w, &bad, &e),
 			    VX_EDATA);
+			/* the in-memory SAMPLED bit in a stored record with no
+			 * samples: ignored, the texel is not usable (fuzz_stream
+			 * found it drawn as irradiance 0) */
+			memcpy(bad.data, c.data, c.len);
+			memset(bad.data + hdr + (nb + 7) / 8, 0, 4);  /* count 0 */
+			bad.data[hdr + (nb + 7) / 8 + 7] |= 0x80;     /* bit 31 */
+			assert_int_equal(vx_irr_from_chunk(&w, &bad, &e), 0);
+			assert_int_equal(vx_irr_accp(&w, 0)->count, 0);
+			assert_false(vx_irr_usable(&w, 0));
+			assert_false(vx_irr_accp(&w, 0)->flags &
+			    VX_TEXEL_SAMPLED);
+			vx_irr_free(&w);
 			free(bad.data);
 		}
 		vx_chunk_free(&c);
@@ -404,6 +416,58 @@ merge_rules(void **state)
 	vx_grid_free(&g);
 }
 
+/* a final f16 store keeps a mean beyond binary16's range as 65504 with
+ * the overflow flag, by vx_irr_finalize and by vx_irr_settle alike, and the
+ * chunk reads back (an infinity would be refused: bake-irr --half under a
+ * bright sky wrote volumes no reader took) */
+static void
+half_saturates(void **state)
+{
+	double big[3] = { 1e6, 0.5, 70000 };
+	vx_grid g;
+	vx_err e = { 0, "" };
+	vx_irrvol v, w;
+	vx_chunk c;
+	vx_irr_acc *a;
+	int64_t s;
+
+	(void)state;
+	make_grid(&g, 4, 4, 4);
+	vx_irr_init(&v);
+	assert_int_equal(vx_irr_setup(&v, &g, 0, 1, VX_IRR_ACCUM, &e), 0);
+	s = vx_irr_want_texel(&v, 1, 2, 3, &e);
+	assert_true(s >= 0);
+	vx_irr_accp(&v, s)->flags |= VX_TEXEL_WANTED;
+	vx_irr_acc_add(&v, vx_irr_accp(&v, s), big);
+	assert_false(vx_irr_accp(&v, s)->flags & VX_TEXEL_OVERFLOW);
+	assert_int_equal(vx_irr_finalize(&v, VX_IRR_F16, &e), 0);
+	assert_true(v.mean[3 * s] == 65504.0f);
+	assert_true(v.mean[3 * s + 1] == 0.5f);
+	assert_true(v.mean[3 * s + 2] == 65504.0f);
+	assert_true(v.flags[s] & VX_TEXEL_OVERFLOW);
+	assert_true(vx_irr_usable(&v, s));
+	memset(&c, 0, sizeof c);
+	assert_int_equal(vx_irr_to_chunk(&v, 0, &c, &e), 0);
+	assert_int_equal(vx_irr_from_chunk(&w, &c, &e), 0);
+	assert_memory_equal(w.mean, v.mean, 3 * VX_IRR_BRICK3 * sizeof(float));
+	assert_memory_equal(w.flags, v.flags, VX_IRR_BRICK3 * sizeof(uint32_t));
+	vx_chunk_free(&c);
+	vx_irr_free(&w);
+	/* settle: the same from accumulators kept aside */
+	a = calloc(1, vx_irr_acc_bytes(3));
+	assert_non_null(a);
+	a->flags = VX_TEXEL_WANTED;
+	vx_irr_acc_add(&v, a, big);
+	v.mean[3 * s] = 0;
+	v.flags[s] = 0;
+	vx_irr_settle(&v, s, a);
+	assert_true(v.mean[3 * s] == 65504.0f && v.mean[3 * s + 1] == 0.5f);
+	assert_true(v.flags[s] & VX_TEXEL_OVERFLOW);
+	free(a);
+	vx_irr_free(&v);
+	vx_grid_free(&g);
+}
+
 int
 main(void)
 {
@@ -414,6 +478,7 @@ main(void)
 		cmocka_unit_test(lookup_modes),
 		cmocka_unit_test(chunk_roundtrip),
 		cmocka_unit_test(merge_rules),
+		cmocka_unit_test(half_saturates),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

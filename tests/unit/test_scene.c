@@ -252,7 +252,7 @@ static void ex_transfer_more(vx_scene *s)
 	s->has_tf_step = 1;
 	s->tf_step = 0.25;
 	strcpy(s->tf_file, "my tf.json");
-	s->tf_file_format = VX_TFF_PARAVIEW;
+	s->tf_file_format = VX_TF_FORMAT_PARAVIEW;
 }
 /* the last of each list wins; none clears every list, the step, the file */
 static void ex_transfer_none(vx_scene *s)
@@ -260,7 +260,7 @@ static void ex_transfer_none(vx_scene *s)
 	s->ntf_surface = 1;
 	s->tf_surface[0][0] = 3; s->tf_surface[0][1] = 1;
 	strcpy(s->tf_file, "b.txf");
-	s->tf_file_format = VX_TFF_AUTO;
+	s->tf_file_format = VX_TF_FORMAT_AUTO;
 }
 static void ex_medium(vx_scene *s)
 {
@@ -769,7 +769,7 @@ equality(void **state)
 	MUTATE(b.tf_step = 0.2);
 	MUTATE(b.has_tf_step = 0);
 	MUTATE(b.tf_file[0] = 'T');
-	MUTATE(b.tf_file_format = VX_TFF_MITER);
+	MUTATE(b.tf_file_format = VX_TF_FORMAT_MITER);
 	MUTATE(b.ext[0][3] = 'X');
 	MUTATE(b.effects ^= VX_FX_SCATTERING);
 	MUTATE(b.sh_order = 3);

@@ -672,20 +672,38 @@ vx_irr_merge(vx_irrvol *a, const vx_irrvol *b, vx_err *e)
 	return 0;
 }
 
+/* half_round: x rounded through binary16; a finite x beyond its range
+ * saturates at the largest finite half (65504), *sat set, so every mean a
+ * final f16 store keeps reads back (readers refuse infinities) */
+static float
+half_round(float x, int *sat)
+{
+	float h = vx_half_to_float(vx_half_from_float(x));
+
+	if (isinf(h) && isfinite(x)) {
+		*sat = 1;
+		return copysignf(65504.0f, x);
+	}
+	return h;
+}
+
 void
 vx_irr_settle(vx_irrvol *v, int64_t s, const vx_irr_acc *a)
 {
 	double m[VX_IRR_MAX_COMP];
 	float *out = v->mean + (size_t)v->ncomp * (size_t)s;
+	int sat = 0;
 
 	vx_irr_acc_mean(v, a, m);
 	for (int c = 0; c < v->ncomp; c++) {
 		out[c] = (float)m[c];
 		if (v->store == VX_IRR_F16)
-			out[c] = vx_half_to_float(vx_half_from_float(out[c]));
+			out[c] = half_round(out[c], &sat);
 	}
 	v->flags[s] = a->flags & ~(uint32_t)(VX_TEXEL_SAMPLED |
 	    (a->count == 0 ? VX_TEXEL_WANTED : 0));
+	if (sat)
+		v->flags[s] |= VX_TEXEL_OVERFLOW;
 }
 
 int
@@ -711,9 +729,14 @@ vx_irr_finalize(vx_irrvol *v, vx_irr_store store, vx_err *e)
 	if (store == VX_IRR_F16) {
 		size_t n = (size_t)v->ncomp * v->nslot * VX_IRR_BRICK3;
 
-		for (size_t s = 0; s < n; s++)
-			v->mean[s] = vx_half_to_float(vx_half_from_float(
-			    v->mean[s]));
+		for (size_t s = 0; s < n; s++) {
+			int sat = 0;
+
+			v->mean[s] = half_round(v->mean[s], &sat);
+			if (sat)
+				v->flags[s / (size_t)v->ncomp] |=
+				    VX_TEXEL_OVERFLOW;
+		}
 	}
 	return 0;
 }
@@ -1078,7 +1101,9 @@ from_chunk(vx_irrvol *v, const vx_chunk *c, vx_err *e)
 				vx_irr_acc *a = vx_irr_accp(v, (int64_t)t);
 
 				a->count = vx_le32(q);
-				a->flags = vx_le32(q + 4);
+				/* SAMPLED is derived from count, never stored */
+				a->flags = vx_le32(q + 4) &
+				    ~(uint32_t)VX_TEXEL_SAMPLED;
 				for (int k = 0; k < nc; k++) {
 					a->sum[k] = (int64_t)vx_le64(q + 8 + 8 * k);
 					if (a->sum[k] < (v->sh_order ?

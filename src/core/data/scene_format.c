@@ -358,9 +358,9 @@ vx_scene_format(const vx_scene *s, char **text, size_t *n, vx_err *e)
 	if (s->tf_file[0] != '\0') {
 		sb_put(&b, "transfer");
 		sb_str(&b, "file", s->tf_file);
-		if (s->tf_file_format != VX_TFF_AUTO) {
+		if (s->tf_file_format != VX_TF_FORMAT_AUTO) {
 			sb_put(&b, " format ");
-			sb_put(&b, vx_enum_str(&vx_tf_file_format_enum,
+			sb_put(&b, vx_enum_str(&vx_tf_format_enum,
 			    s->tf_file_format));
 		}
 		sb_put(&b, "\n");

@@ -982,13 +982,6 @@ static const struct {
 	{ "gradient", 2, "gradient-magnitude factor" },
 };
 
-static const vx_enum_name tf_file_names[] = {
-	{ "auto", VX_TFF_AUTO }, { "paraview", VX_TFF_PARAVIEW },
-	{ "slicer", VX_TFF_SLICER }, { "miter", VX_TFF_MITER },
-	{ NULL, VX_TFF_UNKNOWN }
-};
-const vx_enum vx_tf_file_format_enum = { "transfer file format",
-    tf_file_names, "unknown", 0 };
 
 /* tf_slot: where list k of the scene lives and how many points it has. */
 static double *
@@ -1008,7 +1001,7 @@ do_transfer_file(pctx *P)
 {
 	static const keydef defs[] = { { "format", K_WORD }, { NULL, 0 } };
 	kval kv[1];
-	int rc, f = VX_TFF_AUTO;
+	int rc, f = VX_TF_FORMAT_AUTO;
 
 	if (P->ntok < 3)
 		return perr(P, "transfer file: expected a file name");
@@ -1017,12 +1010,12 @@ do_transfer_file(pctx *P)
 	if ((rc = parse_keys(P, "transfer file", 3, defs, kv)) != 0)
 		return rc;
 	if (kv[0].seen && (rc = need_word(P, "transfer file", "format",
-	    kv[0].w, &vx_tf_file_format_enum, &f)) != 0)
+	    kv[0].w, &vx_tf_format_enum, &f)) != 0)
 		return rc;
 	if ((rc = copy_name(P, "transfer file", P->s->tf_file,
 	    sizeof P->s->tf_file, P->tok[2])) != 0)
 		return rc;
-	P->s->tf_file_format = (vx_tf_file_format)f;
+	P->s->tf_file_format = (vx_tf_format)f;
 	return 0;
 }
 
@@ -1039,7 +1032,7 @@ do_transfer(pctx *P)
 		P->s->has_tf_step = 0;
 		P->s->tf_step = 0;
 		memset(P->s->tf_file, 0, sizeof P->s->tf_file);
-		P->s->tf_file_format = VX_TFF_UNKNOWN;
+		P->s->tf_file_format = VX_TF_FORMAT_UNKNOWN;
 		return 0;
 	}
 	if (P->ntok >= 2 && !P->quoted[1] && strcmp(P->tok[1], "file") == 0)

@@ -50,9 +50,11 @@ enum {
 	                                  not baked */
 	VX_TEXEL_BORDER   = 1u << 2,   /* its support reached past the
 	                                  volume's edge (samples clamped) */
-	VX_TEXEL_OVERFLOW = 1u << 3,   /* an accumulator saturated: the mean is
-	                                  a lower bound (use fewer samples or
-	                                  fewer fixed-point bits) */
+	VX_TEXEL_OVERFLOW = 1u << 3,   /* an accumulator saturated, or an f16
+	                                  mean was kept as +-65504: the mean
+	                                  is a lower bound of its magnitude
+	                                  (use fewer samples or fewer
+	                                  fixed-point bits; f32) */
 	VX_TEXEL_WANTED   = 1u << 4,   /* asked for by the bake's band */
 	VX_TEXEL_SAMPLED  = 1u << 31   /* in memory only (flags[], never
 	                                  stored): the accumulators hold
@@ -220,7 +222,8 @@ void vx_irr_finish(vx_irrvol *v);
 
 /* vx_irr_settle: give texel s of a final store what vx_irr_finalize
  * would keep of accumulators a: the mean (rounded through binary16 for
- * F16) and the flags (the wanted bit only when a holds samples). */
+ * F16, saturating at +-65504 with VX_TEXEL_OVERFLOW) and the flags (the
+ * wanted bit only when a holds samples). */
 void vx_irr_settle(vx_irrvol *v, int64_t s, const vx_irr_acc *a);
 
 /* vx_irr_usable: 1 if storage index s holds an irradiance to draw. */
@@ -277,8 +280,8 @@ void vx_irr_reach(const vx_irrvol *v, const double p[3], vx_irr_interp m,
  * added.  Errors name the first mismatch (VX_EDATA). */
 int vx_irr_merge(vx_irrvol *a, const vx_irrvol *b, vx_err *e);
 
-/* vx_irr_finalize: convert to a final store (F32 or F16): means kept,
- * accumulators dropped. */
+/* vx_irr_finalize: convert to a final store (F32 or F16): means kept
+ * (F16: as vx_irr_settle rounds them), accumulators dropped. */
 int vx_irr_finalize(vx_irrvol *v, vx_irr_store store, vx_err *e);
 
 /* ---- the IRRV and SHTV chunks ----

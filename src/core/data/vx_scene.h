@@ -21,6 +21,7 @@
 #include "vx_enum.h"
 #include "vx_err.h"
 #include "vx_stream.h"
+#include "vx_tf.h"
 
 #define VX_SCENE_VERSION      1
 #define VX_SCENE_MAX_LIGHTS   16
@@ -146,17 +147,6 @@ typedef enum vx_phase {
 	VX_PHASE_LAST
 } vx_phase;
 
-/* The file formats "transfer file" names (formats/transfer.md, "Imports");
- * a tool maps them onto vx_tfimport.h's formats by name. */
-typedef enum vx_tf_file_format {
-	VX_TFF_UNKNOWN = 0,
-	VX_TFF_AUTO,
-	VX_TFF_PARAVIEW,
-	VX_TFF_SLICER,
-	VX_TFF_MITER,
-	VX_TFF_LAST
-} vx_tf_file_format;
-
 typedef struct vx_scene {
 	vx_camera camera;         /* includes the image size (camera.w, .h) */
 	char volume[VX_SCENE_NAME_MAX];   /* isosurface volume; "" the first */
@@ -200,7 +190,7 @@ typedef struct vx_scene {
 	double tf_step;           /* reference step, world units, >= 0 (0: one
 	                             voxel along the smallest spacing) */
 	char tf_file[VX_SCENE_PATH_MAX];  /* "transfer file": "" none */
-	vx_tf_file_format tf_file_format; /* with tf_file */
+	vx_tf_format tf_file_format; /* with tf_file */
 	int has_medium;
 	vx_phase phase;
 	double phase_g;           /* Henyey-Greenstein asymmetry, (-1, 1) */
@@ -297,7 +287,7 @@ int vx_scene_to_stream(const vx_scene *s, vx_stream *st, vx_err *e);
  * name, NULL). */
 extern const vx_enum vx_light_type_enum, vx_env_layout_enum, vx_falloff_enum,
     vx_illum_enum, vx_interp_enum, vx_phase_enum, vx_colormap_enum,
-    vx_effect_enum, vx_tf_file_format_enum;
+    vx_effect_enum;
 /* vx_colormap_eval: color for t (clamped to [0,1]) under map m; unknown
  * maps give gray.  The maps are piecewise linear (formats/scene.md). */
 void vx_colormap_eval(vx_colormap m, double t, double rgb[3]);

@@ -36,10 +36,27 @@
 
 #include <stdint.h>
 
+#include "vx_enum.h"
 #include "vx_err.h"
 
 #define VX_TF_MAX_POINTS  65536        /* per list */
 #define VX_TF_MAX_TABLE   4096         /* cells per table axis */
+
+/* The formats of transfer-function files (io/vx_tfimport.h reads them; a
+ * scene names one in its transfer file line). */
+typedef enum vx_tf_format {
+	VX_TF_FORMAT_UNKNOWN = 0,
+	VX_TF_FORMAT_AUTO,        /* by content: "NRRD" magic: miter; JSON
+	                             with "volumeProperties": slicer, other
+	                             JSON: paraview; text whose first byte
+	                             is a digit: slicer (.vp) */
+	VX_TF_FORMAT_PARAVIEW,
+	VX_TF_FORMAT_SLICER,      /* .vp or .vp.json */
+	VX_TF_FORMAT_MITER,
+	VX_TF_FORMAT_LAST
+} vx_tf_format;
+
+extern const vx_enum vx_tf_format_enum;   /* auto paraview slicer miter */
 
 typedef struct vx_tf_list {
 	int n;                    /* points; 0: the list is absent */

@@ -16,15 +16,6 @@
 #include "vx_file.h"
 #include "vx_tfimport.h"
 
-static const vx_enum_name tf_format_names[] = {
-	{ "auto", VX_TF_FORMAT_AUTO },
-	{ "paraview", VX_TF_FORMAT_PARAVIEW },
-	{ "slicer", VX_TF_FORMAT_SLICER },
-	{ "miter", VX_TF_FORMAT_MITER },
-	{ NULL, VX_TF_FORMAT_UNKNOWN }
-};
-const vx_enum vx_tf_format_enum = { "transfer-function format",
-    tf_format_names, "unknown", 0 };
 
 /* ---- point lists ---- */
 

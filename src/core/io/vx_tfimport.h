@@ -19,19 +19,6 @@
 
 #define VX_TF_FILE_MAX ((size_t)64 << 20)   /* bytes */
 
-typedef enum vx_tf_format {
-	VX_TF_FORMAT_UNKNOWN = 0,
-	VX_TF_FORMAT_AUTO,        /* by content: "NRRD" magic: miter; JSON
-	                             with "volumeProperties": slicer, other
-	                             JSON: paraview; text whose first byte
-	                             is a digit: slicer (.vp) */
-	VX_TF_FORMAT_PARAVIEW,
-	VX_TF_FORMAT_SLICER,      /* .vp or .vp.json */
-	VX_TF_FORMAT_MITER,
-	VX_TF_FORMAT_LAST
-} vx_tf_format;
-
-extern const vx_enum vx_tf_format_enum;   /* auto paraview slicer miter */
 
 /* vx_tf_import: read the file at path ("-": standard input) in format fmt
  * into tf (initialized by the call; on error tf is left empty).  A

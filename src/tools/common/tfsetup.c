@@ -11,12 +11,10 @@ tool_scene_tf(vx_tf *tf, const vx_scene *s)
 
 	vx_tf_init(tf);
 	if (s->tf_file[0] != '\0') {
-		int f = vx_enum_val(&vx_tf_format_enum,
-		    vx_enum_str(&vx_tf_file_format_enum, s->tf_file_format));
+		vx_tf_format f = s->tf_file_format != VX_TF_FORMAT_UNKNOWN ?
+		    s->tf_file_format : VX_TF_FORMAT_AUTO;
 
-		if (f == 0)
-			f = VX_TF_FORMAT_AUTO;
-		if (vx_tf_import(s->tf_file, (vx_tf_format)f, tf, &e) != 0) {
+		if (vx_tf_import(s->tf_file, f, tf, &e) != 0) {
 			vx_err_push(&e, "transfer file %s", s->tf_file);
 			tool_fail_err(&e);
 		}
