@@ -9,6 +9,7 @@
 #include "tool.h"
 #include "vx_camera.h"
 #include "vx_dvr.h"
+#include "vx_dvrref.h"
 #include "vx_grid.h"
 #include "vx_image.h"
 #include "vx_macro.h"
@@ -22,7 +23,9 @@ static const char usage[] =
     "    [--background R,G,B] [--set LINE] [--name NAME] [--slices N]\n"
     "    [--light-size N] [--blur-angle DEG] [--blur-samples N] [--seed N]\n"
     "    [--no-skip] [-j N] [--stats] [--explain] [-n] [--hdr] [-z LEVEL]\n"
-    "    [--pfm FILE] [--bits 8|16] [--exposure STOPS] [-o OUT] [STREAM|-]";
+    "    [--pfm FILE] [--bits 8|16] [--exposure STOPS] [-o OUT] [STREAM|-]\n"
+    "    [--reference raymarch|pathtrace [--spp N] [--bounces N]\n"
+    "    [--march-step S]]";
 
 typedef struct opts {
 	const char *in, *out, *name, *pfm;
@@ -31,6 +34,9 @@ typedef struct opts {
 	double exposure;
 	vx_dvr_opts d;
 	tool_scene_opts so;
+	int ref;                  /* --reference given */
+	int pt_opt, rm_opt;       /* --spp or --bounces, --march-step given */
+	vx_dvrref_opts r;
 } opts;
 
 static void
@@ -38,7 +44,7 @@ parse(opts *o, int argc, char **argv)
 {
 	enum { O_ORTHO = 256, O_NAME, O_SLICES, O_LSIZE, O_BANGLE, O_BSAMP,
 	    O_SEED, O_NOSKIP, O_STATS, O_EXPLAIN, O_HDR, O_BITS, O_EXPOSURE,
-	    O_PFM };
+	    O_PFM, O_REF, O_SPP, O_BOUNCES, O_MSTEP };
 	static const struct option lo[] = {
 		{ "scene", 1, 0, TOOL_O_SCENE },
 		{ "size", 1, 0, TOOL_O_SIZE }, { "view", 1, 0, TOOL_O_VIEW },
@@ -55,6 +61,8 @@ parse(opts *o, int argc, char **argv)
 		{ "hdr", 0, 0, O_HDR }, { "bits", 1, 0, O_BITS },
 		{ "exposure", 1, 0, O_EXPOSURE }, { "pfm", 1, 0, O_PFM },
 		{ "output", 1, 0, 'o' }, { "threads", 1, 0, 'j' },
+		{ "reference", 1, 0, O_REF }, { "spp", 1, 0, O_SPP },
+		{ "bounces", 1, 0, O_BOUNCES }, { "march-step", 1, 0, O_MSTEP },
 		{ "help", 0, 0, 'h' }, { 0, 0, 0, 0 }
 	};
 	int c;
@@ -64,6 +72,7 @@ parse(opts *o, int argc, char **argv)
 	o->bits = 8;
 	o->zlevel = 1;
 	vx_dvr_opts_init(&o->d);
+	vx_dvrref_opts_init(&o->r);
 	while ((c = getopt_long(argc, argv, ":o:j:nhz:", lo, NULL)) != -1) {
 		switch (c) {
 		case 'o': o->out = optarg; break;
@@ -105,12 +114,45 @@ parse(opts *o, int argc, char **argv)
 		case O_EXPOSURE:
 			o->exposure = tool_parse_double("--exposure", optarg, -64, 64);
 			break;
+		/* the references (vx_dvrref.h) */
+		case O_REF:
+			o->ref = 1;
+			if (strcmp(optarg, "raymarch") == 0)
+				o->r.method = VX_DVRREF_RAYMARCH;
+			else if (strcmp(optarg, "pathtrace") == 0)
+				o->r.method = VX_DVRREF_PATHTRACE;
+			else
+				tool_usage_fail(usage, "--reference: raymarch or "
+				    "pathtrace");
+			break;
+		case O_SPP:
+			o->pt_opt = 1;
+			o->r.spp = (int)tool_parse_long("--spp", optarg, 1,
+			    VX_DVRREF_MAX_SPP);
+			break;
+		case O_BOUNCES:
+			o->pt_opt = 1;
+			o->r.bounces = (int)tool_parse_long("--bounces", optarg, 1,
+			    VX_DVRREF_MAX_BOUNCES);
+			break;
+		case O_MSTEP:
+			o->rm_opt = 1;
+			o->r.step = tool_parse_double("--march-step", optarg,
+			    1e-9, 1e9);
+			break;
 		default:
 			if (!tool_scene_opt(&o->so, c, optarg, usage))
 				tool_opt_other(c, usage, argv);
 		}
 	}
 	o->in = tool_opt_input(argc, argv, usage);
+	o->r.seed = o->d.seed;
+	if (o->pt_opt && !(o->ref && o->r.method == VX_DVRREF_PATHTRACE))
+		tool_usage_fail(usage, "--spp, --bounces: only with --reference "
+		    "pathtrace");
+	if (o->rm_opt && !(o->ref && o->r.method == VX_DVRREF_RAYMARCH))
+		tool_usage_fail(usage, "--march-step: only with --reference "
+		    "raymarch");
 }
 
 static void
@@ -172,6 +214,65 @@ print_stats(const vx_dvr_stats *st)
 	    "passes %.3f s\n", st->setup_s, st->eye_s, st->light_s);
 }
 
+/* ---- the references (--reference, vx_dvrref.h) ---- */
+
+static void
+explain_reference(const opts *o, const vx_scene *s, const vx_tf *tf,
+    const vx_dvr_decide *d, const vx_grid *g, int nthr)
+{
+	vx_plan p;
+	char buf[8192];
+	double ms = fmin(g->spacing[0], fmin(g->spacing[1], g->spacing[2]));
+	double ref = tf->ref_step > 0 ? tf->ref_step : ms;
+
+	vx_dvrref_plan(s, tf, d, &o->r, &p);
+	vx_plan_format(&p, buf, sizeof buf);
+	fprintf(stderr, "%s", buf);
+	fprintf(stderr, "dvr: %dx%d pixels (%s camera), volume '%s' %lldx%lldx"
+	    "%lld; %d thread%s\n", s->camera.w, s->camera.h,
+	    vx_enum_str(&vx_projection_enum, s->camera.projection), g->name,
+	    (long long)g->dims[0], (long long)g->dims[1],
+	    (long long)g->dims[2], nthr, nthr == 1 ? "" : "s");
+	if (o->r.method == VX_DVRREF_RAYMARCH)
+		fprintf(stderr, "dvr: reference ray march at a step of %.4g "
+		    "(opacity given for %.4g), a shadow ray at the same step "
+		    "from every sample with opacity: cost about (samples per "
+		    "ray)^2 per pixel, slow\n", o->r.step > 0 ? o->r.step : ref,
+		    ref);
+	else
+		fprintf(stderr, "dvr: reference path tracer, %d path%s per "
+		    "pixel, up to %d vertex%s each (%s scattering), delta "
+		    "tracking and ratio-tracked shadow rays: cost about spp x "
+		    "vertices x (tentative collisions per ray) per pixel, "
+		    "noisy as 1/sqrt(spp)\n", o->r.spp, o->r.spp == 1 ? "" : "s",
+		    o->r.bounces, o->r.bounces == 1 ? "" : "es",
+		    o->r.bounces == 1 ? "single" : "multiple");
+}
+
+static void
+stats_reference(const opts *o, const vx_dvrref_stats *st)
+{
+	if (o->r.method == VX_DVRREF_RAYMARCH)
+		fprintf(stderr, "dvr: reference raymarch, step %.4g, %d "
+		    "thread%s, %.3f s\ndvr: eye samples %llu, shadow steps %llu "
+		    "(%.1f a sample)\n", st->step, st->threads,
+		    st->threads == 1 ? "" : "s", st->seconds,
+		    (unsigned long long)st->samples,
+		    (unsigned long long)st->shadow_steps, st->samples ?
+		    (double)st->shadow_steps / (double)st->samples : 0.0);
+	else
+		fprintf(stderr, "dvr: reference pathtrace, %d spp, %d bounce%s, "
+		    "%d thread%s, %.3f s\ndvr: paths %llu, vertices %llu, "
+		    "tentative collisions %llu (majorant %.4g per unit), "
+		    "shadow steps %llu\n", o->r.spp, o->r.bounces,
+		    o->r.bounces == 1 ? "" : "s", st->threads,
+		    st->threads == 1 ? "" : "s", st->seconds,
+		    (unsigned long long)st->samples,
+		    (unsigned long long)st->vertices,
+		    (unsigned long long)st->tentative, st->sigma_max,
+		    (unsigned long long)st->shadow_steps);
+}
+
 int
 main(int argc, char **argv)
 {
@@ -215,7 +316,10 @@ main(int argc, char **argv)
 		tool_fail_err(&e);
 	if (vx_dvr_geometry(&s, &d, &tf, &g, &o.d, &geo, &e) != 0)
 		tool_fail_err(&e);
-	if (o.explain) {
+	o.r.nthreads = nthr;
+	if (o.explain && o.ref)
+		explain_reference(&o, &s, &tf, &d, &g, nthr);
+	if (o.explain && !o.ref) {
 		size_t n = vx_plan_format(&plan, NULL, 0) + 1;
 		char *buf = malloc(n);
 
@@ -227,7 +331,7 @@ main(int argc, char **argv)
 		explain_geometry(&s, &d, &geo, &g, nthr);
 	}
 	vx_macro_init(&m);
-	if (!o.d.no_skip)
+	if (!o.d.no_skip && !o.ref)
 		tool_macro_load(&m, &st, &g, gi, nthr, o.dry);
 	if (o.dry) {
 		vx_macro_free(&m);
@@ -237,11 +341,21 @@ main(int argc, char **argv)
 		return tool_finish();
 	}
 	vx_image_init(&color);
-	if (vx_dvr_render(&s, &d, &tf, &g, o.d.no_skip ? NULL : &m, &o.d,
-	    &color, &ds, &e) != 0)
-		tool_fail_err(&e);
-	if (o.stats)
-		print_stats(&ds);
+	if (o.ref) {
+		vx_dvrref_stats rs;
+
+		if (vx_dvrref_render(&s, &d, &tf, &g, &o.r, &color, &rs,
+		    &e) != 0)
+			tool_fail_err(&e);
+		if (o.stats)
+			stats_reference(&o, &rs);
+	} else {
+		if (vx_dvr_render(&s, &d, &tf, &g, o.d.no_skip ? NULL : &m,
+		    &o.d, &color, &ds, &e) != 0)
+			tool_fail_err(&e);
+		if (o.stats)
+			print_stats(&ds);
+	}
 	if (o.pfm) {
 		/* linear RGB over the background: what a PFM can hold */
 		vx_image flat;
