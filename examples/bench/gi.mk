@@ -5,6 +5,10 @@
 #   make -C examples/bench gi              Tables 1 and 2, accuracy, memory: results/gi/
 #   make -C examples/bench gi GI_PARTS=t2 RUNS=3      one part: t1, t2, acc, mem
 #   make -C examples/bench gi GI_SAMPLES=16,100       fewer sample counts
+#   make -C examples/bench gi-sh           bake-sh and SH shading (issue 22): Table 1's
+#                                          SH rows, Table 2 with the SH frames, the
+#                                          cost a path against bake-irr, memory: results/gi-sh/
+#   make -C examples/bench gi-sh GI_SH_PARTS=shmem    one part: sht1, t2, shcost, shmem
 #
 # Datasets: the MRI head (ch2, skin at 40: examples/scenes/head-gi-sky.scn) and,
 # when $(DATA) has it, the Visible Human CT head (skin at 600.5:
@@ -24,7 +28,14 @@ ch2_GIRANGE := 30,50
 vhf_GISCENE := ../scenes/vhf-gi.scn
 vhf_GIRANGE := 500,700
 
-.PHONY: gi
+GI_SH_OUT ?= results/gi-sh
+GI_SH_PARTS ?= sht1,t2,shcost,shmem
+GI_SH_MAX_LAZY_PATHS ?= 2e7
+GI_SH_ORDER ?= 5
+# the CT head's skin-to-bone band for the memory prediction (gibench.py)
+GI_SH_VHF_BAND ?= 600.5,1224.5
+
+.PHONY: gi gi-sh
 
 $(OUT)/gi/%.vx: $$($$*_SRC)
 	@mkdir -p $(@D)
@@ -35,4 +46,12 @@ gi: $(foreach c,$(GI_CASES),$(OUT)/gi/$(c).vx)
 	  { echo "gi: $(VX_BIN)/$$p missing: run make at the top first" >&2; exit 69; }; done
 	$(PY) gibench.py --bin $(VX_BIN) --out $(GI_OUT) --runs $(RUNS) --parts $(GI_PARTS) \
 	  --samples $(GI_SAMPLES) --max-paths $(GI_MAX_PATHS) --max-lazy-paths $(GI_MAX_LAZY_PATHS) \
+	  $(foreach c,$(GI_CASES),--dataset $(c) $(OUT)/gi/$(c).vx $($(c)_GISCENE) $($(c)_GIRANGE))
+
+gi-sh: $(foreach c,$(GI_CASES),$(OUT)/gi/$(c).vx)
+	@for p in vread brick macrocell bake-irr bake-sh raycast vinfo; do [ -x $(VX_BIN)/$$p ] || \
+	  { echo "gi-sh: $(VX_BIN)/$$p missing: run make at the top first" >&2; exit 69; }; done
+	$(PY) gibench.py --bin $(VX_BIN) --out $(GI_SH_OUT) --runs $(RUNS) --parts $(GI_SH_PARTS) \
+	  --samples $(GI_SAMPLES) --max-paths $(GI_MAX_PATHS) --max-lazy-paths $(GI_SH_MAX_LAZY_PATHS) \
+	  --sh-order $(GI_SH_ORDER) --sh-vhf-band $(GI_SH_VHF_BAND) \
 	  $(foreach c,$(GI_CASES),--dataset $(c) $(OUT)/gi/$(c).vx $($(c)_GISCENE) $($(c)_GIRANGE))

@@ -1,14 +1,16 @@
 #!/usr/bin/python3
 """gibench.py: global illumination benchmarks (Wyman et al. 2006) for
-bake-irr and raycast's `illumination irradiance`.  Run by `make -C
-examples/bench gi` (gi.mk names the datasets and scenes); writes Markdown
-tables (gi.md) and the raw numbers (gi.json) into --out.
+bake-irr, bake-sh and raycast's `illumination irradiance` and `sh`.  Run by
+`make -C examples/bench gi` and `gi-sh` (gi.mk names the datasets and
+scenes); writes Markdown tables (gi.md) and the raw numbers (gi.json) into
+--out.
 
     gibench.py --bin DIR --out DIR --runs N
         --dataset NAME STREAM SCENE ISO_RANGE ...  [--parts t1,t2,acc,mem]
         [--samples 16,100,625] [--max-paths P] [--max-lazy-paths P]
         [--acc-size N]
         [--acc-spp N] [--acc-samples N]
+        [--sh-order N] [--sh-cost-scale S] [--sh-vhf-band A,B]
 
 t1   Wyman's Table 1: the full bake (the scene's isovalue band, and an
      --iso-range band of isovalues) against the lazy first image (raycast
@@ -24,13 +26,29 @@ t1   Wyman's Table 1: the full bake (the scene's isovalue band, and an
 t2   Wyman's Table 2: the frame time of each shading mode in one raycast
      build (--runs rounds, the modes interleaved in each round): Lambert
      without shadows, Lambert with shadows, Blinn-Phong with shadows,
-     irradiance lookup (trilinear) from the accum, f32 and f16 stores.
+     irradiance lookup (trilinear) from the accum, f32 and f16 stores,
+     SH shading (illumination sh, trilinear, the scene's sky projected)
+     from f32 and f16 transfer volumes of --sh-order; SH frames are also
+     compared with the same round's irradiance f32 frame.
 acc  irradiance shading against the path-traced reference on the first
      dataset's skin at lattice scale 1 (--acc-size pixels square): the
      relative RMSE over the covered pixels (tests/cli/vximg.py relrmse), and
      the reference's own noise from a second reference of 1/4 the paths.
 mem  bytes per texel of each store and the band's saving (bricks stored of
      all, wanted texels of the lattice).
+sht1 Table 1's SH rows on the first dataset: bake-sh --order N --final of
+     the scene's isovalue band against the lazy first image (bake-sh
+     --lazy, raycast --lazy --set "illumination sh"), measured and
+     extrapolated as t1's.
+shcost  bake-sh's CPU seconds a path against bake-irr's: the same texels
+     (the band at --sh-cost-scale), one bounce, bake-irr lit by the scene's
+     sky alone; each round bakes 4 and 16 samples with each baker, and the
+     cost a path is the difference of CPU over the difference of paths.
+shmem bytes a texel at orders 3, 5, 8, one and three channels, each store,
+     and the band's size (bake-sh -n --explain); the second dataset at
+     order 5 over --sh-vhf-band (an --iso-range and the two isovalues),
+     and a one-sample bake of its scene's band whose maximum resident size
+     checks the prediction.
 
 Times: wall seconds and CPU seconds (user + system, of the process and its
 children) of each process; paths per core-second are paths over CPU
@@ -98,18 +116,21 @@ class Bench:
     def f(self, name):
         return os.path.join(self.out, name)
 
-    def vinfo(self, stream):
+    def vinfo(self, stream, kind='IRRV'):
         p = subprocess.run([self.b('vinfo'), '--json', '--histogram', '0',
                             stream], stdout=subprocess.PIPE, check=True)
         d = json.loads(p.stdout)
-        return [c['irradiance'] for c in d['chunks'] if c['type'] == 'IRRV'][0]
+        key = 'irradiance' if kind == 'IRRV' else 'sh_transfer'
+        return [c[key] for c in d['chunks'] if c['type'] == kind][0]
 
     # ---- Table 1 ----
-    def bake(self, ds, tag, extra, samples):
-        """One full bake: bake-irr with the scene and extra flags."""
+    def bake(self, ds, tag, extra, samples, tool='bake-irr', keep=None):
+        """One full bake: bake-irr (or bake-sh) with the scene and extra
+        flags; the stream is kept when `keep` says so (default: the band's
+        bake at the smallest sample count)."""
         name, stream, scene = ds[0], ds[1], ds[2]
         o = self.f('%s-%s-s%d.vx' % (name, tag, samples))
-        wall, cpu, err = run([self.b('bake-irr'), '--scene', scene,
+        wall, cpu, err = run([self.b(tool), '--scene', scene,
                               '--samples', str(samples), '--stats'] + extra +
                              [stream], out=o, log=self.log)
         r = {'wall': wall, 'cpu': cpu, 'samples': samples,
@@ -121,12 +142,14 @@ class Bench:
              'threads': grab(r'on (\d+) thread', err, int),
              'measured': True}
         r['paths_per_cpu_s'] = r['paths'] / cpu
-        info = self.vinfo(o)
+        info = self.vinfo(o, 'SHTV' if tool == 'bake-sh' else 'IRRV')
         r['bricks'] = info['bricks']
         r['bricks_total'] = info['bricks_total']
         r['lattice'] = info['texels']
         r['bytes'] = info['bytes']
-        if tag != 'band' or samples != min(self.samples):
+        if keep is None:
+            keep = tag == 'band' and samples == min(self.samples)
+        if not keep:
             os.remove(o)
         else:
             r['stream'] = o
@@ -139,15 +162,17 @@ class Bench:
         return grab(r'texels at scale [\d.]+ \([^)]*\), (\d+) wanted', err,
                     int)
 
-    def lazy(self, ds, samples):
+    def lazy(self, ds, samples, tool='bake-irr', extra=(), rextra=()):
         name, stream, scene = ds[0], ds[1], ds[2]
-        empty = self.f('%s-lazy-s%d.vx' % (name, samples))
-        w0, c0, _ = run([self.b('bake-irr'), '--scene', scene, '--samples',
-                         str(samples), '--lazy', stream], out=empty,
-                        log=self.log)
-        png = self.f('%s-lazy-s%d.png' % (name, samples))
+        tag = 'lazy' if tool == 'bake-irr' else 'shlazy'
+        empty = self.f('%s-%s-s%d.vx' % (name, tag, samples))
+        w0, c0, _ = run([self.b(tool), '--scene', scene, '--samples',
+                         str(samples), '--lazy'] + list(extra) + [stream],
+                        out=empty, log=self.log)
+        png = self.f('%s-%s-s%d.png' % (name, tag, samples))
         wall, cpu, err = run([self.b('raycast'), '--scene', scene, '--lazy',
-                              '--stats', '-o', png, empty], log=self.log)
+                              '--stats', '-o', png] + list(rextra) + [empty],
+                             log=self.log)
         os.remove(empty)
         return {'wall': wall, 'cpu': cpu, 'samples': samples,
                 'read': grab(r'the view reads (\d+) texels', err, int),
@@ -234,10 +259,14 @@ class Bench:
         ds = self.a.dataset[0]
         name, stream, scene = ds[0], ds[1], ds[2]
         # the irradiance volume: the smallest sample count's band bake
+        # (the frame time does not depend on the sample count: without
+        # Table 1's bake, one of 4 samples)
         band = self.f('%s-band-s%d.vx' % (name, min(self.samples)))
         if not os.path.exists(band):
-            run([self.b('bake-irr'), '--scene', scene, '--samples', '16',
-                 stream], out=band, log=self.log)
+            band = self.f('%s-t2band-s4.vx' % name)
+            if not os.path.exists(band):
+                run([self.b('bake-irr'), '--scene', scene, '--samples', '4',
+                     stream], out=band, log=self.log)
         f32, f16 = self.f('%s-f32.vx' % name), self.f('%s-f16.vx' % name)
         run([self.b('bake-irr'), '--scene', scene, '--samples', '0',
              '--final', band], out=f32, log=self.log)
@@ -255,8 +284,18 @@ class Bench:
             ('irradiance (trilinear), f32 store', f32, []),
             ('irradiance (trilinear), f16 store', f16, []),
         ]
+        shf32, shf16 = self.sh_stores(ds)
+        sh = ['--set', 'illumination sh']
+        modes += [
+            ('SH order %d (trilinear), f32 store' % self.a.sh_order, shf32,
+             sh),
+            ('SH order %d (trilinear), f16 store' % self.a.sh_order, shf16,
+             sh),
+        ]
         times = {m[0]: [] for m in modes}
         ratios = {m[0]: [] for m in modes}
+        irr = 'irradiance (trilinear), f32 store'
+        ratios_irr = {m[0]: [] for m in modes}
         for rnd in range(self.a.runs):
             t = {}
             for label, src, extra in modes:
@@ -270,9 +309,11 @@ class Bench:
             ref = t['Blinn-Phong, shadows']
             for label in t:
                 ratios[label].append(t[label] / ref)
+                ratios_irr[label].append(t[label] / t[irr])
         self.res['t2'] = {'dataset': name, 'runs': self.a.runs,
                           'modes': [m[0] for m in modes],
-                          'times': times, 'ratios': ratios}
+                          'times': times, 'ratios': ratios,
+                          'ratios_irr': ratios_irr}
         self.save()
 
     # ---- accuracy ----
@@ -333,6 +374,169 @@ class Bench:
                 out[name]['bytes_' + store] = self.vinfo(p)['bytes']
                 os.remove(p)
         self.res['mem'] = out
+        self.save()
+
+    # ---- SH: bake-sh and illumination sh ----
+    def sh_flags(self, store):
+        return ['--order', str(self.a.sh_order)] + (
+            [store] if store else [])
+
+    def sh_stores(self, ds):
+        """The f32 and f16 SH transfer volumes of the scene's isovalue band
+        for Table 2 (4 samples a texel: the frame time does not depend on
+        it); Table 1's 4-sample f32 bake when it is there."""
+        name, stream, scene = ds[0], ds[1], ds[2]
+        out = []
+        for store, flag in (('f32', '--final'), ('f16', '--half')):
+            p = self.f('%s-shband-%s-s4.vx' % (name, store))
+            if not os.path.exists(p):
+                run([self.b('bake-sh'), '--scene', scene, '--samples', '4'] +
+                    self.sh_flags(flag) + [stream], out=p, log=self.log)
+            out.append(p)
+        return out
+
+    def sh_table1(self):
+        """Table 1's SH rows: bake-sh of the scene's isovalue band (f32
+        store: no accumulators) against the lazy first image of
+        `illumination sh` (the scene's sky projected), on the first
+        dataset; extrapolated as table1 does."""
+        ds = self.a.dataset[0]
+        name = ds[0]
+        d = self.res.setdefault('sht1', {})[name] = {
+            'band': [], 'lazy': [], 'cal': {}, 'order': self.a.sh_order}
+        s0 = self.samples[0]
+        wanted = self.explain(ds, [])
+        extra = self.sh_flags('--final')
+        cal = d['cal']['band'] = self.bake(
+            ds, 'shband-f32', extra, max(1, s0 // 4), 'bake-sh',
+            keep=max(1, s0 // 4) == 4)
+        last = [cal]
+        for s in self.samples:
+            if s != s0 and wanted * s > self.a.max_paths:
+                r = self.fit(last[-2], last[-1], s)
+            else:
+                r = self.bake(ds, 'shband-f32', extra, s, 'bake-sh',
+                              keep=False)
+                last.append(r)
+            d['band'].append(r)
+            self.save()
+        lz = d['lazy']
+        for s in self.samples:
+            if len(lz) >= 2 and lz[0]['read'] * s > self.a.max_lazy_paths:
+                p, q = lz[-2], lz[-1]
+                k = (s - q['samples']) / (q['samples'] - p['samples'])
+                r = dict(q)
+                r.update({'samples': s, 'paths': q['read'] * s,
+                          'cpu': q['cpu'] + k * (q['cpu'] - p['cpu']),
+                          'wall': q['wall'] + k * (q['wall'] - p['wall']),
+                          'measured': False})
+                lz.append(r)
+            else:
+                lz.append(self.lazy(ds, s, 'bake-sh', self.sh_flags(None),
+                                    ['--set', 'illumination sh']))
+            self.save()
+
+    def sh_cost(self):
+        """bake-sh's cost a sample against bake-irr's: the same texels
+        (the scene's isovalue band at --sh-cost-scale), the same bounces,
+        bake-irr lit by the scene's sky alone (its delta lights dropped:
+        no shadow rays, so that both trace the same paths).  Each round
+        runs every baker at 4 and 16 samples, interleaved; the cost a path
+        is the difference of CPU seconds over the difference of paths (the
+        fixed costs cancel), and the whole process's CPU over its paths."""
+        ds = self.a.dataset[0]
+        name, stream, scene = ds[0], ds[1], ds[2]
+        sky = self.f('%s-skyonly.scn' % name)
+        with open(scene) as f, open(sky, 'w') as g:
+            for line in f:
+                w = line.split()
+                if w[:1] == ['light'] and w[1:2] != ['sky']:
+                    continue
+                g.write(line)
+        sc = ['--scale', str(self.a.sh_cost_scale)]
+        bakers = [
+            ('bake-irr (sky)', 'bake-irr', []),
+            ('bake-sh order %d, 3 channels' % self.a.sh_order, 'bake-sh',
+             self.sh_flags(None) + ['--channels', '3']),
+            ('bake-sh order %d, 1 channel' % self.a.sh_order, 'bake-sh',
+             self.sh_flags(None) + ['--channels', '1']),
+        ]
+        per = {b[0]: [] for b in bakers}
+        whole = {b[0]: [] for b in bakers}
+        dsky = (name, stream, sky)
+        for rnd in range(self.a.runs):
+            for label, tool, extra in bakers:
+                lo = self.bake(dsky, 'cost', sc + extra, 4, tool, keep=False)
+                hi = self.bake(dsky, 'cost', sc + extra, 16, tool,
+                               keep=False)
+                per[label].append((hi['cpu'] - lo['cpu']) /
+                                  (hi['paths'] - lo['paths']))
+                whole[label].append(hi['cpu'] / hi['paths'])
+                wanted = hi['wanted']
+            self.res['shcost'] = {'runs': rnd + 1, 'scale':
+                                  self.a.sh_cost_scale, 'wanted': wanted,
+                                  'bakers': [b[0] for b in bakers],
+                                  'per_path': per, 'whole': whole}
+            self.save()
+
+    def sh_explain(self, ds, extra):
+        _, _, err = run([self.b('bake-sh'), '--scene', ds[2], '-n',
+                         '--explain'] + extra + [ds[1]], log=self.log)
+        m = re.search(r'(\d+) bytes a texel in memory \((\d+) in the '
+                      r'stream\), (\d+) bricks of 8\^3: ([\d.]+) MB', err)
+        if not m:
+            sys.exit('gibench: no memory line in:\n' + err)
+        return {'mem': int(m.group(1)), 'stream': int(m.group(2)),
+                'bricks': int(m.group(3)), 'mb': float(m.group(4)),
+                'wanted': grab(r', (\d+) wanted', err, int)}
+
+    def sh_memory(self):
+        """bytes a texel at orders 3, 5, 8, one and three channels, each
+        store, from bake-sh -n --explain on the first dataset's band; the
+        second dataset (the CT head) at order 5, scale 1, over
+        --sh-vhf-band (skin to bone), and a --samples 1 bake of its
+        scene's isovalue band whose maximum resident size (GNU time)
+        checks the prediction."""
+        res = self.res['shmem'] = {'orders': {}, 'big': {}}
+        ds = self.a.dataset[0]
+        for n in (3, 5, 8):
+            for ch in (1, 3):
+                for store, flag in (('accum', None), ('f32', '--final'),
+                                    ('f16', '--half')):
+                    e = self.sh_explain(ds, ['--order', str(n), '--channels',
+                                             str(ch)] + ([flag] if flag
+                                                         else []))
+                    res['orders']['%d/%d/%s' % (n, ch, store)] = e
+                    res['dataset'] = ds[0]
+                    self.save()
+        if len(self.a.dataset) < 2:
+            return
+        ds = self.a.dataset[1]
+        res['big_dataset'] = ds[0]
+        res['big_band'] = self.a.sh_vhf_band
+        for band in (['--iso-range', self.a.sh_vhf_band],
+                     ['--iso', self.a.sh_vhf_band]):
+            for ch in (3, 1):
+                for store, flag in (('accum', None), ('f32', '--final'),
+                                    ('f16', '--half')):
+                    e = self.sh_explain(ds, band + self.sh_flags(flag) +
+                                        ['--channels', str(ch)])
+                    res['big']['%s/%d/%s' % (band[0][2:], ch, store)] = e
+                    self.save()
+        # the check: a real bake, one sample a texel
+        v = {}
+        for store, flag in (('f16', '--half'), ('accum', None)):
+            e = self.sh_explain(ds, self.sh_flags(flag))
+            o = self.f('%s-shcheck.vx' % ds[0])
+            _, _, err = run(['/usr/bin/time', '-f', 'maxrss %M',
+                             self.b('bake-sh'), '--scene', ds[2],
+                             '--samples', '1'] + self.sh_flags(flag) +
+                            [ds[1]], out=o, log=self.log)
+            os.remove(o)
+            v[store] = {'predicted_mb': e['mb'], 'wanted': e['wanted'],
+                        'maxrss_mb': grab(r'maxrss (\d+)', err, int) *
+                        1024 / 1e6}
+        res['check'] = v
         self.save()
 
     def save(self):
@@ -418,6 +622,104 @@ def tables(res):
                 m, med, 1 / med, statistics.median(t['ratios'][m]),
                 min(t['times'][m]), min(t['times'][m]) / bmin))
         L.append('')
+    if 't2' in res and 'ratios_irr' in res['t2']:
+        t = res['t2']
+        irr = 'irradiance (trilinear), f32 store'
+        mi = statistics.median(t['times'][irr])
+        L.append('SH frames against the irradiance frame (f32 store):\n')
+        L.append('| mode | median frame (s) | ratio of the medians | '
+                 'median of the rounds\' ratios (quartiles) |')
+        L.append('| --- | --- | --- | --- |')
+        for m in t['modes']:
+            if not m.startswith('SH') and m != irr:
+                continue
+            med = statistics.median(t['times'][m])
+            q = statistics.quantiles(t['ratios_irr'][m], n=4) \
+                if len(t['ratios_irr'][m]) > 1 else [0, 0, 0]
+            L.append('| %s | %.3f | %.2f | %.2f (%.2f-%.2f) |' % (
+                m, med, med / mi, statistics.median(t['ratios_irr'][m]),
+                q[0], q[2]))
+        L.append('')
+    if 'sht1' in res:
+        L.append('## SH Table 1: bake-sh of the band against the lazy first '
+                 'image\n')
+        for name, d in res['sht1'].items():
+            L.append('### %s, order %d\n' % (name, d['order']))
+            L.append('| samples | full: the scene\'s isovalue (f32) | '
+                     'paths/core-s | lazy first image | lazy paths | '
+                     'lazy / full (CPU) |')
+            L.append('| --- | --- | --- | --- | --- | --- |')
+            for b, lz in zip(d['band'], d['lazy']):
+                pc = b['paths_per_cpu_s'] if b['measured'] else None
+                L.append('| %d | %s | %s | %s | %d | 1/%.1f |' % (
+                    b['samples'], fmt_t(b), '%.0f' % pc if pc else '-',
+                    fmt_t(lz), lz['paths'], b['cpu'] / lz['cpu']))
+            c = d['cal'].get('band')
+            if c is None or not d['lazy']:
+                L.append('')
+                continue
+            L.append('')
+            L.append('Texels: %d wanted; the lazy view reads %d.  '
+                     'Calibration: %d samples, %.1f / %.1f s, %.0f paths '
+                     'per core-second.\n' % (
+                         c['wanted'], d['lazy'][0]['read'], c['samples'],
+                         c['wall'], c['cpu'], c['paths_per_cpu_s']))
+    if 'shcost' in res:
+        r = res['shcost']
+        irr = r['bakers'][0]
+        mi = statistics.median(r['per_path'][irr])
+        wi = statistics.median(r['whole'][irr])
+        L.append('## bake-sh against bake-irr: CPU a path (%d texels, '
+                 'scale %g, %d rounds)\n' % (r['wanted'], r['scale'],
+                                             r['runs']))
+        L.append('| baker | CPU us a path (16 - 4 samples) | ratio | '
+                 'CPU us a path (whole process, 16 samples) | ratio |')
+        L.append('| --- | --- | --- | --- | --- |')
+        for b in r['bakers']:
+            m = statistics.median(r['per_path'][b])
+            w = statistics.median(r['whole'][b])
+            L.append('| %s | %.2f | %.2f | %.2f | %.2f |' % (
+                b, 1e6 * m, m / mi, 1e6 * w, w / wi))
+        L.append('')
+    if 'shmem' in res:
+        r = res['shmem']
+        L.append('## SH memory: bytes a texel (in memory / in the stream) '
+                 'and the band (%s)\n' % r.get('dataset', '?'))
+        L.append('| order | channels | accum | f32 | f16 | band: accum / '
+                 'f32 / f16 (MB in memory) |')
+        L.append('| --- | --- | --- | --- | --- | --- |')
+        for n in (3, 5, 8):
+            for ch in (1, 3):
+                e = [r['orders'].get('%d/%d/%s' % (n, ch, st))
+                     for st in ('accum', 'f32', 'f16')]
+                if None in e:
+                    continue
+                L.append('| %d | %d | %s | %.1f / %.1f / %.1f |' % (
+                    n, ch, ' | '.join('%d / %d' % (x['mem'], x['stream'])
+                                      for x in e),
+                    e[0]['mb'], e[1]['mb'], e[2]['mb']))
+        L.append('')
+        if r.get('big'):
+            L.append('%s at scale 1, order 5, band %s (predicted by '
+                     'bake-sh -n --explain):\n' % (r['big_dataset'],
+                                                    r['big_band']))
+            L.append('| band | channels | store | wanted texels | bricks | '
+                     'MB in memory | under 8 GB |')
+            L.append('| --- | --- | --- | --- | --- | --- | --- |')
+            for k, e in r['big'].items():
+                band, ch, st = k.split('/')
+                L.append('| --%s %s | %s | %s | %d | %d | %.0f | %s |' % (
+                    band, r['big_band'], ch, st, e['wanted'], e['bricks'],
+                    e['mb'], 'yes' if e['mb'] < 8000 else 'no'))
+            L.append('')
+        if r.get('check'):
+            L.append('Check (the scene\'s isovalue band, --samples 1):\n')
+            L.append('| store | wanted | predicted MB | max RSS MB |')
+            L.append('| --- | --- | --- | --- |')
+            for st, v in r['check'].items():
+                L.append('| %s | %d | %.0f | %.0f |' % (
+                    st, v['wanted'], v['predicted_mb'], v['maxrss_mb']))
+            L.append('')
     if 'acc' in res:
         r = res['acc']
         L.append('## Accuracy: irradiance shading against the path-traced '
@@ -464,6 +766,9 @@ def main():
     ap.add_argument('--acc-size', type=int, default=256)
     ap.add_argument('--acc-spp', type=int, default=1024)
     ap.add_argument('--acc-samples', type=int, default=256)
+    ap.add_argument('--sh-order', type=int, default=5)
+    ap.add_argument('--sh-cost-scale', type=float, default=0.5)
+    ap.add_argument('--sh-vhf-band', default='600.5,1224.5')
     ap.add_argument('--tables', action='store_true',
                     help='only write gi.md from gi.json')
     a = ap.parse_args()
@@ -476,8 +781,11 @@ def main():
         if os.path.exists(jp):
             b.res.update(json.load(open(jp)))
         parts = a.parts.split(',')
-        for p, fn in (('t1', b.table1), ('t2', b.table2),
-                      ('acc', b.accuracy), ('mem', b.memory)):
+        # sht1 before t2: its 4-sample f32 bake is Table 2's SH store
+        for p, fn in (('t1', b.table1), ('sht1', b.sh_table1),
+                      ('t2', b.table2), ('acc', b.accuracy),
+                      ('mem', b.memory), ('shcost', b.sh_cost),
+                      ('shmem', b.sh_memory)):
             if p in parts:
                 fn()
         res = b.res

@@ -21,6 +21,8 @@ voxlux stream, written from formats/stream.md and the PFM definition only
                                      covers at all (alpha > 0), of the
                                      premultiplied colour (translucent
                                      pictures: direct volume rendering)
+    vximg.py relmean A B             B's mean colour over A's over the
+                                     pixels both cover fully (a bias)
 Prints the value with repr() precision ("inf", "nan" as Python prints).
 """
 import struct, sys, zlib
@@ -154,7 +156,7 @@ if a[0] == 'covdiff':
     ca, cb = cov(a[1]), cov(a[2])
     print(sum(x != y for x, y in zip(ca, cb)) + abs(len(ca) - len(cb)))
     raise SystemExit
-if a[0] in ('relrmse', 'relrmse-all'):
+if a[0] in ('relrmse', 'relrmse-all', 'relmean'):
     import math
     def color(path):
         for name, w, h, nc, body in images(path):
@@ -164,15 +166,19 @@ if a[0] in ('relrmse', 'relrmse-all'):
         raise SystemExit('no color image in %s' % path)
     (na, pa), (nb, pb) = color(a[1]), color(a[2])
     assert na == nb == 4 and len(pa) == len(pb)
-    se = sm = k = 0
+    se = sm = sb = k = 0
     for i in range(0, len(pa), 4):
-        if (pa[i + 3] == 1 and pb[i + 3] == 1) if a[0] == 'relrmse' else \
-                (pa[i + 3] > 0 or pb[i + 3] > 0):
+        if (pa[i + 3] > 0 or pb[i + 3] > 0) if a[0] == 'relrmse-all' else \
+                (pa[i + 3] == 1 and pb[i + 3] == 1):
             for c in range(3):
                 se += (pb[i + c] - pa[i + c]) ** 2
                 sm += pa[i + c]
+                sb += pb[i + c]
                 k += 1
-    print(math.sqrt(se / k) / (sm / k) if k and sm else 'nan')
+    if a[0] == 'relmean':
+        print(sb / sm if k and sm else 'nan')
+    else:
+        print(math.sqrt(se / k) / (sm / k) if k and sm else 'nan')
     raise SystemExit
 if a[0] == 'pfm':
     v = pfm(a[1], int(a[2]), int(a[3]), int(a[4]))

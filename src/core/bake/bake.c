@@ -208,12 +208,16 @@ fits(const vx_irrvol *v, const vx_bake_opts *o, size_t nb, vx_bake_stats *st,
 	size_t nall = (size_t)v->bdims[0] * (size_t)v->bdims[1] *
 	    (size_t)v->bdims[2];
 
+	/* the storage, the brick table, and the chunk written at the end:
+	 * its body and the payload made of it (vx_irr_to_chunk) */
 	st->need_bytes = (uint64_t)nb * VX_IRR_BRICK3 *
-	    vx_irr_texel_memory(v->store, v->ncomp) + (uint64_t)nall *
-	    sizeof *v->slot;
+	    (vx_irr_texel_memory(v->store, v->ncomp) +
+	    2 * vx_irr_texel_bytes(v->store, v->ncomp)) + (uint64_t)nall *
+	    sizeof *v->slot + o->held_bytes;
 	if (o->max_bytes > 0 && st->need_bytes > o->max_bytes)
-		return vx_err_set(e, VX_ENOMEM, "the volume would take %.3g GB "
-		    "of memory (%zu bricks of %d^3 texels, %zu bytes a texel), "
+		return vx_err_set(e, VX_ENOMEM, "the bake would take %.3g GB "
+		    "of memory at its peak (%zu bricks of %d^3 texels, %zu "
+		    "bytes a texel, the chunk written of them, the input), "
 		    "more than the %.3g GB allowed", (double)st->need_bytes /
 		    1e9, nb, VX_IRR_BRICK, vx_irr_texel_memory(v->store,
 		    v->ncomp), (double)o->max_bytes / 1e9);

@@ -54,8 +54,10 @@ typedef struct vx_bake_opts {
 	                             (i + n0 (j + n1 k)): bake only the wanted
 	                             texels whose byte is nonzero */
 	uint64_t max_bytes;       /* > 0: the plan refuses (VX_ENOMEM, before
-	                             allocating) a volume whose storage would
-	                             take more bytes of memory */
+	                             allocating) a bake that would take more
+	                             bytes of memory (see vx_bake_plan) */
+	uint64_t held_bytes;      /* memory the caller holds besides (its
+	                             input stream), counted against it */
 	int threads;              /* 0: OpenMP's default */
 	vx_bake_progress_fn progress;        /* called from one thread */
 	void *progress_ctx;
@@ -70,8 +72,11 @@ typedef struct vx_bake_stats {
 	uint64_t flat, nan, border;
 	uint64_t samples;         /* samples taken this run */
 	uint64_t bricks;          /* bricks stored */
-	uint64_t need_bytes;      /* the plan's storage in memory (bricks it
-	                             stores, existing ones included) */
+	uint64_t need_bytes;      /* the plan's peak memory: the texels'
+	                             storage (bricks it stores, existing ones
+	                             included), the chunk made of them (its
+	                             body and its payload: twice the stream's
+	                             bytes), and o->held_bytes */
 	vx_gi_stats gi;
 	double plan_s, bake_s;    /* wall seconds */
 } vx_bake_stats;
@@ -79,9 +84,10 @@ typedef struct vx_bake_stats {
 /* vx_bake_plan: mark the texels of v (set up for g with vx_irr_setup)
  * that the options ask for: all, or those at a corner of a lattice cell
  * whose volume samples' [min, max] meets a band; their bricks are
- * allocated.  Counts wanted texels into st.  The memory the stored bricks
- * will take is counted first (st->need_bytes); above o->max_bytes the plan
- * stops there with VX_ENOMEM and allocates nothing. */
+ * allocated.  Counts wanted texels into st.  The memory the bake will
+ * take at its peak is counted first (st->need_bytes: the bricks' storage,
+ * the chunk written from them, what the caller holds); above o->max_bytes
+ * the plan stops there with VX_ENOMEM and allocates nothing. */
 int vx_bake_plan(vx_irrvol *v, const vx_grid *g, const vx_bake_opts *o,
     vx_bake_stats *st, vx_err *e);
 

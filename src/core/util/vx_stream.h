@@ -28,7 +28,7 @@
 #define VX_CHUNK_TETMESH  "TETM" /* tetrahedral mesh */
 #define VX_CHUNK_TETLEAF  "TLEF" /* a tet mesh's leaf grid and levels */
 #define VX_CHUNK_IRRAD    "IRRV" /* irradiance volume (irradiance.md) */
-#define VX_CHUNK_SHXFER   "SHTV" /* SH transfer volume (reserved) */
+#define VX_CHUNK_SHXFER   "SHTV" /* SH transfer volume (irradiance.md) */
 #define VX_CHUNK_SHLIGHT  "SHLC" /* SH lighting (shlight.md) */
 #define VX_CHUNK_END      "VEND" /* end of stream, empty */
 #define VX_CHUNK_HISTORY  "hist" /* ancillary: one line per tool run */

@@ -422,7 +422,11 @@ tool_bake_main(int argc, char **argv, int want_sh)
 			tool_fail(VX_EUSAGE, "--scale %g: the stream's bake has "
 			    "scale %g", o.b.scale, v.scale);
 	}
-	if (vx_bake_plan(&v, &g, &o.b, &bs, &e) != 0) {
+	for (size_t i = 0; i < st.n; i++)
+		o.b.held_bytes += st.chunk[i].len;
+	/* a lazy bake records its settings and plans nothing: raycast
+	 * --lazy wants the texels its views read */
+	if (!o.lazy && vx_bake_plan(&v, &g, &o.b, &bs, &e) != 0) {
 		if (e.code == VX_ENOMEM && o.b.max_bytes > 0 &&
 		    bs.need_bytes > o.b.max_bytes)
 			tool_fail(VX_ENOMEM, "%s: %s (--max-memory); it fits "
@@ -465,11 +469,14 @@ tool_bake_main(int argc, char **argv, int want_sh)
 		    (long long)v.dims[0], (long long)v.dims[1],
 		    (long long)v.dims[2], v.scale, v.scale == 1 ?
 		    "one texel a sample" : "its own resolution",
-		    (unsigned long long)bs.wanted, o.b.all ? "every texel" :
+		    (unsigned long long)bs.wanted, o.lazy ? "lazy: none now, "
+		    "raycast --lazy bakes the texels its views read" :
+		    o.b.all ? "every texel" :
 		    "cells whose values meet the isovalue band");
 		fprintf(stderr, "%s: plan: storage %s%s: %zu bytes a texel in "
 		    "memory (%zu in the stream), %llu bricks of %d^3: %.1f MB "
-		    "in memory (limit %.1f MB, --max-memory)\n", me,
+		    "of memory at the peak, with the input and the chunk "
+		    "written (limit %.1f MB, --max-memory)\n", me,
 		    vx_enum_str(&vx_irr_store_enum, o.store), contents(&v),
 		    vx_irr_texel_memory(v.store, v.ncomp),
 		    vx_irr_texel_bytes(o.store, v.ncomp),
