@@ -17,12 +17,12 @@ voxlux stream, written from formats/stream.md and the PFM definition only
                                      image "color" of B against A over the
                                      pixels both cover fully (alpha 1),
                                      divided by A's mean there
+    vximg.py relmean A B             B's mean colour over A's over the
+                                     pixels both cover fully (a bias)
     vximg.py relrmse-all A B         the same over every pixel either
                                      covers at all (alpha > 0), of the
                                      premultiplied colour (translucent
                                      pictures: direct volume rendering)
-    vximg.py relmean A B             B's mean colour over A's over the
-                                     pixels both cover fully (a bias)
 Prints the value with repr() precision ("inf", "nan" as Python prints).
 """
 import struct, sys, zlib
@@ -156,7 +156,7 @@ if a[0] == 'covdiff':
     ca, cb = cov(a[1]), cov(a[2])
     print(sum(x != y for x, y in zip(ca, cb)) + abs(len(ca) - len(cb)))
     raise SystemExit
-if a[0] in ('relrmse', 'relrmse-all', 'relmean'):
+if a[0] in ('relrmse', 'relmean', 'relrmse-all'):
     import math
     def color(path):
         for name, w, h, nc, body in images(path):
@@ -168,8 +168,8 @@ if a[0] in ('relrmse', 'relrmse-all', 'relmean'):
     assert na == nb == 4 and len(pa) == len(pb)
     se = sm = sb = k = 0
     for i in range(0, len(pa), 4):
-        if (pa[i + 3] > 0 or pb[i + 3] > 0) if a[0] == 'relrmse-all' else \
-                (pa[i + 3] == 1 and pb[i + 3] == 1):
+        if (pa[i + 3] == 1 and pb[i + 3] == 1) if a[0] != 'relrmse-all' \
+                else (pa[i + 3] > 0 or pb[i + 3] > 0):
             for c in range(3):
                 se += (pb[i + c] - pa[i + c]) ** 2
                 sm += pa[i + c]
