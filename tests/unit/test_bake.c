@@ -471,7 +471,7 @@ sh_unoccluded(void **state)
 			static const int at[6][3] = { { 17, 12, 12 },
 			    { 7, 12, 12 }, { 12, 17, 12 }, { 12, 12, 7 },
 			    { 15, 16, 9 }, { 9, 10, 16 } };
-			union { vx_irr_acc a; int64_t w[3 + VX_IRR_MAX_COMP]; } u;
+			accbuf u;
 			double rho, start[3], n[3], y[256], got[256];
 
 			memset(&u, 0, sizeof u);
@@ -534,7 +534,7 @@ vicinity(void **state)
 		char occ[64];
 		const char *lines[] = { "light point position 16 16 12 "
 		    "intensity 50", "surface iso 4 color 1 1 1", occ, NULL };
-		union { vx_irr_acc a; int64_t w[3 + VX_IRR_MAX_COMP]; } u;
+		accbuf u;
 		vx_grid g;
 		vx_macro m;
 		vx_scene s;

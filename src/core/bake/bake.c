@@ -200,6 +200,54 @@ brick_of(const vx_irrvol *v, int64_t x, int64_t y, int64_t z)
 	    (size_t)(z / VX_IRR_BRICK));
 }
 
+/* corners: fn(v, x, y, z) for each corner inside the lattice of each
+ * lattice cell whose byte in cellw (cd cells per axis) is set, in cell
+ * order; stops at the first nonzero return, and returns it */
+typedef int (*corner_fn)(vx_irrvol *v, int64_t x, int64_t y, int64_t z,
+    void *ctx, vx_err *e);
+
+static int
+corners(vx_irrvol *v, const int64_t cd[3], const uint8_t *cellw,
+    corner_fn fn, void *ctx, vx_err *e)
+{
+	for (int64_t k = 0; k < cd[2]; k++)
+		for (int64_t j = 0; j < cd[1]; j++)
+			for (int64_t i = 0; i < cd[0]; i++) {
+				if (!cellw[(size_t)i + (size_t)cd[0] * ((size_t)j +
+				    (size_t)cd[1] * (size_t)k)])
+					continue;
+				for (int q = 0; q < 8; q++) {
+					int64_t x = i + (q & 1), y = j + ((q >> 1) & 1),
+					    z = k + ((q >> 2) & 1);
+					int rc;
+
+					if (x >= v->dims[0] || y >= v->dims[1] ||
+					    z >= v->dims[2])
+						continue;
+					if ((rc = fn(v, x, y, z, ctx, e)) != 0)
+						return rc;
+				}
+			}
+	return 0;
+}
+
+static int
+mark_brick(vx_irrvol *v, int64_t x, int64_t y, int64_t z, void *ctx,
+    vx_err *e)
+{
+	(void)e;
+	((uint8_t *)ctx)[brick_of(v, x, y, z)] = 1;
+	return 0;
+}
+
+static int
+want_corner(vx_irrvol *v, int64_t x, int64_t y, int64_t z, void *ctx,
+    vx_err *e)
+{
+	(void)ctx;
+	return vx_irr_want_texel(v, x, y, z, e) < 0 ? e->code : 0;
+}
+
 /* the memory check: nb bricks stored in all (those v has included) */
 static int
 fits(const vx_irrvol *v, const vx_bake_opts *o, size_t nb, vx_bake_stats *st,
@@ -282,49 +330,17 @@ vx_bake_plan(vx_irrvol *v, const vx_grid *g, const vx_bake_opts *o,
 	 * allocated */
 	for (size_t b = 0; b < nb; b++)
 		bneed[b] = v->slot[b] != 0;
-	for (int64_t k = 0; k < cd[2]; k++)
-		for (int64_t j = 0; j < cd[1]; j++)
-			for (int64_t i = 0; i < cd[0]; i++) {
-				if (!cellw[(size_t)i + (size_t)cd[0] * ((size_t)j +
-				    (size_t)cd[1] * (size_t)k)])
-					continue;
-				for (int q = 0; q < 8; q++) {
-					int64_t x = i + (q & 1), y = j + ((q >> 1) & 1),
-					    z = k + ((q >> 2) & 1);
-
-					if (x < v->dims[0] && y < v->dims[1] &&
-					    z < v->dims[2])
-						bneed[brick_of(v, x, y, z)] = 1;
-				}
-			}
+	corners(v, cd, cellw, mark_brick, bneed, e);
 	for (size_t b = 0; b < nb; b++)
 		need += bneed[b];
 	free(bneed);
 	if ((rc = fits(v, o, need, st, e)) != 0 ||
-	    (rc = vx_irr_reserve(v, need, e)) != 0) {
+	    (rc = vx_irr_reserve(v, need, e)) != 0 ||
+	    /* bricks first (serially, in brick order), then the texels */
+	    (rc = corners(v, cd, cellw, want_corner, NULL, e)) != 0) {
 		free(cellw);
 		return rc;
 	}
-	/* bricks first (serially, in brick order), then the texels */
-	for (int64_t k = 0; k < cd[2]; k++)
-		for (int64_t j = 0; j < cd[1]; j++)
-			for (int64_t i = 0; i < cd[0]; i++) {
-				if (!cellw[(size_t)i + (size_t)cd[0] * ((size_t)j +
-				    (size_t)cd[1] * (size_t)k)])
-					continue;
-				for (int q = 0; q < 8; q++) {
-					int64_t x = i + (q & 1), y = j + ((q >> 1) & 1),
-					    z = k + ((q >> 2) & 1);
-
-					if (x >= v->dims[0] || y >= v->dims[1] ||
-					    z >= v->dims[2])
-						continue;
-					if (vx_irr_want_texel(v, x, y, z, e) < 0) {
-						free(cellw);
-						return e->code;
-					}
-				}
-			}
 	free(cellw);
 	st->wanted = 0;
 	for (size_t s = 0; s < v->nslot * VX_IRR_BRICK3; s++)

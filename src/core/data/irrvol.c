@@ -716,28 +716,13 @@ vx_irr_finalize(vx_irrvol *v, vx_irr_store store, vx_err *e)
 		    vx_enum_str(&vx_irr_store_enum, v->store),
 		    vx_enum_str(&vx_irr_store_enum, store));
 	}
-	vx_irr_finish(v);
-	/* a texel without samples is not drawn from a final store: it keeps
-	 * no count, so its wanted bit goes */
+	/* each texel as a final bake settles it (a texel without samples
+	 * keeps no count in a final store, so its wanted bit goes) */
+	v->store = store;
 	for (size_t t = 0; t < v->nslot * VX_IRR_BRICK3; t++)
-		v->flags[t] &= ~(uint32_t)(VX_TEXEL_SAMPLED |
-		    (vx_irr_accp(v, (int64_t)t)->count == 0 ?
-		    VX_TEXEL_WANTED : 0));
+		vx_irr_settle(v, (int64_t)t, vx_irr_accp(v, (int64_t)t));
 	free(v->acc);
 	v->acc = NULL;
-	v->store = store;
-	if (store == VX_IRR_F16) {
-		size_t n = (size_t)v->ncomp * v->nslot * VX_IRR_BRICK3;
-
-		for (size_t s = 0; s < n; s++) {
-			int sat = 0;
-
-			v->mean[s] = half_round(v->mean[s], &sat);
-			if (sat)
-				v->flags[s / (size_t)v->ncomp] |=
-				    VX_TEXEL_OVERFLOW;
-		}
-	}
 	return 0;
 }
 
