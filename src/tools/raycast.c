@@ -37,22 +37,19 @@ static const char usage[] =
     "        [--lazy] [--lazy-save STREAM] [--spp N] [-o OUT] [STREAM|-]";
 
 typedef struct opts {
-	const char *in, *out, *name, *depth, *normals;
-	int hdr, zlevel, bits, stats, explain, dry, flat, aa, solver, nomask;
-	int nobin, binblock, lazy, spp;
+	const char *in, *name;
+	int flat, aa, solver, nomask, nobin, binblock, lazy, spp;
 	const char *lazy_save;
-	long threads;
-	double exposure;
 	int ortho;
+	tool_run_opts run;         /* -o, -j, --hdr, --stats, ... */
 	tool_scene_opts so;       /* --scene and the scene options */
 } opts;
 
 static void
 parse(opts *o, int argc, char **argv)
 {
-	enum { O_ORTHO = 256, O_NAME, O_SOLVER, O_FLAT, O_AA, O_STATS,
-	    O_EXPLAIN, O_HDR, O_BITS, O_EXPOSURE, O_DEPTH, O_NORMALS,
-	    O_NOMASK, O_NOBIN, O_BINBLOCK, O_LAZY, O_LAZYSAVE, O_SPP };
+	enum { O_ORTHO = 256, O_NAME, O_SOLVER, O_FLAT, O_AA, O_NOMASK,
+	    O_NOBIN, O_BINBLOCK, O_LAZY, O_LAZYSAVE, O_SPP };
 	static const struct option lo[] = {
 		{ "scene", 1, 0, TOOL_O_SCENE }, { "iso", 1, 0, TOOL_O_ISO },
 		{ "size", 1, 0, TOOL_O_SIZE }, { "view", 1, 0, TOOL_O_VIEW },
@@ -66,29 +63,20 @@ parse(opts *o, int argc, char **argv)
 		{ "no-binning", 0, 0, O_NOBIN },
 		{ "bin-block", 1, 0, O_BINBLOCK },
 		{ "lazy", 0, 0, O_LAZY }, { "lazy-save", 1, 0, O_LAZYSAVE },
-		{ "spp", 1, 0, O_SPP },
-		{ "aa", 1, 0, O_AA }, { "stats", 0, 0, O_STATS },
-		{ "explain", 0, 0, O_EXPLAIN }, { "dry-run", 0, 0, 'n' },
-		{ "hdr", 0, 0, O_HDR }, { "bits", 1, 0, O_BITS },
-		{ "exposure", 1, 0, O_EXPOSURE }, { "depth", 1, 0, O_DEPTH },
-		{ "normals", 1, 0, O_NORMALS }, { "output", 1, 0, 'o' },
-		{ "threads", 1, 0, 'j' }, { "help", 0, 0, 'h' },
-		{ 0, 0, 0, 0 }
+		{ "spp", 1, 0, O_SPP }, { "aa", 1, 0, O_AA },
+		{ "exposure", 1, 0, TOOL_O_EXPOSURE },
+		{ "depth", 1, 0, TOOL_O_DEPTH },
+		{ "normals", 1, 0, TOOL_O_NORMALS },
+		TOOL_RUN_LONG, TOOL_RENDER_LONG, { 0, 0, 0, 0 }
 	};
 	int c;
 
 	memset(o, 0, sizeof *o);
-	o->out = "-";
-	o->bits = 8;
+	tool_run_opts_init(&o->run);
 	o->aa = 1;
-	o->zlevel = 1;
 	o->solver = VX_CELL_EXACT;
-	while ((c = getopt_long(argc, argv, ":o:j:nhz:", lo, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, TOOL_RUN_SHORT, lo, NULL)) != -1) {
 		switch (c) {
-		case 'o': o->out = optarg; break;
-		case 'z': o->zlevel = (int)tool_parse_long("-z", optarg, 0, 9); break;
-		case 'j': o->threads = tool_parse_long("-j", optarg, 0, 4096); break;
-		case 'n': o->dry = o->explain = 1; break;
 		case O_ORTHO: o->ortho = 1; break;
 		case O_NAME: o->name = optarg; break;
 		case O_SOLVER:
@@ -108,19 +96,9 @@ parse(opts *o, int argc, char **argv)
 			    VX_RAYCAST_BLOCK_MAX);
 			break;
 		case O_AA: o->aa = (int)tool_parse_long("--aa", optarg, 1, 16); break;
-		case O_STATS: o->stats = 1; break;
-		case O_EXPLAIN: o->explain = 1; break;
-		case O_HDR: o->hdr = 1; break;
-		case O_BITS:
-			o->bits = tool_parse_bits(optarg);
-			break;
-		case O_EXPOSURE:
-			o->exposure = tool_parse_double("--exposure", optarg, -64, 64);
-			break;
-		case O_DEPTH: o->depth = optarg; break;
-		case O_NORMALS: o->normals = optarg; break;
 		default:
-			if (!tool_scene_opt(&o->so, c, optarg, usage))
+			if (!tool_run_opt(&o->run, c, optarg) &&
+			    !tool_scene_opt(&o->so, c, optarg, usage))
 				tool_opt_other(c, usage, argv);
 		}
 	}
@@ -468,15 +446,9 @@ main(int argc, char **argv)
 	} else if (vx_grid_view_stream(&g, &st, want, &gi, &e) != 0)
 		tool_fail_err(&e);
 	vx_scene_plan_isosurface(&s, &plan);
-	nthr = tool_threads(o.threads);
-	if (o.explain) {
-		size_t n = vx_plan_format(&plan, NULL, 0) + 1;
-		char *buf = malloc(n);
-
-		if (buf == NULL)
-			tool_fail(VX_ENOMEM, "out of memory");
-		vx_plan_format(&plan, buf, n);
-		fprintf(stderr, "%s", buf);
+	nthr = tool_threads(o.run.threads);
+	if (o.run.explain) {
+		tool_plan_print(&plan);
 		if (is_mesh)
 			fprintf(stderr, "raycast: %dx%d pixels, %d sample%s per "
 			    "pixel, about %.0f rays; mesh '%s' (%zu tets): leaf "
@@ -524,7 +496,6 @@ main(int argc, char **argv)
 				    "nothing between them; a ray that enters none "
 				    "is not walked\n", bb, bb, bb);
 		}
-		free(buf);
 	}
 	if (plan.nsurface_on == 0)
 		tool_fail(VX_EUSAGE, "no surface to draw: give --iso V or a "
@@ -534,10 +505,10 @@ main(int argc, char **argv)
 	vx_macro_init(&m);
 	if (is_mesh)
 		tool_tetleaf_load(&lg, &st, &mesh, o.flat ? 0 :
-		    VX_MACRO_DEFAULT_LEVELS, nthr, o.dry, o.dry);
+		    VX_MACRO_DEFAULT_LEVELS, nthr, o.run.dry, o.run.dry);
 	else if (!o.flat)
-		tool_macro_load(&m, &st, &g, gi, nthr, o.dry);
-	if (o.dry) {
+		tool_macro_load(&m, &st, &g, gi, nthr, o.run.dry);
+	if (o.run.dry) {
 		vx_tetleaf_free(&lg);
 		vx_tetmesh_free(&mesh);
 		vx_macro_free(&m);
@@ -573,7 +544,7 @@ main(int argc, char **argv)
 	ro.solver = o.solver;
 	ro.flat = o.flat;
 	ro.aa = o.aa;
-	ro.timing = o.stats;
+	ro.timing = o.run.stats;
 	ro.no_cellmask = o.nomask;
 	ro.no_binning = o.nobin;
 	ro.bin_block = o.binblock;
@@ -607,7 +578,7 @@ main(int argc, char **argv)
 		    VX_IRR_TRILINEAR;
 		if (o.lazy) {
 			lazy_bake(&irr, ii >= 0, &s, &g, o.flat ? NULL : &m, &plan,
-			    tex, &ro, nthr, o.stats);
+			    tex, &ro, nthr, o.run.stats);
 			if (o.lazy_save != NULL) {
 				vx_chunk c;
 
@@ -622,8 +593,8 @@ main(int argc, char **argv)
 			}
 		}
 		if (plan.sh) {
-			sh_lighting(&s, &st, irr.sh_order, shl, o.stats ||
-			    o.explain);
+			sh_lighting(&s, &st, irr.sh_order, shl, o.run.stats ||
+			    o.run.explain);
 			ro.shl = shl;
 		}
 	} else if (o.lazy) {
@@ -642,45 +613,25 @@ main(int argc, char **argv)
 	vx_image_init(&normal);
 	if (is_mesh) {
 		if (vx_raycast_render_mesh(&s, &plan, &mesh, &lg, tex, &ro,
-		    &color, (o.depth || o.hdr) ? &depth : NULL,
-		    (o.normals || o.hdr) ? &normal : NULL, &rs, &e) != 0)
+		    &color, (o.run.depth || o.run.hdr) ? &depth : NULL,
+		    (o.run.normals || o.run.hdr) ? &normal : NULL, &rs,
+		    &e) != 0)
 			tool_fail_err(&e);
 	} else if (vx_raycast_render(&s, &plan, &g, o.flat ? NULL : &m, tex,
-	    &ro, &color, (o.depth || o.hdr) ? &depth : NULL,
-	    (o.normals || o.hdr) ? &normal : NULL, &rs, &e) != 0)
+	    &ro, &color, (o.run.depth || o.run.hdr) ? &depth : NULL,
+	    (o.run.normals || o.run.hdr) ? &normal : NULL, &rs, &e) != 0)
 		tool_fail_err(&e);
-	if (o.stats)
+	if (o.run.stats)
 		print_stats(&rs, is_mesh ? &lg.mc : o.flat ? NULL : &m,
 		    s.camera.w, s.camera.h, nthr);
-	if (o.depth)
-		tool_write_pfm(o.depth, &depth);
-	if (o.normals)
-		tool_write_pfm(o.normals, &normal);
-	if (o.hdr) {
-		/* the stream out: history, scene, images and every chunk we did
-		 * not consume (volumes, meshes and their hierarchies are
-		 * consumed) */
-		static const char *const consumed[] = { VX_CHUNK_VOLUME,
-		    VX_CHUNK_MACRO, VX_CHUNK_TETMESH, VX_CHUNK_TETLEAF,
-		    VX_CHUNK_SCENE, VX_CHUNK_IMAGE, NULL };
-		vx_stream out;
-		vx_chunk c;
+	{
+		/* volumes, meshes and their hierarchies are consumed */
+		static const char *const drawn[] = { VX_CHUNK_VOLUME,
+		    VX_CHUNK_MACRO, VX_CHUNK_TETMESH, VX_CHUNK_TETLEAF, NULL };
+		const vx_image *img[3] = { &color, &depth, &normal };
 
-		vx_stream_init(&out);
-		tool_stream_keep(&out, &st, consumed);
-		if (vx_scene_to_stream(&s, &out, &e) != 0)
-			tool_fail_err(&e);
-		const vx_image *imgs[3] = { &color, &depth, &normal };
-		for (k = 0; k < 3; k++) {
-			if (vx_image_to_chunk(imgs[k], o.zlevel, &c, &e) != 0 ||
-			    vx_stream_append(&out, &c, &e) != 0)
-				tool_fail_err(&e);
-		}
-		tool_write_stream(&out, o.out);
-		vx_stream_free(&out);
-	} else
-		tool_write_png_radiance(o.out, &color, o.exposure, s.background,
-		    o.bits, &st);
+		tool_render_write(&o.run, &st, drawn, &s, img, NULL);
+	}
 	for (k = 0; k < VX_SCENE_MAX_SURFACES; k++)
 		vx_grid_free(&texg[k]);
 	vx_image_free(&color);
