@@ -572,10 +572,7 @@ main(int argc, char **argv)
 				    (long long)irr.vdims[1],
 				    (long long)irr.vdims[2]);
 		ro.irr = &irr;
-		ro.irr_interp = s.interp == VX_INTERP_NEAREST ? VX_IRR_NEAREST :
-		    s.interp == VX_INTERP_NEAREST_ISO ? VX_IRR_NEAREST_ISO :
-		    s.interp == VX_INTERP_TRICUBIC ? VX_IRR_TRICUBIC :
-		    VX_IRR_TRILINEAR;
+		ro.irr_interp = s.interp;
 		if (o.lazy) {
 			lazy_bake(&irr, ii >= 0, &s, &g, o.flat ? NULL : &m, &plan,
 			    tex, &ro, nthr, o.run.stats);
