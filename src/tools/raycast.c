@@ -340,9 +340,10 @@ lazy_bake(vx_irrvol *irr, int have, vx_scene *s, const vx_grid *g,
 }
 
 /* sh_lighting: the SH lighting of order n into c (3 channels of n^2, vx_sh.h's
- * basis): the stream's SHLC chunk (from sh-rotate), else the projection
- * of the scene's environment and sky lights; bands the lighting lacks are
- * 0, bands beyond n dropped */
+ * basis): the stream's SHLC chunk (from sh-rotate), else the sum of the
+ * projections of the scene's environment and sky lights
+ * (vx_shlight_from_scene); bands the lighting lacks are 0, bands beyond n
+ * dropped */
 static void
 sh_lighting(vx_scene *s, const vx_stream *st, int n, double *c, int say)
 {
@@ -368,26 +369,14 @@ sh_lighting(vx_scene *s, const vx_stream *st, int n, double *c, int say)
 			    sl.order < n ? ", higher bands 0" : "", n);
 		return;
 	}
-	if (vx_env_scene_resolve(s, &e) != 0)
+	if (vx_env_scene_resolve(s, &e) != 0 ||
+	    vx_shlight_from_scene(&sl, s, n, &found, NULL, &e) != 0)
 		tool_fail_err(&e);
-	for (int k = 0; k < s->nlight; k++) {
-		const vx_light *l = &s->light[k];
-		vx_env env;
-
-		if (l->type != VX_LIGHT_ENVIRONMENT && l->type != VX_LIGHT_SKY)
-			continue;
-		if (vx_env_load_light(&env, l, &e) != 0) {
-			vx_err_push(&e, "light %d", k + 1);
-			tool_fail_err(&e);
-		}
-		vx_shlight_project(&env, n, c);
-		vx_env_free(&env);
-		found++;
-	}
 	if (found == 0)
 		tool_fail(VX_EUSAGE, "illumination sh: no SH lighting: the "
 		    "stream has no SHLC chunk (sh-rotate makes one) and the "
 		    "scene no environment or sky light");
+	memcpy(c, sl.c, sizeof(double) * 3 * (size_t)nn);
 	if (say)
 		fprintf(stderr, "raycast: SH lighting: %d environment or sky "
 		    "light%s of the scene projected to order %d\n", found,
