@@ -27,7 +27,7 @@ static const char usage[] =
     "    [STREAM|-]";
 
 typedef struct opts {
-	const char *in, *name;
+	const char *in;
 	int lastt, exhaustive, persp, has_window;
 	double window[2];
 	vx_colormap cmap;
@@ -38,11 +38,11 @@ typedef struct opts {
 static void
 parse(opts *o, int argc, char **argv)
 {
-	enum { O_PERSP = 256, O_NAME, O_WINDOW, O_CMAP, O_NOLAST, O_EXH };
+	enum { O_PERSP = 256, O_WINDOW, O_CMAP, O_NOLAST, O_EXH };
 	static const struct option lo[] = {
 		{ "scene", 1, 0, TOOL_O_SCENE }, { "size", 1, 0, TOOL_O_SIZE },
 		{ "view", 1, 0, TOOL_O_VIEW }, { "perspective", 0, 0, O_PERSP },
-		{ "fov", 1, 0, TOOL_O_FOV }, { "name", 1, 0, O_NAME },
+		{ "fov", 1, 0, TOOL_O_FOV }, { "name", 1, 0, TOOL_O_NAME },
 		{ "window", 1, 0, O_WINDOW }, { "colormap", 1, 0, O_CMAP },
 		{ "no-last-t", 0, 0, O_NOLAST }, { "exhaustive", 0, 0, O_EXH },
 		{ "depth", 1, 0, TOOL_O_DEPTH },
@@ -57,7 +57,6 @@ parse(opts *o, int argc, char **argv)
 	while ((c = getopt_long(argc, argv, TOOL_RUN_SHORT, lo, NULL)) != -1) {
 		switch (c) {
 		case O_PERSP: o->persp = 1; break;
-		case O_NAME: o->name = optarg; break;
 		case O_WINDOW:
 			tool_parse_doubles("--window", optarg, o->window, 2);
 			if (!(o->window[0] < o->window[1]))
@@ -135,15 +134,15 @@ main(int argc, char **argv)
 	for (i = 0; i < o.so.n; i++)
 		if (vx_scene_option(&s, o.so.name[i], o.so.val[i], &e) != 0)
 			tool_fail_err(&e);
-	if (vx_grid_view_stream(&g, &st, o.name, &gi, &e) != 0) {
+	if (vx_grid_view_stream(&g, &st, o.run.name, &gi, &e) != 0) {
 		/* no such volume, but a tet mesh: say so */
 		int is_mesh = 0;
 
-		if (vx_tetmesh_find_source(&st, o.name, &is_mesh) >= 0 && is_mesh)
+		if (vx_tetmesh_find_source(&st, o.run.name, &is_mesh) >= 0 && is_mesh)
 			tool_fail(VX_EDATA, "%s%s%s is a tet mesh: mip draws "
 			    "volumes (raycast draws a mesh's isosurfaces)",
-			    o.name ? "'" : "the stream's source", o.name ? o.name :
-			    "", o.name ? "'" : "");
+			    o.run.name ? "'" : "the stream's source", o.run.name ? o.run.name :
+			    "", o.run.name ? "'" : "");
 		tool_fail_err(&e);
 	}
 	nthr = tool_threads(o.run.threads);

@@ -37,7 +37,7 @@ static const char usage[] =
     "        [--lazy] [--lazy-save STREAM] [--spp N] [-o OUT] [STREAM|-]";
 
 typedef struct opts {
-	const char *in, *name;
+	const char *in;
 	int flat, aa, solver, nomask, nobin, binblock, lazy, spp;
 	const char *lazy_save;
 	int ortho;
@@ -48,7 +48,7 @@ typedef struct opts {
 static void
 parse(opts *o, int argc, char **argv)
 {
-	enum { O_ORTHO = 256, O_NAME, O_SOLVER, O_FLAT, O_AA, O_NOMASK,
+	enum { O_ORTHO = 256, O_SOLVER, O_FLAT, O_AA, O_NOMASK,
 	    O_NOBIN, O_BINBLOCK, O_LAZY, O_LAZYSAVE, O_SPP };
 	static const struct option lo[] = {
 		{ "scene", 1, 0, TOOL_O_SCENE }, { "iso", 1, 0, TOOL_O_ISO },
@@ -57,7 +57,7 @@ parse(opts *o, int argc, char **argv)
 		{ "light", 1, 0, TOOL_O_LIGHT }, { "lights", 1, 0, TOOL_O_LIGHTS },
 		{ "effects", 1, 0, TOOL_O_EFFECTS },
 		{ "background", 1, 0, TOOL_O_BG },
-		{ "set", 1, 0, TOOL_O_SET }, { "name", 1, 0, O_NAME },
+		{ "set", 1, 0, TOOL_O_SET }, { "name", 1, 0, TOOL_O_NAME },
 		{ "solver", 1, 0, O_SOLVER }, { "flat", 0, 0, O_FLAT },
 		{ "no-cellmask", 0, 0, O_NOMASK },
 		{ "no-binning", 0, 0, O_NOBIN },
@@ -78,7 +78,6 @@ parse(opts *o, int argc, char **argv)
 	while ((c = getopt_long(argc, argv, TOOL_RUN_SHORT, lo, NULL)) != -1) {
 		switch (c) {
 		case O_ORTHO: o->ortho = 1; break;
-		case O_NAME: o->name = optarg; break;
 		case O_SOLVER:
 			o->solver = tool_parse_enum("--solver",
 			    &vx_cell_solver_enum, optarg);
@@ -417,7 +416,7 @@ main(int argc, char **argv)
 	if (o.spp > 0)
 		s.pt_samples = o.spp;
 	/* what to draw: the named (or first) volume or mesh */
-	want = o.name ? o.name : (s.volume[0] ? s.volume : NULL);
+	want = o.run.name ? o.run.name : (s.volume[0] ? s.volume : NULL);
 	vx_grid_init(&g);
 	vx_tetmesh_init(&mesh);
 	vx_tetleaf_init(&lg);

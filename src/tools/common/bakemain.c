@@ -49,7 +49,7 @@ static const vx_enum_name side_names[] = {
 static const vx_enum sides = { "side", side_names, "?", 0 };
 
 typedef struct opts {
-	const char *in, *name, *merge;
+	const char *in, *merge;
 	int fresh, all, fixed, lazy;
 	int has_bounces, bounces, has_range, has_first, has_samples, high;
 	int order, channels;
@@ -66,7 +66,7 @@ typedef struct opts {
 static void
 parse(opts *o, int argc, char **argv)
 {
-	enum { O_NAME = 256, O_SCALE, O_SAMPLES, O_TARGET, O_ROUND, O_MIN, O_BOUNCES,
+	enum { O_SCALE = 256, O_SAMPLES, O_TARGET, O_ROUND, O_MIN, O_BOUNCES,
 	    O_OFFSET, O_SEED, O_FIRST, O_RANGE, O_MARGIN, O_ALL, O_MERGE,
 	    O_FRESH, O_HALF, O_FINAL, O_FIXED, O_SIDE,
 	    O_LAZY, O_ORDER, O_CHANNELS, O_MAXMEM };
@@ -75,7 +75,7 @@ parse(opts *o, int argc, char **argv)
 		{ "light", 1, 0, TOOL_O_LIGHT },
 		{ "lights", 1, 0, TOOL_O_LIGHTS },
 		{ "effects", 1, 0, TOOL_O_EFFECTS }, { "iso", 1, 0, TOOL_O_ISO },
-		{ "name", 1, 0, O_NAME }, { "scale", 1, 0, O_SCALE },
+		{ "name", 1, 0, TOOL_O_NAME }, { "scale", 1, 0, O_SCALE },
 		{ "samples", 1, 0, O_SAMPLES },
 		{ "target-error", 1, 0, O_TARGET }, { "round", 1, 0, O_ROUND },
 		{ "min-samples", 1, 0, O_MIN }, { "bounces", 1, 0, O_BOUNCES },
@@ -101,7 +101,6 @@ parse(opts *o, int argc, char **argv)
 	vx_bake_opts_init(&o->b);
 	while ((ch = getopt_long(argc, argv, TOOL_RUN_SHORT, lo, NULL)) != -1) {
 		switch (ch) {
-		case O_NAME: o->name = optarg; break;
 		case O_SCALE:
 			o->b.scale = tool_parse_double("--scale", optarg, 1e-3,
 			    64);
@@ -310,7 +309,7 @@ tool_bake_main(int argc, char **argv, int want_sh)
 	vx_scene_init(&s);
 	tool_scene_opts_load(&s, &o.so, &st);
 	vx_grid_init(&g);
-	if (vx_grid_view_stream(&g, &st, o.name ? o.name : (s.volume[0] ?
+	if (vx_grid_view_stream(&g, &st, o.run.name ? o.run.name : (s.volume[0] ?
 	    s.volume : NULL), &gidx, &e) != 0)
 		tool_fail_err(&e);
 	nthr = tool_threads(o.run.threads);

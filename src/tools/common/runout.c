@@ -38,6 +38,7 @@ tool_run_opt(tool_run_opts *r, int c, const char *val)
 	case TOOL_O_DEPTH: r->depth = val; break;
 	case TOOL_O_NORMALS: r->normals = val; break;
 	case TOOL_O_PFM: r->pfm = val; break;
+	case TOOL_O_NAME: r->name = val; break;
 	default: return 0;
 	}
 	return 1;

@@ -55,16 +55,19 @@ typedef struct tool_scene_opts {
 	const char *name[TOOL_SCENE_MAXSET], *val[TOOL_SCENE_MAXSET];
 } tool_scene_opts;
 
-/* The options of the programs that render or bake (raycast, mip, dvr,
- * bake-irr, bake-sh): where the output goes, threads, the report on
- * standard error, and for the renderers the picture's form.  A program
- * takes the short options TOOL_RUN_SHORT, lists TOOL_RUN_LONG (and
- * TOOL_RENDER_LONG for a renderer, and any of --exposure, --depth,
- * --normals, --pfm by their TOOL_O_* codes) in its getopt_long table, and
- * gives every option its own switch does not take to tool_run_opt. */
+/* The options the programs share beyond the scene's: where the output
+ * goes, which volume, threads, the report on standard error, and for the
+ * renderers the picture's form.  A renderer or baker (raycast, mip, dvr,
+ * bake-irr, bake-sh) takes the short options TOOL_RUN_SHORT and lists
+ * TOOL_RUN_LONG (and TOOL_RENDER_LONG for a renderer, and any of --name,
+ * --exposure, --depth, --normals, --pfm by their TOOL_O_* codes) in its
+ * getopt_long table; another program (brick, macrocell, sh-rotate) lists
+ * the few it takes.  Each gives every option its own switch does not take
+ * to tool_run_opt, which takes only what the program's table lets
+ * getopt_long return. */
 enum {
 	TOOL_O_STATS = 0x4100, TOOL_O_EXPLAIN, TOOL_O_HDR, TOOL_O_BITS,
-	TOOL_O_EXPOSURE, TOOL_O_DEPTH, TOOL_O_NORMALS, TOOL_O_PFM
+	TOOL_O_EXPOSURE, TOOL_O_DEPTH, TOOL_O_NORMALS, TOOL_O_PFM, TOOL_O_NAME
 };
 #define TOOL_RUN_SHORT ":o:j:nhz:"
 #define TOOL_RUN_LONG \
@@ -76,6 +79,8 @@ enum {
 typedef struct tool_run_opts {
 	const char *out;         /* -o, --output FILE: "-" (standard output)
 	                            unless given */
+	const char *name;        /* --name NAME: the volume or mesh (NULL
+	                            unless given) */
 	long threads;            /* -j, --threads N: 0 (all cores) unless
 	                            given */
 	int zlevel;              /* -z LEVEL, 0 to 9: the zlib level of the
