@@ -40,9 +40,8 @@ parse(opts *o, int argc, char **argv)
 {
 	enum { O_PERSP = 256, O_WINDOW, O_CMAP, O_NOLAST, O_EXH };
 	static const struct option lo[] = {
-		{ "scene", 1, 0, TOOL_O_SCENE }, { "size", 1, 0, TOOL_O_SIZE },
-		{ "view", 1, 0, TOOL_O_VIEW }, { "perspective", 0, 0, O_PERSP },
-		{ "fov", 1, 0, TOOL_O_FOV }, { "name", 1, 0, TOOL_O_NAME },
+		{ "scene", 1, 0, TOOL_O_SCENE }, TOOL_SCENE_LONG_CAMERA,
+		{ "perspective", 0, 0, O_PERSP }, { "name", 1, 0, TOOL_O_NAME },
 		{ "window", 1, 0, O_WINDOW }, { "colormap", 1, 0, O_CMAP },
 		{ "no-last-t", 0, 0, O_NOLAST }, { "exhaustive", 0, 0, O_EXH },
 		{ "depth", 1, 0, TOOL_O_DEPTH },

@@ -51,13 +51,8 @@ parse(opts *o, int argc, char **argv)
 	enum { O_ORTHO = 256, O_SOLVER, O_FLAT, O_AA, O_NOMASK,
 	    O_NOBIN, O_BINBLOCK, O_LAZY, O_LAZYSAVE, O_SPP };
 	static const struct option lo[] = {
-		{ "scene", 1, 0, TOOL_O_SCENE }, { "iso", 1, 0, TOOL_O_ISO },
-		{ "size", 1, 0, TOOL_O_SIZE }, { "view", 1, 0, TOOL_O_VIEW },
-		{ "ortho", 0, 0, O_ORTHO }, { "fov", 1, 0, TOOL_O_FOV },
-		{ "light", 1, 0, TOOL_O_LIGHT }, { "lights", 1, 0, TOOL_O_LIGHTS },
-		{ "effects", 1, 0, TOOL_O_EFFECTS },
-		{ "background", 1, 0, TOOL_O_BG },
-		{ "set", 1, 0, TOOL_O_SET }, { "name", 1, 0, TOOL_O_NAME },
+		TOOL_SCENE_LONG, { "ortho", 0, 0, O_ORTHO },
+		{ "name", 1, 0, TOOL_O_NAME },
 		{ "solver", 1, 0, O_SOLVER }, { "flat", 0, 0, O_FLAT },
 		{ "no-cellmask", 0, 0, O_NOMASK },
 		{ "no-binning", 0, 0, O_NOBIN },

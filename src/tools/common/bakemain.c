@@ -71,10 +71,8 @@ parse(opts *o, int argc, char **argv)
 	    O_FRESH, O_HALF, O_FINAL, O_FIXED, O_SIDE,
 	    O_LAZY, O_ORDER, O_CHANNELS, O_MAXMEM };
 	static const struct option lo[] = {
-		{ "scene", 1, 0, TOOL_O_SCENE }, { "set", 1, 0, TOOL_O_SET },
-		{ "light", 1, 0, TOOL_O_LIGHT },
-		{ "lights", 1, 0, TOOL_O_LIGHTS },
-		{ "effects", 1, 0, TOOL_O_EFFECTS }, { "iso", 1, 0, TOOL_O_ISO },
+		{ "scene", 1, 0, TOOL_O_SCENE }, { "iso", 1, 0, TOOL_O_ISO },
+		TOOL_SCENE_LONG_LIGHTS,
 		{ "name", 1, 0, TOOL_O_NAME }, { "scale", 1, 0, O_SCALE },
 		{ "samples", 1, 0, O_SAMPLES },
 		{ "target-error", 1, 0, O_TARGET }, { "round", 1, 0, O_ROUND },

@@ -48,6 +48,20 @@ enum {
 	TOOL_O_SET, TOOL_O_ISO, TOOL_O_SIZE, TOOL_O_VIEW, TOOL_O_FOV,
 	TOOL_O_LIGHT, TOOL_O_LIGHTS, TOOL_O_EFFECTS, TOOL_O_BG
 };
+/* Their getopt_long entries: TOOL_SCENE_LONG all of them; a program that
+ * takes some lists --scene (and --iso, --background) itself beside the
+ * camera's (--size, --view, --fov) or the lights' (--set, --light,
+ * --lights, --effects). */
+#define TOOL_SCENE_LONG_CAMERA \
+	{ "size", 1, 0, TOOL_O_SIZE }, { "view", 1, 0, TOOL_O_VIEW }, \
+	{ "fov", 1, 0, TOOL_O_FOV }
+#define TOOL_SCENE_LONG_LIGHTS \
+	{ "set", 1, 0, TOOL_O_SET }, { "light", 1, 0, TOOL_O_LIGHT }, \
+	{ "lights", 1, 0, TOOL_O_LIGHTS }, { "effects", 1, 0, TOOL_O_EFFECTS }
+#define TOOL_SCENE_LONG \
+	{ "scene", 1, 0, TOOL_O_SCENE }, { "iso", 1, 0, TOOL_O_ISO }, \
+	{ "background", 1, 0, TOOL_O_BG }, TOOL_SCENE_LONG_CAMERA, \
+	TOOL_SCENE_LONG_LIGHTS
 #define TOOL_SCENE_MAXSET 64
 typedef struct tool_scene_opts {
 	const char *file;        /* --scene, or NULL */
