@@ -12,7 +12,7 @@
 
 #define KD 1.0
 #define KS 0.2
-#define SHININESS 32.0
+#define SHININESS 32.0          /* surface_f squares 5 times */
 
 void
 vx_dvr_opts_init(vx_dvr_opts *o)
@@ -492,22 +492,6 @@ clear_run(const frame *f, const double p[3], const double dp[3])
 	return !(j >= 0) ? 1 : j >= 1 << 30 ? 1 << 30 : (int)j + 1;
 }
 
-/* gradient: the world gradient at index point p (central differences of
- * the interpolated value, one voxel either side). */
-static void
-gradient(const vx_grid *g, const double p[3], double grad[3])
-{
-	for (int a = 0; a < 3; a++) {
-		double q[3] = { p[0], p[1], p[2] }, v1, v0;
-
-		q[a] = p[a] + 1;
-		v1 = vx_grid_trilinear(g, q);
-		q[a] = p[a] - 1;
-		v0 = vx_grid_trilinear(g, q);
-		grad[a] = (v1 - v0) / (2 * g->spacing[a]);
-	}
-}
-
 /* value: the trilinear value at index point p clamped into the volume:
  * vx_grid_trilinear's cell and weights, its lerps in single precision
  * (the samples' own precision); a volume with an axis of one sample goes
@@ -541,6 +525,22 @@ value(const frame *f, const double p[3])
 	return e0 + (e2 - e0) * l[2];
 }
 
+/* gradient: the world gradient at index point p (central differences of
+ * the interpolated value, one voxel either side). */
+static void
+gradient(const frame *f, const double p[3], double grad[3])
+{
+	for (int a = 0; a < 3; a++) {
+		double q[3] = { p[0], p[1], p[2] }, v1, v0;
+
+		q[a] = p[a] + 1;
+		v1 = value(f, q);
+		q[a] = p[a] - 1;
+		v0 = value(f, q);
+		grad[a] = (v1 - v0) / (2 * f->g->spacing[a]);
+	}
+}
+
 /* sample: classification of the sample at index point p, as the table's
  * quads (vx_tf_lut_at: q[0] sigma, color; q[1] ltr, surface); *grad gets
  * the gradient when classification looks at its magnitude (a table or a
@@ -560,7 +560,7 @@ sample(const frame *f, const double p[3], vx_f4 q[2], double grad[3],
 		return;
 	}
 	if (f->class_g) {
-		gradient(f->g, p, grad);
+		gradient(f, p, grad);
 		gm = sqrt(vx_dot3(grad, grad));
 		*has_grad = 1;
 	}
@@ -611,13 +611,17 @@ static double
 surface_f(const frame *f, const double n[3], const double l[3],
     const double v[3])
 {
-	double r = KD * fmax(0, vx_dot3(n, l));
+	double nl = vx_dot3(n, l), r = KD * (nl > 0 ? nl : 0);
 
 	if (f->d->specular) {
-		double h[3] = { l[0] + v[0], l[1] + v[1], l[2] + v[2] };
+		double h[3] = { l[0] + v[0], l[1] + v[1], l[2] + v[2] }, x;
 
 		vx_unit3(h);
-		r += KS * pow(fmax(0, vx_dot3(n, h)), SHININESS);
+		x = vx_dot3(n, h);
+		x = x > 0 ? x : 0;
+		for (int i = 0; i < 5; i++)    /* x^SHININESS, 2^5 */
+			x *= x;
+		r += KS * x;
 	}
 	return r;
 }
@@ -680,8 +684,8 @@ radiance(const frame *f, const double w[3], const double d[3],
 			for (int a = 0; a < 3; a++) {
 				lt[a] = b[0] * pc;
 				if (f->d->scatter)
-					lt[a] += s->albedo[a] * fmax(b[1 + a] - b[0],
-					    0);
+					lt[a] += s->albedo[a] * (b[1 + a] > b[0] ?
+					    b[1 + a] - b[0] : 0);
 			}
 		} else
 			lt[0] = lt[1] = lt[2] = pc;
@@ -723,7 +727,7 @@ eye_rows(void *ctx, void *local, const vx_par_block *b)
 			if (c[0][0] <= 0)
 				continue;
 			if (!hg && f->d->surface && c[1][3] > 0)
-				gradient(g, p, grad);
+				gradient(f, p, grad);
 			a = -expm1(-c[0][0] * (double)r->ratio);
 			for (int q = 0; q < 3; q++) {
 				w[q] = g->origin[q] + p[q] * g->spacing[q];
