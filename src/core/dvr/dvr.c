@@ -578,18 +578,17 @@ sample(const frame *f, const double p[3], vx_f4 q[2], double grad[3],
 	    (float)c.surface };
 }
 
-/* light_at: bilinear D, I from buffer b at light image point (px, py);
- * outside the buffer, unattenuated. */
-static void
-light_at(const frame *f, const float *b, double px, double py, double out[4])
+/* light_at: bilinear D, I from buffer b at light image point (px, py),
+ * in single precision (the buffer's); outside the buffer, unattenuated. */
+static inline vx_f4
+light_at(const frame *f, const float *b, double px, double py)
 {
-	double x = px - 0.5, y = py - 0.5, fx, fy;
+	double x = px - 0.5, y = py - 0.5;
 	int n = f->LW, x0, y0, x1, y1;
+	vx_f4 a, bb, cc, dd, fx, fy;
 
-	if (!(px >= 0 && px <= n && py >= 0 && py <= n)) {
-		out[0] = out[1] = out[2] = out[3] = 1;
-		return;
-	}
+	if (!(px >= 0 && px <= n && py >= 0 && py <= n))
+		return (vx_f4){ 1, 1, 1, 1 };
 	x = x < n - 1 ? x : n - 1;
 	x = x > 0 ? x : 0;
 	y = y < n - 1 ? y : n - 1;
@@ -598,17 +597,15 @@ light_at(const frame *f, const float *b, double px, double py, double out[4])
 	y0 = (int)y;
 	x1 = x0 + 1 < n ? x0 + 1 : x0;
 	y1 = y0 + 1 < n ? y0 + 1 : y0;
-	fx = x - x0;
-	fy = y - y0;
-	for (int c = 0; c < 4; c++) {
-		double a = b[4 * ((size_t)y0 * n + x0) + c];
-		double bb = b[4 * ((size_t)y0 * n + x1) + c];
-		double cc = b[4 * ((size_t)y1 * n + x0) + c];
-		double dd = b[4 * ((size_t)y1 * n + x1) + c];
-
-		out[c] = (1 - fy) * ((1 - fx) * a + fx * bb) +
-		    fy * ((1 - fx) * cc + fx * dd);
-	}
+	memcpy(&a, b + 4 * ((size_t)y0 * n + x0), sizeof a);
+	memcpy(&bb, b + 4 * ((size_t)y0 * n + x1), sizeof bb);
+	memcpy(&cc, b + 4 * ((size_t)y1 * n + x0), sizeof cc);
+	memcpy(&dd, b + 4 * ((size_t)y1 * n + x1), sizeof dd);
+	fx = (vx_f4){ 1, 1, 1, 1 } * (float)(x - x0);
+	fy = (vx_f4){ 1, 1, 1, 1 } * (float)(y - y0);
+	a += fx * (bb - a);
+	cc += fx * (dd - cc);
+	return a + fy * (cc - a);
 }
 
 /* surface_f: Blinn-Phong f for light direction l (unit, toward the light) and
@@ -681,12 +678,11 @@ radiance(const frame *f, const double w[3], const double d[3],
 			    v);
 		}
 		if (l->driver && f->d->light_buffer) {
-			double px, py, dep, b[4];
+			double px, py, dep;
+			vx_f4 b = { 1, 1, 1, 1 };
 
 			if (vx_camera_project(&f->geo->light, w, &px, &py, &dep))
-				light_at(f, f->cur, px, py, b);
-			else
-				b[0] = b[1] = b[2] = b[3] = 1;
+				b = light_at(f, f->cur, px, py);
 			for (int a = 0; a < 3; a++) {
 				lt[a] = b[0] * pc;
 				if (f->d->scatter)
@@ -767,11 +763,11 @@ blur(const frame *f, int x, int y, double rad, double out[3])
 	int ns = f->o->blur_samples;
 	uint64_t stream = (uint64_t)y * (uint64_t)f->LW + (uint64_t)x;
 
-	out[0] = out[1] = out[2] = 0;
+	vx_f4 sum = { 0, 0, 0, 0 };
 	uint64_t h = 0;
 
 	for (int j = 0; j < ns; j++) {
-		double u1, r, b[4];
+		double u1, r;
 		const double *d;
 
 		/* one hash gives two points: four 16-bit numbers, ample for a
@@ -784,14 +780,11 @@ blur(const frame *f, int x, int y, double rad, double out[3])
 		h >>= 32;
 		r = rad * sqrt(u1);
 
-		light_at(f, f->cur, x + 0.5 + r * d[0], y + 0.5 + r * d[1], b);
-		out[0] += b[1];
-		out[1] += b[2];
-		out[2] += b[3];
+		sum += light_at(f, f->cur, x + 0.5 + r * d[0], y + 0.5 + r * d[1]);
 	}
-	out[0] /= ns;
-	out[1] /= ns;
-	out[2] /= ns;
+	out[0] = (double)sum[1] / ns;
+	out[1] = (double)sum[2] / ns;
+	out[2] = (double)sum[3] / ns;
 }
 
 static int
