@@ -6,6 +6,7 @@
 
 #include "vx_dvr.h"
 #include "vx_par.h"
+#include "vx_perturb.h"
 #include "vx_phase.h"
 #include "vx_rng.h"
 #include "vx_vec.h"
@@ -52,7 +53,7 @@ vx_dvr_plan(const vx_scene *s, const vx_tf *tf, const vx_dvr_opts *o,
 	d->light_buffer = (want_shadow || want_scatter) && d->driver >= 0;
 	d->scatter = want_scatter && d->light_buffer;
 	d->gradient = vx_tf_needs_gradient(tf);
-	d->surface = tf->surface.n > 0;
+	d->surface = vx_tf_has_surface(tf);
 	d->specular = d->surface && (s->effects & VX_FX_SPECULAR);
 	d->g = s->has_medium && s->phase == VX_PHASE_HENYEY_GREENSTEIN ?
 	    s->phase_g : 0;
@@ -94,14 +95,15 @@ vx_dvr_plan(const vx_scene *s, const vx_tf *tf, const vx_dvr_opts *o,
 		vx_plan_add(p, "phase", VX_PLAN_OFF, 0, "isotropic");
 	vx_plan_add(p, "gradient", d->gradient ? VX_PLAN_ON : VX_PLAN_OFF, 0,
 	    "%s", d->gradient ? "central differences (6 more samples per "
-	    "sample): the transfer function has a table, a gradient or a "
-	    "surface list" : "the transfer function needs none (no table, "
-	    "gradient or surface list)");
+	    "sample): the transfer function has a table, a gradient list or "
+	    "a surface list or ramp" : "the transfer function needs none (no "
+	    "table, gradient list or surface list or ramp)");
 	vx_plan_add(p, "surface shading", d->surface ? VX_PLAN_ON :
 	    VX_PLAN_OFF, 0, "%s", d->surface ? (d->specular ? "Blinn-Phong, "
-	    "diffuse and specular, weighted by the surface list" :
+	    "diffuse and specular, weighted by the surface list or ramp" :
 	    "Blinn-Phong, diffuse only (no specular effect), weighted by the "
-	    "surface list") : "no surface list: volume shading only");
+	    "surface list or ramp") : "no surface list or ramp: volume "
+	    "shading only");
 	vx_plan_add(p, "empty-space skipping", o->no_skip ? VX_PLAN_OFF :
 	    VX_PLAN_ON, 0, "%s", o->no_skip ? "--no-skip: every sample "
 	    "classified" : "samples in level-1 macrocells whose [min, max] "
@@ -135,6 +137,14 @@ vx_dvr_plan(const vx_scene *s, const vx_tf *tf, const vx_dvr_opts *o,
 	if (s->effects & VX_FX_INTERREFLECTION)
 		vx_plan_add(p, "interreflection", VX_PLAN_UNSUPPORTED, 0,
 		    "not computed by dvr");
+	{
+		vx_perturb pt;
+		vx_err e;
+
+		if (vx_perturb_init(&pt, s, &e) != 0)
+			vx_perturb_none(&pt);
+		vx_perturb_plan(&pt, s, p);
+	}
 }
 
 /* ---- geometry ---- */
@@ -297,6 +307,7 @@ typedef struct frame {
 	                             index share, per axis */
 	double dir[256][2];       /* the blur's directions: cos, sin */
 	vx_phase_table phase;
+	vx_perturb pt;            /* the scene's perturbation (or none) */
 	int class_g;              /* classification needs the gradient */
 	int W, H;                 /* eye image */
 	int LW;                   /* light buffer edge */
@@ -400,39 +411,16 @@ skip(const frame *f, const double p[3])
 	return f->clear[c];
 }
 
-/* gradient: the world gradient at index point p (central differences of
- * the interpolated value, one voxel either side). */
-static void
-gradient(const vx_grid *g, const double p[3], double grad[3])
-{
-	for (int a = 0; a < 3; a++) {
-		double q[3] = { p[0], p[1], p[2] }, v1, v0;
-
-		q[a] = p[a] + 1;
-		v1 = vx_grid_trilinear(g, q);
-		q[a] = p[a] - 1;
-		v0 = vx_grid_trilinear(g, q);
-		grad[a] = (v1 - v0) / (2 * g->spacing[a]);
-	}
-}
-
-/* sample: classification of the sample at index point p; *grad gets the
- * gradient when classification looks at its magnitude (a table or a
- * gradient list: *has_grad 1); else the caller computes it if it needs
- * the normal. */
+/* sample: classification of the sample at index point p (of the field
+ * as perturbed, vx_perturb.h); *grad gets the gradient when
+ * classification looks at its magnitude (*has_grad 1); else the caller
+ * computes it (vx_perturb_field) if it needs the normal. */
 static void
 sample(const frame *f, const double p[3], vx_tf_sample *c, double grad[3],
     int *has_grad)
 {
-	double v = vx_grid_trilinear(f->g, p), gm = 0;
-
-	*has_grad = 0;
-	if (f->class_g) {
-		gradient(f->g, p, grad);
-		gm = sqrt(vx_dot3(grad, grad));
-		*has_grad = 1;
-	}
-	vx_tf_classify(f->tf, v, gm, c);
+	*has_grad = f->class_g;
+	vx_perturb_classify(&f->pt, f->tf, f->g, p, f->class_g, c, grad);
 }
 
 /* light_at: bilinear D, I from buffer b at light image point (px, py);
@@ -587,7 +575,7 @@ eye_rows(void *ctx, void *local, const vx_par_block *b)
 			if (c.alpha <= 0)
 				continue;
 			if (!hg && f->d->surface && c.surface > 0)
-				gradient(f->g, p, grad);
+				vx_perturb_field(&f->pt, f->g, p, grad, NULL);
 			a = vx_tf_correct(c.alpha, r->ratio);
 			radiance(f, w, r->d, &c, grad, rad);
 			if (btf) {
@@ -773,13 +761,18 @@ vx_dvr_render(const vx_scene *s, const vx_dvr_decide *d, const vx_tf *tf,
 		f.dir[i][0] = cos(2 * M_PI * (i + 0.5) / 256);
 		f.dir[i][1] = sin(2 * M_PI * (i + 0.5) / 256);
 	}
-	f.class_g = d->gradient && (tf->has_table || tf->gradient.n > 0);
+	f.class_g = d->gradient && vx_tf_class_gradient(tf);
+	if ((rc = vx_perturb_init(&f.pt, s, e)) != 0)
+		return rc;
 	vx_phase_table_hg(&f.phase, d->g);
 	if (m != NULL && !o->no_skip && m->nlev >= 1 && !m->explicit_leaves &&
 	    g->dims[0] > 1 && g->dims[1] > 1 && g->dims[2] > 1) {
 		f.m = m;
 		if ((f.clear = clear_cells(m, tf, e)) == NULL)
 			return VX_ENOMEM;
+		if ((rc = vx_perturb_clear(&f.pt, tf, g, m, (uint8_t *)f.clear,
+		    e)) != 0)
+			goto done;
 		for (int a = 0; a < 3; a++) {
 			size_t sd = a == 0 ? 1 : a == 1 ? (size_t)m->dims[1][0] :
 			    (size_t)m->dims[1][0] * (size_t)m->dims[1][1];

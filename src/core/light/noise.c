@@ -152,8 +152,11 @@ sum(const vx_noise_fbm *f, const double p[3], double grad[3], int absolute)
 		for (int a = 0; a < 3; a++)
 			q[a] = p[a] * freq + off[a];
 		v = vx_noise3_grad(s, q, grad ? g : NULL);
-		if (absolute)
-			v = fabs(v);
+		if (absolute && v < 0) {
+			v = -v;
+			for (int a = 0; a < 3 && grad != NULL; a++)
+				g[a] = -g[a];
+		}
 		total += amp * v;
 		if (grad != NULL)
 			for (int a = 0; a < 3; a++)
@@ -178,4 +181,11 @@ double
 vx_noise_turbulence(const vx_noise_fbm *f, const double p[3])
 {
 	return sum(f, p, NULL, 1);
+}
+
+double
+vx_noise_turbulence_grad(const vx_noise_fbm *f, const double p[3],
+    double grad[3])
+{
+	return sum(f, p, grad, 1);
 }

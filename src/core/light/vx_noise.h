@@ -67,4 +67,11 @@ double vx_noise_fbm_eval(const vx_noise_fbm *f, const double p[3],
  * divided by the sum of the weights: in [0, 1]. */
 double vx_noise_turbulence(const vx_noise_fbm *f, const double p[3]);
 
+/* vx_noise_turbulence_grad: the same value, and in grad (may be NULL) its
+ * gradient where it has one: each octave's |noise| contributes
+ * sign(noise) times the noise's gradient (at a zero, the gradient
+ * itself). */
+double vx_noise_turbulence_grad(const vx_noise_fbm *f, const double p[3],
+    double grad[3]);
+
 #endif
