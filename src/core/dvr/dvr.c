@@ -137,14 +137,7 @@ vx_dvr_plan(const vx_scene *s, const vx_tf *tf, const vx_dvr_opts *o,
 	if (s->effects & VX_FX_INTERREFLECTION)
 		vx_plan_add(p, "interreflection", VX_PLAN_UNSUPPORTED, 0,
 		    "not computed by dvr");
-	{
-		vx_perturb pt;
-		vx_err e;
-
-		if (vx_perturb_init(&pt, s, &e) != 0)
-			vx_perturb_none(&pt);
-		vx_perturb_plan(&pt, s, p);
-	}
+	vx_perturb_plan(s, p);
 }
 
 /* ---- geometry ---- */

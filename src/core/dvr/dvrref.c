@@ -88,14 +88,7 @@ vx_dvrref_plan(const vx_scene *s, const vx_tf *tf, const vx_dvr_decide *d,
 		    "reference for it)");
 	vx_plan_add(p, "empty-space skipping", VX_PLAN_OFF, 0, "every sample "
 	    "classified");
-	{
-		vx_perturb pb;
-		vx_err e;
-
-		if (vx_perturb_init(&pb, s, &e) != 0)
-			vx_perturb_none(&pb);
-		vx_perturb_plan(&pb, s, p);
-	}
+	vx_perturb_plan(s, p);
 }
 
 /* ---- the frame ---- */

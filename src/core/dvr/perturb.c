@@ -67,7 +67,7 @@ vx_perturb_init(vx_perturb *pt, const vx_scene *s, vx_err *e)
 }
 
 void
-vx_perturb_plan(const vx_perturb *pt, const vx_scene *s, vx_plan *p)
+vx_perturb_plan(const vx_scene *s, vx_plan *p)
 {
 	static const char *what[VX_PERTURB_N] = {
 		"the data coordinates displaced by A x a vector",
@@ -75,7 +75,11 @@ vx_perturb_plan(const vx_perturb *pt, const vx_scene *s, vx_plan *p)
 		"the extinction multiplied by max(0, 1 + A x",
 	};
 	char name[VX_PLAN_NAME];
+	vx_perturb pb, *pt = &pb;
+	vx_err e;
 
+	if (vx_perturb_init(pt, s, &e) != 0)
+		vx_perturb_none(pt);
 	if (!pt->any) {
 		int given = 0;
 

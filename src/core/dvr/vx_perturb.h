@@ -58,9 +58,10 @@ int vx_perturb_init(vx_perturb *pt, const vx_scene *s, vx_err *e);
 /* vx_perturb_none: no perturbation (what a renderer uses without one). */
 void vx_perturb_none(vx_perturb *pt);
 
-/* vx_perturb_plan: one plan item per target: on (its noise and knobs) or
- * off, and one saying nothing is perturbed when no target is on. */
-void vx_perturb_plan(const vx_perturb *pt, const vx_scene *s, vx_plan *p);
+/* vx_perturb_plan: the plan items of scene s's perturbation: one per
+ * target that is on (its noise and knobs), or one saying nothing is
+ * perturbed (and why) when none is. */
+void vx_perturb_plan(const vx_scene *s, vx_plan *p);
 
 /* vx_perturb_field: the perturbed field F' at index point p of g; with
  * grad non-NULL its world gradient (above); *density (may be NULL) the
