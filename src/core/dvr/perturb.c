@@ -26,6 +26,7 @@ fbm_of(vx_noise_fbm *f, const vx_scene_perturb *q, int t, int c)
 	f->frequency = 1 / q->scale;
 	f->lacunarity = q->lacunarity;
 	f->gain = q->gain;
+	vx_noise_fbm_prepare(f);
 }
 
 int

@@ -146,8 +146,15 @@ sum(const vx_noise_fbm *f, const double p[3], double grad[3], int absolute)
 	double gsum[3] = { 0, 0, 0 };
 
 	for (int o = 0; o < f->octaves; o++) {
-		double off[3], q[3], g[3], v;
-		uint64_t s = octave(f->seed, o, off);
+		double offd[3], q[3], g[3], v;
+		const double *off = offd;
+		uint64_t s;
+
+		if (f->prepared == f->seed + 1 && o < VX_NOISE_MAX_OCTAVES) {
+			s = f->oseed_[o];
+			off = f->off_[o];
+		} else
+			s = octave(f->seed, o, offd);
 
 		for (int a = 0; a < 3; a++)
 			q[a] = p[a] * freq + off[a];
@@ -169,6 +176,15 @@ sum(const vx_noise_fbm *f, const double p[3], double grad[3], int absolute)
 		for (int a = 0; a < 3; a++)
 			grad[a] = gsum[a] / wsum;
 	return total / wsum;
+}
+
+void
+vx_noise_fbm_prepare(vx_noise_fbm *f)
+{
+	/* every octave: a later change of the octave count stays right */
+	for (int o = 0; o < VX_NOISE_MAX_OCTAVES; o++)
+		f->oseed_[o] = octave(f->seed, o, f->off_[o]);
+	f->prepared = f->seed + 1;
 }
 
 double
