@@ -350,6 +350,13 @@ surface_ramp(void **state)
 			    1e-15);
 			assert_true(c.alpha == 0.5);    /* the ramp is the surface's */
 		}
+		{
+			/* no classification table: it has no gradient axis */
+			vx_tf_lut lut;
+
+			assert_int_equal(vx_tf_lut_build(&lut, &tf, 0, 1, 16, &e),
+			    VX_EDATA);
+		}
 		vx_tf_free(&tf);
 	}
 }
