@@ -22,9 +22,9 @@ static const char usage[] =
     "    [--fov DEG] [--light SPEC] [--lights none] [--effects WORDS]\n"
     "    [--background R,G,B] [--set LINE] [--name NAME] [--slices N]\n"
     "    [--light-size N] [--blur-angle DEG] [--blur-samples N] [--seed N]\n"
-    "    [--no-skip] [--tf-table N] [--cutoff T] [-j N] [--stats] [--explain]\n"
-    "    [-n] [--hdr] [-z LEVEL] [--pfm FILE] [--bits 8|16] [--exposure STOPS]\n"
-    "    [-o OUT] [STREAM|-]\n"
+    "    [--no-skip] [--no-jitter] [--tf-table N] [--cutoff T] [-j N]\n"
+    "    [--stats] [--explain] [-n] [--hdr] [-z LEVEL] [--pfm FILE]\n"
+    "    [--bits 8|16] [--exposure STOPS] [-o OUT] [STREAM|-]\n"
     "    [--reference raymarch|pathtrace [--spp N] [--bounces N]\n"
     "    [--march-step S]]";
 
@@ -45,7 +45,7 @@ parse(opts *o, int argc, char **argv)
 {
 	enum { O_ORTHO = 256, O_NAME, O_SLICES, O_LSIZE, O_BANGLE, O_BSAMP,
 	    O_SEED, O_NOSKIP, O_STATS, O_EXPLAIN, O_HDR, O_BITS, O_EXPOSURE,
-	    O_PFM, O_REF, O_SPP, O_BOUNCES, O_MSTEP, O_TFTABLE, O_CUTOFF };
+	    O_PFM, O_REF, O_SPP, O_BOUNCES, O_MSTEP, O_TFTABLE, O_CUTOFF, O_NOJITTER };
 	static const struct option lo[] = {
 		{ "scene", 1, 0, TOOL_O_SCENE },
 		{ "size", 1, 0, TOOL_O_SIZE }, { "view", 1, 0, TOOL_O_VIEW },
@@ -59,6 +59,7 @@ parse(opts *o, int argc, char **argv)
 		{ "blur-samples", 1, 0, O_BSAMP }, { "seed", 1, 0, O_SEED },
 		{ "no-skip", 0, 0, O_NOSKIP }, { "stats", 0, 0, O_STATS },
 		{ "tf-table", 1, 0, O_TFTABLE }, { "cutoff", 1, 0, O_CUTOFF },
+		{ "no-jitter", 0, 0, O_NOJITTER },
 		{ "explain", 0, 0, O_EXPLAIN }, { "dry-run", 0, 0, 'n' },
 		{ "hdr", 0, 0, O_HDR }, { "bits", 1, 0, O_BITS },
 		{ "exposure", 1, 0, O_EXPOSURE }, { "pfm", 1, 0, O_PFM },
@@ -104,6 +105,7 @@ parse(opts *o, int argc, char **argv)
 			    0x7fffffffffffffffL);
 			break;
 		case O_NOSKIP: o->d.no_skip = 1; break;
+		case O_NOJITTER: o->d.jitter = 0; break;
 		case O_TFTABLE:
 			o->d.tf_table = (int)tool_parse_long("--tf-table", optarg,
 			    0, VX_TF_MAX_LUT);

@@ -205,6 +205,7 @@ slab_shadow(void **state)
 	(void)state;
 	vx_dvr_opts_init(&o);
 	o.light_size = 16;
+	o.jitter = 0;      /* the oracle counts samples on the voxel planes */
 	for (int i = 0; i < 3; i++)
 		for (int sh = 0; sh < 2; sh++) {
 			vx_grid g;
