@@ -119,7 +119,7 @@ frame(const mode *md, const vx_grid *g, const vx_macro *m, int have_m,
 	vx_raycast_opts_init(&ro);
 	ro.nthreads = nthreads;
 	ro.irr = md->irr;
-	ro.irr_interp = VX_IRR_TRILINEAR;
+	ro.irr_interp = VX_INTERP_TRILINEAR;
 	vx_image_init(&color);
 	if (vx_raycast_render(&s, &plan, g, have_m ? m : NULL, NULL, &ro,
 	    &color, NULL, NULL, &rs, &e) != 0)

@@ -218,18 +218,27 @@ lookup_modes(void **state)
 		fill(&v, 1);
 		for (int a = 0; a < 3; a++)
 			u[a] = p[a] / v.step[a];
-		assert_int_equal(vx_irr_lookup(&v, p, VX_IRR_TRILINEAR, &g, 0,
+		assert_int_equal(vx_irr_lookup(&v, p, VX_INTERP_TRILINEAR, &g, 0,
 		    rgb), 1);
 		assert_true(fabs(rgb[0] - u[0]) < 1e-5);
 		assert_true(fabs(rgb[1] - (u[1] + 0.5)) < 1e-5);
 		assert_true(fabs(rgb[2] - u[2] * 0.25) < 1e-5);
-		assert_int_equal(vx_irr_lookup(&v, p, VX_IRR_NEAREST, &g, 0,
+		/* the unknown mode (a zeroed options record) reads as
+		 * trilinear, bit for bit */
+		{
+			double t[3];
+
+			assert_int_equal(vx_irr_lookup(&v, p, VX_INTERP_UNKNOWN,
+			    &g, 0, t), 1);
+			assert_memory_equal(t, rgb, sizeof t);
+		}
+		assert_int_equal(vx_irr_lookup(&v, p, VX_INTERP_NEAREST, &g, 0,
 		    rgb), 1);
 		assert_true(fabs(rgb[0] - floor(u[0] + 0.5)) < 1e-6);
 		assert_true(fabs(rgb[2] - floor(u[2] + 0.5) * 0.25) < 1e-6);
 		/* tricubic B-spline reproduces linear functions in the
 		 * interior too (it is exact for degree 1) */
-		assert_int_equal(vx_irr_lookup(&v, p, VX_IRR_TRICUBIC, &g, 0,
+		assert_int_equal(vx_irr_lookup(&v, p, VX_INTERP_TRICUBIC, &g, 0,
 		    rgb), 1);
 		assert_true(fabs(rgb[0] - u[0]) < 1e-5);
 		/* nearest-iso: the texel whose value is closest to iso; with
@@ -242,7 +251,7 @@ lookup_modes(void **state)
 			for (int a = 0; a < 3; a++)
 				b[a] = (int64_t)floor(u[a]);
 			vx_irr_texel_point(&v, b[0] + 1, b[1] + 1, b[2] + 1, q);
-			assert_int_equal(vx_irr_lookup(&v, p, VX_IRR_NEAREST_ISO,
+			assert_int_equal(vx_irr_lookup(&v, p, VX_INTERP_NEAREST_ISO,
 			    &g, q[0] + 2 * q[1] + 3 * q[2], rgb), 1);
 			assert_true(fabs(rgb[0] - (double)(b[0] + 1)) < 1e-6);
 			assert_true(fabs(rgb[2] - (double)(b[2] + 1) * 0.25) <
@@ -268,13 +277,13 @@ lookup_modes(void **state)
 				    VX_TEXEL_NAN;
 		}
 		vx_irr_finish(&v);
-		assert_int_equal(vx_irr_lookup(&v, p, VX_IRR_TRILINEAR, &g, 0,
+		assert_int_equal(vx_irr_lookup(&v, p, VX_INTERP_TRILINEAR, &g, 0,
 		    rgb), 1);
 		assert_true(fabs(rgb[0] - 4) < 1e-6);   /* texel (4,4,4) alone */
 		s = vx_irr_texel(&v, 4, 4, 4);
 		vx_irr_accp(&v, s)->flags |= VX_TEXEL_FLAT;
 		vx_irr_finish(&v);
-		assert_int_equal(vx_irr_lookup(&v, p, VX_IRR_TRILINEAR, &g, 0,
+		assert_int_equal(vx_irr_lookup(&v, p, VX_INTERP_TRILINEAR, &g, 0,
 		    rgb), 0);
 		assert_true(rgb[0] == 0 && rgb[1] == 0 && rgb[2] == 0);
 		vx_irr_free(&v);
@@ -382,7 +391,7 @@ trilinear_matches_formula(void **state)
 					want[c] /= ws;
 			if (!(ws > 0))
 				want[0] = want[1] = want[2] = 0;
-			ok = vx_irr_lookup(&v, p, VX_IRR_TRILINEAR, &g, 0, got);
+			ok = vx_irr_lookup(&v, p, VX_INTERP_TRILINEAR, &g, 0, got);
 			assert_int_equal(ok, ws > 0);
 			assert_memory_equal(got, want, sizeof got);
 			if ((b[0] % 8 == 7) || (b[1] % 8 == 7) || (b[2] % 8 == 7))

@@ -16,12 +16,6 @@ static const vx_enum_name store_names[] = {
 };
 const vx_enum vx_irr_store_enum = { "store", store_names, "?", 0 };
 
-static const vx_enum_name interp_names[] = {
-	{ "trilinear", VX_IRR_TRILINEAR }, { "nearest", VX_IRR_NEAREST },
-	{ "nearest-iso", VX_IRR_NEAREST_ISO }, { "tricubic", VX_IRR_TRICUBIC },
-	{ NULL, -1 }
-};
-const vx_enum vx_irr_interp_enum = { "interpolation", interp_names, "?", 0 };
 
 void
 vx_irr_init(vx_irrvol *v)
@@ -422,7 +416,7 @@ lattice_coord(const vx_irrvol *v, const double p[3], int64_t b[3],
 /* weights: the texels and raw weights of a lookup; *ws gets their sum
  * (n = 0 when it is not positive) */
 static int
-weights(const vx_irrvol *v, const double p[3], vx_irr_interp m,
+weights(const vx_irrvol *v, const double p[3], vx_interp m,
     const vx_grid *g, double iso, int64_t idx[64], double w[64], double *ws)
 {
 	int64_t b[3];
@@ -432,7 +426,7 @@ weights(const vx_irrvol *v, const double p[3], vx_irr_interp m,
 	*ws = 1;
 
 	lattice_coord(v, p, b, f);
-	if (m == VX_IRR_NEAREST) {
+	if (m == VX_INTERP_NEAREST) {
 		int64_t s = vx_irr_texel(v, b[0] + (f[0] >= 0.5),
 		    b[1] + (f[1] >= 0.5), b[2] + (f[2] >= 0.5));
 
@@ -441,9 +435,9 @@ weights(const vx_irrvol *v, const double p[3], vx_irr_interp m,
 			w[0] = 1;
 			return 1;
 		}
-		m = VX_IRR_TRILINEAR;  /* unusable nearest: its neighbours */
+		m = VX_INTERP_TRILINEAR;  /* unusable nearest: its neighbours */
 	}
-	if (m == VX_IRR_NEAREST_ISO) {
+	if (m == VX_INTERP_NEAREST_ISO) {
 		double best = INFINITY;
 		int64_t bs = -1;
 
@@ -467,7 +461,7 @@ weights(const vx_irrvol *v, const double p[3], vx_irr_interp m,
 		w[0] = 1;
 		return 1;
 	}
-	if (m == VX_IRR_TRICUBIC) {
+	if (m == VX_INTERP_TRICUBIC) {
 		double wt3[3][4];
 
 		for (int a = 0; a < 3; a++)
@@ -506,7 +500,7 @@ weights(const vx_irrvol *v, const double p[3], vx_irr_interp m,
 }
 
 int
-vx_irr_weights(const vx_irrvol *v, const double p[3], vx_irr_interp m,
+vx_irr_weights(const vx_irrvol *v, const double p[3], vx_interp m,
     const vx_grid *g, double iso, int64_t idx[64], double w[64])
 {
 	double ws;
@@ -577,14 +571,15 @@ trilinear(const vx_irrvol *v, const int64_t b[3], const double f[3],
 }
 
 int
-vx_irr_lookup(const vx_irrvol *v, const double p[3], vx_irr_interp m,
+vx_irr_lookup(const vx_irrvol *v, const double p[3], vx_interp m,
     const vx_grid *g, double iso, double *out)
 {
 	int64_t idx[64];
 	double w[64], ws;
 	int n, nc = v->ncomp;
 
-	if (m == VX_IRR_TRILINEAR && v->dims[0] >= 2 && v->dims[1] >= 2 &&
+	if ((m == VX_INTERP_TRILINEAR || m == VX_INTERP_UNKNOWN) &&
+	    v->dims[0] >= 2 && v->dims[1] >= 2 &&
 	    v->dims[2] >= 2) {
 		int64_t b[3];
 		double f[3];
@@ -611,7 +606,7 @@ vx_irr_lookup(const vx_irrvol *v, const double p[3], vx_irr_interp m,
 }
 
 void
-vx_irr_reach(const vx_irrvol *v, const double p[3], vx_irr_interp m,
+vx_irr_reach(const vx_irrvol *v, const double p[3], vx_interp m,
     vx_irr_need_fn fn, void *ctx)
 {
 	int64_t b[3];
@@ -619,7 +614,7 @@ vx_irr_reach(const vx_irrvol *v, const double p[3], vx_irr_interp m,
 	int lo = 0, hi = 1;
 
 	lattice_coord(v, p, b, f);
-	if (m == VX_IRR_TRICUBIC) {
+	if (m == VX_INTERP_TRICUBIC) {
 		lo = -1;
 		hi = 2;
 	}

@@ -53,6 +53,7 @@ vx_raycast_opts_init(vx_raycast_opts *o)
 	o->solver = VX_CELL_EXACT;
 	o->aa = 1;
 	o->tile = 16;
+	o->irr_interp = VX_INTERP_TRILINEAR;
 	o->shadow_offset = 1e-3;
 }
 
