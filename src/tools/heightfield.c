@@ -27,9 +27,10 @@ static const char usage[] =
     "[--spacing SX,SY,SZ] [--name NAME] [-z LEVEL] [-o OUT] [MAP|-]";
 
 typedef struct opts {
-	const char *in, *out, *name;
-	int nz, zlevel;
+	const char *in, *name;
+	int nz;
 	double range[2], edge, thickness, spacing[3];
+	tool_run_opts run;       /* -o, -z, --name */
 } opts;
 
 static void
@@ -41,15 +42,15 @@ parse_args(opts *o, int argc, char **argv)
 		{ "edge", required_argument, NULL, 'e' },
 		{ "thickness", required_argument, NULL, 't' },
 		{ "spacing", required_argument, NULL, 's' },
-		{ "name", required_argument, NULL, 'N' },
+		{ "name", required_argument, NULL, TOOL_O_NAME },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 },
 	};
 	int ch;
 
 	memset(o, 0, sizeof *o);
-	o->out = "-";
-	o->name = "height";
+	tool_run_opts_init(&o->run);
+	o->run.zlevel = 0;       /* raw samples unless -z, as vread */
 	o->nz = 64;
 	o->range[1] = 1;
 	o->edge = 2;
@@ -84,21 +85,14 @@ parse_args(opts *o, int argc, char **argv)
 					tool_fail(VX_EUSAGE, "--spacing: '%s': three "
 					    "positive numbers", optarg);
 			break;
-		case 'N':
-			if (optarg[0] == '\0' || strlen(optarg) >= 64)
-				tool_fail(VX_EUSAGE, "--name: 1 to 63 bytes");
-			o->name = optarg;
-			break;
-		case 'z':
-			o->zlevel = (int)tool_parse_long("-z", optarg, 0, 9);
-			break;
-		case 'o':
-			o->out = optarg;
-			break;
 		default:
-			tool_opt_other(ch, usage, argv);
+			if (!tool_run_opt(&o->run, ch, optarg))
+				tool_opt_other(ch, usage, argv);
 		}
 	}
+	o->name = o->run.name != NULL ? o->run.name : "height";
+	if (o->name[0] == '\0' || strlen(o->name) >= 64)
+		tool_fail(VX_EUSAGE, "--name: 1 to 63 bytes");
 	o->in = tool_opt_input(argc, argv, usage);
 }
 
@@ -176,7 +170,7 @@ main(int argc, char **argv)
 
 	tool_init("heightfield", argc, argv);
 	parse_args(&o, argc, argv);
-	if (strcmp(o.out, "-") == 0 && isatty(STDOUT_FILENO))
+	if (strcmp(o.run.out, "-") == 0 && isatty(STDOUT_FILENO))
 		tool_fail(VX_EUSAGE, "standard output is a terminal: redirect it "
 		    "or give -o FILE");
 	read_map(&img, o.in);
@@ -221,10 +215,10 @@ main(int argc, char **argv)
 	vx_image_free(&img);
 	vx_grid_range(&g);
 	vx_stream_init(&s);
-	if (vx_grid_to_chunk_take(&g, o.zlevel, NULL, &c, &e) != 0 ||
+	if (vx_grid_to_chunk_take(&g, o.run.zlevel, NULL, &c, &e) != 0 ||
 	    vx_stream_append(&s, &c, &e) != 0)
 		tool_fail_err(&e);
-	tool_write_stream(&s, o.out);
+	tool_write_stream(&s, o.run.out);
 	vx_stream_free(&s);
 	return tool_finish();
 }
