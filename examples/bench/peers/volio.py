@@ -404,11 +404,13 @@ def read_pfm_rgb(path):
     return a if ch == 3 else np.repeat(a, 3, axis=2)
 
 
-def write_png_rgb(path, img, scale=1.0):
-    """8-bit sRGB PNG of a linear RGB image img[row, col, 3] times scale, clipped to
-    [0, 1] (the sRGB transfer curve, as voxlux's PNGs)."""
+def write_png_rgb(path, img, scale=1.0, srgb=True):
+    """8-bit PNG of an RGB image img[row, col, 3] times scale, clipped to [0, 1]:
+    with srgb, a linear image through the sRGB transfer curve (as voxlux's PNGs);
+    without, the codes are linear in the values (difference images)."""
     x = np.clip(np.nan_to_num(np.asarray(img, dtype=np.float64)) * scale, 0, 1)
-    x = np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1 / 2.4) - 0.055)
+    if srgb:
+        x = np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1 / 2.4) - 0.055)
     g = (x * 255 + 0.5).astype(np.uint8)
     h, w, _ = g.shape
     raw = b"".join(b"\x00" + g[r].tobytes() for r in range(h))
