@@ -32,10 +32,14 @@ shared machine hits every configuration alike):
 voxlux's time is the frame dvr --stats reports (reading the stream and building
 macrocells excluded: the macrocells come with the stream).  Every tool's process wall
 time is recorded too (it includes reading the volume, and VTK's Python start and
-warm-up render).
+warm-up render), and CPU time (user + system): teem-miter's whole process, VTK's
+process during the timed Render(), dvr's whole process (os.wait4's usage; reading the
+stream, measured once by `dvr -n`, is a small part).  On a machine shared with other
+jobs the wall times swing by several times from one run to the next; CPU time swings
+far less, so the tables give both.
 
 Ratios pair two runs of the same round; the tables give the median of the per-round
-ratios and the ratio of the minima.
+ratios and the ratio of the minima, of wall and of CPU time.
 
 Pictures: before the rounds, miter renders once more with early ray termination off
 (-n1 1: it composites every sample, as dvr does); voxlux's unshaded picture is compared
@@ -96,13 +100,18 @@ def log(msg):
 
 
 def run(cmd):
-    """Run a command (list); (stdout + stderr, wall seconds); fail loudly."""
+    """Run a command (list); (stdout + stderr, wall seconds, CPU seconds of the process
+    and the children it waited for, user + system); fail loudly."""
     t0 = time.perf_counter()
-    p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    out = p.stdout.read()
+    _, status, ru = os.wait4(p.pid, 0)
     dt = time.perf_counter() - t0
+    p.returncode = os.waitstatus_to_exitcode(status)
+    p.stdout.close()
     if p.returncode != 0:
-        sys.exit("dvrpeers.py: failed (%d): %s\n%s" % (p.returncode, " ".join(cmd), p.stdout[-2000:]))
-    return p.stdout, dt
+        sys.exit("dvrpeers.py: failed (%d): %s\n%s" % (p.returncode, " ".join(cmd), out[-2000:]))
+    return out, dt, ru.ru_utime + ru.ru_stime
 
 
 def sh(cmd):
@@ -129,6 +138,7 @@ class Bench:
         self.prep = []
         self.cam = {}
         self.stats = {}
+        self.read_cpu = {}
 
     def path(self, *parts):
         return os.path.join(self.out, *parts)
@@ -156,13 +166,18 @@ class Bench:
              "--range", str(rng[0]), str(rng[1])]
         self.prep.append(" ".join(c))
         run(c)
+        # what reading the stream costs dvr (its plan, no frame): in voxlux's CPU time
+        c = [os.path.join(self.vx, "dvr"), "--scene", self.path(d + "-lit.scn"), "-n",
+             self.path(d + ".vxs")]
+        self.read_cpu[d] = 1e3 * min(run(c)[2] for _ in range(3))
+        self.prep.append(" ".join(c) + "   # CPU %.0f ms (reading, planning)" % self.read_cpu[d])
 
     # ---- one run of each tool ----
     def miter(self, d, near1="0.99", tag="miter"):
         cmd = ["sh", os.path.join(PEERS, "dvr_miter.sh"), "-n", "1", "-j", str(self.a.threads),
                "-t", near1, self.path(d + ".nrrd"), self.path(d + ".txf"),
                self.path("%s-%s.pfm" % (d, tag))] + self.cam[d]
-        text, wall = run(cmd)
+        text, wall, cpu = run(cmd)
         return cmd, {"ms": num("render_ms", text), "proc_ms": num("wall_ms", text),
                      "cpu_ms": num("cpu_ms", text)}
 
@@ -172,7 +187,7 @@ class Bench:
                "--scene", DATASETS[d][2], "-o", self.path("%s-%s.pfm" % (d, tag)),
                "--runs", "1", "--threads", str(self.a.threads)] + \
             (["--shade"] if shade else []) + self.cam[d]
-        text, wall = run(cmd)
+        text, wall, cpu = run(cmd)
         return cmd, {"ms": num("render_ms", text), "cpu_ms": num("render_cpu_ms", text),
                      "first_ms": num("first_ms", text), "proc_ms": 1e3 * wall}
 
@@ -181,7 +196,7 @@ class Bench:
         cmd = [os.path.join(self.vx, "dvr"), "--scene", self.path("%s-%s.scn" % (d, v)),
                "-j", str(self.a.threads), "--stats", "--pfm", self.path("%s-%s.pfm" % (d, tag)),
                "-o", self.path("%s-%s.png" % (d, tag)), self.path(d + ".vxs")]
-        text, wall = run(cmd)
+        text, wall, cpu = run(cmd)
         ms = None
         for line in text.splitlines():
             w = line.split()
@@ -190,7 +205,7 @@ class Bench:
         if ms is None:
             sys.exit("dvrpeers.py: no frame time in dvr --stats:\n" + text)
         self.stats[d + " " + tag] = text.strip()
-        return cmd, {"ms": ms, "proc_ms": 1e3 * wall}
+        return cmd, {"ms": ms, "proc_ms": 1e3 * wall, "cpu_ms": 1e3 * cpu}
 
     def configs(self, d):
         return [("miter", lambda: self.miter(d)),
@@ -231,7 +246,7 @@ class Bench:
         self.t_end = datetime.datetime.now()
         self.errors = {d: self.pictures(d) for d in self.datasets}
         state = {k: getattr(self, k) for k in ("cmds", "times", "prep", "cam", "stats", "load",
-                                                "datasets", "skipped", "errors")}
+                                                "datasets", "skipped", "errors", "read_cpu")}
         state["t_start"] = self.t_start.isoformat()
         state["t_end"] = self.t_end.isoformat()
         state["args"] = {"runs": a.runs, "threads": a.threads, "out": a.out, "bin": a.bin}
@@ -267,10 +282,10 @@ class Bench:
     def series(self, d, t, field="ms"):
         return [r[field] for r in self.times.get("%s %s" % (d, t), []) if field in r]
 
-    def ratio(self, d, t1, t2):
+    def ratio(self, d, t1, t2, field="ms"):
         """(median of per-round t1/t2, min(t1)/min(t2))"""
-        r1 = {r["round"]: r["ms"] for r in self.times.get("%s %s" % (d, t1), [])}
-        r2 = {r["round"]: r["ms"] for r in self.times.get("%s %s" % (d, t2), [])}
+        r1 = {r["round"]: r[field] for r in self.times.get("%s %s" % (d, t1), []) if field in r}
+        r2 = {r["round"]: r[field] for r in self.times.get("%s %s" % (d, t2), []) if field in r}
         xs = [r1[k] / r2[k] for k in r1 if k in r2 and r2[k] > 0]
         if not xs:
             return None, None
@@ -302,8 +317,9 @@ class Bench:
             L.append("\nSkipped (data absent): %s." % ", ".join(self.skipped))
         f = lambda x, p="%.0f": "-" if x is None else p % x  # noqa: E731
         L.append("\n### Frame time (ms; render only, loading excluded)\n")
-        L.append("| data | tool | median | minimum | process wall, median | notes |")
-        L.append("|---|---|---|---|---|---|")
+        L.append("| data | tool | median | minimum | CPU, median | CPU, minimum |"
+                 " process wall, median | notes |")
+        L.append("|---|---|---|---|---|---|---|---|")
         for d in self.datasets:
             for t in TOOLS:
                 xs = self.series(d, t)
@@ -312,12 +328,20 @@ class Bench:
                 note = ""
                 if t.startswith("vtk"):
                     note = "first render %s ms" % f(statistics.median(self.series(d, t, "first_ms")))
-                L.append("| %s | %s | %s | %s | %s | %s |" % (
+                cs = self.series(d, t, "cpu_ms")
+                L.append("| %s | %s | %s | %s | %s | %s | %s | %s |" % (
                     d, NAMES[t], f(statistics.median(xs)), f(min(xs)),
+                    f(statistics.median(cs) if cs else None), f(min(cs) if cs else None),
                     f(statistics.median(self.series(d, t, "proc_ms"))), note))
+        L.append("\nCPU: user + system time.  teem-miter: the whole process (reading the"
+                 " volume included); VTK: the process during the timed Render(); voxlux: the"
+                 " whole dvr process (reading the stream included: %s ms by dvr -n)."
+                 % ", ".join("%s %.0f" % (d, self.read_cpu.get(d, 0))
+                             for d in self.datasets))
         L.append("\n### Ratios (median of per-round ratios; ratio of the minima)\n")
-        L.append("| data | ratio | goal | median | of minima | met |")
-        L.append("|---|---|---|---|---|---|")
+        L.append("| data | ratio | goal | wall, median | wall, of minima | CPU, median |"
+                 " CPU, of minima | met (wall; CPU) |")
+        L.append("|---|---|---|---|---|---|---|---|")
         rows = [("miter", "vx-lit", "teem-miter unshaded / voxlux lit", ">= 10", lambda x: x >= 10),
                 ("vx-lit", "vtk-shaded", "voxlux lit / VTK shaded", "<= 1.0", lambda x: x <= 1.0),
                 ("vx-lit", "vx-unshaded", "voxlux lit / voxlux unshaded", "<= 1.6", lambda x: x <= 1.6),
@@ -327,11 +351,18 @@ class Bench:
         for d in self.datasets:
             for t1, t2, what, goal, ok in rows:
                 med, mins = self.ratio(d, t1, t2)
+                cmed, cmins = self.ratio(d, t1, t2, "cpu_ms")
                 if med is None:
                     continue
-                met = "" if ok is None else ("yes" if ok(med) and ok(mins) else
-                                             "no" if not ok(med) and not ok(mins) else "mixed")
-                L.append("| %s | %s | %s | %.2f | %.2f | %s |" % (d, what, goal, med, mins, met))
+
+                def met(a, b):
+                    if ok is None or a is None:
+                        return ""
+                    return "yes" if ok(a) and ok(b) else "no" if not ok(a) and not ok(b) \
+                        else "mixed"
+                L.append("| %s | %s | %s | %.2f | %.2f | %s | %s | %s |" % (
+                    d, what, goal, med, mins, f(cmed, "%.2f"), f(cmins, "%.2f"),
+                    "; ".join(x for x in (met(med, mins), met(cmed, cmins)) if x)))
         L.append("\n### Pictures: voxlux unshaded against the unshaded peers\n")
         L.append("| data | peer | relative RMSE | mean, relative | 99th percentile of abs diff / mean | pixels |")
         L.append("|---|---|---|---|---|---|")
