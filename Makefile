@@ -100,7 +100,7 @@ $(BUILD)/%.o: %.cc Makefile
 	$(CXX) $(CPPFLAGS) $(CXXFLAGS) -c -o $@ $<
 
 # The isosurface kernels (the hierarchy, its walks and cell masks, cells,
-# the render loop, the camera's rays) at -O3 -fno-math-errno
+# the render loop, the camera's rays, dvr's slice passes) at -O3 -fno-math-errno
 # -fno-trapping-math, after any CFLAGS: the same bits as at -O2 (no
 # fast-math, -std=c11 keeps -ffp-contract=off, and these files read neither
 # errno nor the FP flags and enable no traps), with no errno path for sqrt
@@ -109,7 +109,8 @@ $(BUILD)/%.o: %.cc Makefile
 HOT_OBJ := $(addprefix $(BUILD)/src/core/,kernels/macro.o kernels/macrowalk.o \
 	kernels/macrobox.o kernels/cellmask.o kernels/iso.o kernels/cell.o \
 	render/raycast.o render/bins.o render/surface.o data/camera.o \
-	data/irrvol.o render/gi.o bake/bake.o light/sh.o light/warp.o light/rng.o)
+	data/irrvol.o render/gi.o bake/bake.o light/sh.o light/warp.o light/rng.o \
+	dvr/dvr.o)
 ifneq ($(SANITIZE),1)
 $(HOT_OBJ): override CFLAGS += -O3 -fno-math-errno -fno-trapping-math
 endif

@@ -22,8 +22,9 @@ static const char usage[] =
     "    [--fov DEG] [--light SPEC] [--lights none] [--effects WORDS]\n"
     "    [--background R,G,B] [--set LINE] [--name NAME] [--slices N]\n"
     "    [--light-size N] [--blur-angle DEG] [--blur-samples N] [--seed N]\n"
-    "    [--no-skip] [-j N] [--stats] [--explain] [-n] [--hdr] [-z LEVEL]\n"
-    "    [--pfm FILE] [--bits 8|16] [--exposure STOPS] [-o OUT] [STREAM|-]\n"
+    "    [--no-skip] [--tf-table N] [--cutoff T] [-j N] [--stats] [--explain]\n"
+    "    [-n] [--hdr] [-z LEVEL] [--pfm FILE] [--bits 8|16] [--exposure STOPS]\n"
+    "    [-o OUT] [STREAM|-]\n"
     "    [--reference raymarch|pathtrace [--spp N] [--bounces N]\n"
     "    [--march-step S]]";
 
@@ -44,7 +45,7 @@ parse(opts *o, int argc, char **argv)
 {
 	enum { O_ORTHO = 256, O_NAME, O_SLICES, O_LSIZE, O_BANGLE, O_BSAMP,
 	    O_SEED, O_NOSKIP, O_STATS, O_EXPLAIN, O_HDR, O_BITS, O_EXPOSURE,
-	    O_PFM, O_REF, O_SPP, O_BOUNCES, O_MSTEP };
+	    O_PFM, O_REF, O_SPP, O_BOUNCES, O_MSTEP, O_TFTABLE, O_CUTOFF };
 	static const struct option lo[] = {
 		{ "scene", 1, 0, TOOL_O_SCENE },
 		{ "size", 1, 0, TOOL_O_SIZE }, { "view", 1, 0, TOOL_O_VIEW },
@@ -57,6 +58,7 @@ parse(opts *o, int argc, char **argv)
 		{ "blur-angle", 1, 0, O_BANGLE },
 		{ "blur-samples", 1, 0, O_BSAMP }, { "seed", 1, 0, O_SEED },
 		{ "no-skip", 0, 0, O_NOSKIP }, { "stats", 0, 0, O_STATS },
+		{ "tf-table", 1, 0, O_TFTABLE }, { "cutoff", 1, 0, O_CUTOFF },
 		{ "explain", 0, 0, O_EXPLAIN }, { "dry-run", 0, 0, 'n' },
 		{ "hdr", 0, 0, O_HDR }, { "bits", 1, 0, O_BITS },
 		{ "exposure", 1, 0, O_EXPOSURE }, { "pfm", 1, 0, O_PFM },
@@ -102,6 +104,13 @@ parse(opts *o, int argc, char **argv)
 			    0x7fffffffffffffffL);
 			break;
 		case O_NOSKIP: o->d.no_skip = 1; break;
+		case O_TFTABLE:
+			o->d.tf_table = (int)tool_parse_long("--tf-table", optarg,
+			    0, VX_TF_MAX_LUT);
+			break;
+		case O_CUTOFF:
+			o->d.cutoff = tool_parse_double("--cutoff", optarg, 0, 1);
+			break;
 		case O_STATS: o->stats = 1; break;
 		case O_EXPLAIN: o->explain = 1; break;
 		case O_HDR: o->hdr = 1; break;
@@ -203,10 +212,11 @@ print_stats(const vx_dvr_stats *st)
 
 	fprintf(stderr, "dvr: %d slices, %d thread%s, %.3f s\n", st->nslices,
 	    st->threads, st->threads == 1 ? "" : "s", st->seconds);
-	fprintf(stderr, "dvr: eye samples %llu (%.1f%% skipped as empty), "
-	    "light samples %llu (%.1f%% skipped), light buffer %dx%d\n",
-	    (unsigned long long)st->eye_samples,
+	fprintf(stderr, "dvr: eye samples %llu (%.1f%% skipped as empty, "
+	    "%.1f%% behind the cutoff), light samples %llu (%.1f%% skipped), "
+	    "light buffer %dx%d\n", (unsigned long long)st->eye_samples,
 	    es > 0 ? 100 * (double)st->eye_skipped / es : 0.0,
+	    es > 0 ? 100 * (double)st->eye_done / es : 0.0,
 	    (unsigned long long)st->light_samples,
 	    ls > 0 ? 100 * (double)st->light_skipped / ls : 0.0,
 	    st->light_size, st->light_size);

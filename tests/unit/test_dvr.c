@@ -395,6 +395,64 @@ skip_and_threads(void **state)
 	vx_grid_free(&g);
 }
 
+/* 5b. the approximations' knobs (vx_dvr_opts): emission only (ambient
+ * 1, white, no lights), so every sample's radiance is 1 and a pixel's
+ * colour moves by at most the sum of its samples' alpha errors (each
+ * partial derivative of the compositing is a transmittance times a
+ * radiance difference, within [-1, 1]).  The cutoff stops a ray whose
+ * transmittance fell below it: what it leaves out is at most that
+ * transmittance.  The table errs per sample by at most the opacity's
+ * slope times its node spacing (test_tf's lut), the correction's
+ * derivative being <= 1 at ratio 1 (orthographic, one voxel apart).
+ * Oracle: the exact renderer (tf_table 0, cutoff 0). */
+static void
+knobs(void **state)
+{
+	/* moves: the knob changes some pixel (at 4096 nodes the table's
+	 * second-order error in sigma falls below single precision here) */
+	static const struct { int table; double cutoff; int moves; } t[] = {
+		{ 0, 1e-3, 1 }, { 0, 0.05, 1 }, { 4096, 0, 0 }, { 16, 0, 1 },
+		{ 4096, 1e-3, 1 },
+	};
+	vx_grid g;
+	vx_image ex, img;
+	vx_dvr_stats st;
+	vx_dvr_opts o;
+	const char *text = "camera orthographic eye 15.5 15.5 100 "
+	    "look 15.5 15.5 0 up 0 1 0 width 31\nimage width 32 height 32\n"
+	    "light none\nambient intensity 1\neffects none\n"
+	    "transfer opacity 0 0 1 0.4\n";
+	double lo = 0, hi = 0;
+
+	(void)state;
+	synth_sphere(&g, 32);
+	lo = g.vmin;
+	hi = g.vmax;
+	vx_dvr_opts_init(&o);
+	o.tf_table = 0;
+	o.cutoff = 0;
+	render(text, &g, NULL, &o, &ex, &st);
+	assert_int_equal(st.eye_done, 0);
+	for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+		double bound = t[i].cutoff + (t[i].table > 0 ? st.nslices *
+		    0.4 * (hi - lo) / t[i].table : 0) + 1e-6, worst = 0;
+		vx_dvr_stats s2;
+
+		vx_dvr_opts_init(&o);
+		o.tf_table = t[i].table;
+		o.cutoff = t[i].cutoff;
+		render(text, &g, NULL, &o, &img, &s2);
+		for (int k = 0; k < 4 * 32 * 32; k++)
+			worst = fmax(worst, fabs(img.px[k] - ex.px[k]));
+		assert_true(worst <= bound);
+		assert_true((worst > 0) == t[i].moves);
+		assert_true((s2.eye_done > 0) == (t[i].cutoff > 0));
+		vx_image_free(&img);
+	}
+	vx_image_free(&ex);
+	vx_grid_free(&g);
+}
+
 /* 6. the plan: only what the scene asks for (vx_dvr.h, "Only what the
  * scene asks for" and "Lights") */
 static void
@@ -466,6 +524,7 @@ main(void)
 		cmocka_unit_test(slice_count),
 		cmocka_unit_test(flip),
 		cmocka_unit_test(skip_and_threads),
+		cmocka_unit_test(knobs),
 		cmocka_unit_test(plan_table),
 	};
 

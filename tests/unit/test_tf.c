@@ -251,6 +251,96 @@ correct(void **state)
 	assert_true(vx_tf_correct(1, 0.01) == 1);
 }
 
+/* The classification table (vx_tf_lut): exact at its nodes (to single
+ * precision); between nodes within the largest slope of each list times
+ * the node spacing (both the table and the function lie between the
+ * function's extremes over the spacing); NaN the empty sample; outside
+ * [lo, hi] the end nodes; a gradient-dependent function refused. */
+static void
+lut(void **state)
+{
+	/* kinks between nodes (0.3 is not a node of 7 intervals over
+	 * [-1, 2]); slopes: opacity 0.9 / 0.3 = 3, colour 1 / 0.3, transport
+	 * 0.5 / 0.7, surface 1 / 3 */
+	static const char text[] = "transfer opacity -1 0 0 0 0.3 0.9 1 0.2\n"
+	    "transfer color -1 0 0 0 0.3 1 0.5 1 2 1 1 1\n"
+	    "transfer transport 0 1 1 1 0.7 0.5 0.5 1\n"
+	    "transfer surface -1 0 2 1\n";
+	static const int ns[] = { 7, 64, 4096 };
+	const double slope[4] = { 3, 1 / 0.3, 0.5 / 0.7, 1.0 / 3 };
+	vx_tf tf, tg;
+	vx_tf_lut t;
+	vx_tf_optic o, x;
+	vx_tf_sample c;
+	vx_err e = { 0, "" };
+
+	(void)state;
+	tf_from(&tf, text);
+	for (size_t k = 0; k < sizeof ns / sizeof ns[0]; k++) {
+		double h = 3.0 / ns[k];
+
+		assert_int_equal(vx_tf_lut_build(&t, &tf, -1, 2, ns[k], &e), 0);
+		for (int i = 0; i <= 1000; i++) {
+			double v = -1 + 3.0 * i / 1000;
+			vx_tf_sample cl;
+
+			vx_tf_lut_eval(&t, v, &o);
+			vx_tf_classify(&tf, v, 0, &cl);
+			/* compare in alpha and transport, as renderers use them */
+			assert_true(fabs(-expm1(-o.sigma) - cl.alpha) <=
+			    slope[0] * h + 1e-6);
+			for (int q = 0; q < 3; q++) {
+				assert_true(fabs(o.color[q] - cl.color[q]) <=
+				    slope[1] * h + 1e-6);
+				assert_true(fabs(exp(o.ltr[q]) - cl.transport[q]) <=
+				    slope[2] * h + 1e-6);
+			}
+			assert_true(fabs(o.surface - cl.surface) <= slope[3] * h +
+			    1e-6);
+		}
+		for (int i = 0; i <= ns[k]; i++) {
+			double v = i == ns[k] ? 2 : -1 + i / t.scale;
+
+			vx_tf_lut_eval(&t, v, &o);
+			vx_tf_classify(&tf, v, 0, &c);
+			vx_tf_optic_of(&c, &x);
+			assert_true(fabs(o.sigma - x.sigma) <= 1e-6 * (1 + x.sigma));
+			assert_true(fabs(o.color[1] - x.color[1]) <= 1e-6);
+			assert_true(fabs(o.ltr[0] - x.ltr[0]) <= 1e-6);
+		}
+		vx_tf_lut_eval(&t, NAN, &o);
+		assert_true(o.sigma == 0 && o.color[0] == 0 && o.ltr[2] == 0 &&
+		    o.surface == 0);
+		vx_tf_lut_eval(&t, 50, &o);    /* beyond hi: the last node */
+		vx_tf_classify(&tf, 2, 0, &c);
+		assert_true(fabs(-expm1(-o.sigma) - c.alpha) < 1e-6);
+		vx_tf_lut_free(&t);
+	}
+	/* alpha 1 and transport 0 meet the cap: e^-cap is 0 in double */
+	{
+		vx_tf_sample s = { { 1, 1, 1 }, 1, { 0, 0.5, 1 }, 0 };
+
+		vx_tf_optic_of(&s, &o);
+		assert_true(o.sigma == VX_TF_SIGMA_MAX && exp(-o.sigma) == 0);
+		assert_true(o.ltr[0] == -VX_TF_SIGMA_MAX && o.ltr[2] == 0);
+		assert_true(fabs(exp(o.ltr[1]) - 0.5) < 1e-15);
+	}
+	/* one value (lo == hi): every lookup is its node */
+	assert_int_equal(vx_tf_lut_build(&t, &tf, 0.3, 0.3, 16, &e), 0);
+	vx_tf_lut_eval(&t, -5, &o);
+	assert_true(fabs(-expm1(-o.sigma) - 0.9) < 1e-6);
+	vx_tf_lut_free(&t);
+	assert_int_equal(vx_tf_lut_build(&t, &tf, 1, 0, 16, &e), VX_EDATA);
+	assert_int_equal(vx_tf_lut_build(&t, &tf, 0, 1, 0, &e), VX_EDATA);
+	assert_int_equal(vx_tf_lut_build(&t, &tf, 0, INFINITY, 8, &e),
+	    VX_EDATA);
+	tf_from(&tg, "transfer opacity 0 0.5\ntransfer gradient 0 0 1 1\n");
+	assert_int_equal(vx_tf_lut_build(&t, &tg, 0, 1, 8, &e), VX_EDATA);
+	assert_null(t.node);
+	vx_tf_free(&tg);
+	vx_tf_free(&tf);
+}
+
 int
 main(void)
 {
@@ -262,6 +352,7 @@ main(void)
 		cmocka_unit_test(table),
 		cmocka_unit_test(clear),
 		cmocka_unit_test(correct),
+		cmocka_unit_test(lut),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

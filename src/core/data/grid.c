@@ -379,29 +379,10 @@ vx_grid_set(vx_grid *g, int64_t x, int64_t y, int64_t z, double v)
 	}
 }
 
-#define CELL_FETCH(T)                                                    \
-	do {                                                             \
-		const T *d = (const T *)g->data;                         \
-		c[0] = (float)d[x0 + y0 + z0]; c[1] = (float)d[x1 + y0 + z0]; \
-		c[2] = (float)d[x0 + y1 + z0]; c[3] = (float)d[x1 + y1 + z0]; \
-		c[4] = (float)d[x0 + y0 + z1]; c[5] = (float)d[x1 + y0 + z1]; \
-		c[6] = (float)d[x0 + y1 + z1]; c[7] = (float)d[x1 + y1 + z1]; \
-	} while (0)
-
 void
 vx_grid_cell(const vx_grid *g, int64_t x, int64_t y, int64_t z, float c[8])
 {
-	int64_t x0 = g->lay.off[0][x], x1 = g->lay.off[0][x + 1];
-	int64_t y0 = g->lay.off[1][y], y1 = g->lay.off[1][y + 1];
-	int64_t z0 = g->lay.off[2][z], z1 = g->lay.off[2][z + 1];
-
-	switch (g->type) {
-	case VX_U8: CELL_FETCH(uint8_t); break;
-	case VX_U16: CELL_FETCH(uint16_t); break;
-	case VX_I16: CELL_FETCH(int16_t); break;
-	case VX_F32: CELL_FETCH(float); break;
-	default: memset(c, 0, 8 * sizeof *c); break;
-	}
+	vx_grid_cell_inline(g, x, y, z, c);
 }
 
 void
@@ -812,43 +793,8 @@ vx_index_to_world_normal(const vx_grid *g, const double i[3], double w[3])
 	vx_unit3(w);
 }
 
-static inline double
-lerp(double a, double b, double s)
-{
-	return a + (b - a) * s;
-}
-
 double
-vx_grid_trilinear(const vx_grid *g, const double pin[3])
+vx_grid_trilinear(const vx_grid *g, const double p[3])
 {
-	double p[3], l[3], e0, e1, e2, e3;
-	int64_t i[3];
-	float c[8];
-	int a;
-
-	for (a = 0; a < 3; a++) {
-		double hi = (double)(g->dims[a] - 1);
-
-		p[a] = pin[a];
-		if (!(p[a] >= 0))
-			p[a] = 0;
-		if (p[a] > hi)
-			p[a] = hi;
-		i[a] = (int64_t)p[a];
-		if (i[a] > g->dims[a] - 2)
-			i[a] = g->dims[a] - 2;
-		if (i[a] < 0)
-			i[a] = 0;
-		l[a] = p[a] - (double)i[a];
-		if (g->dims[a] == 1)
-			l[a] = 0;
-	}
-	/* a dimension of 1 has no cells: fetch with x+1 clamped by the guard
-	 * entry of the offset tables */
-	vx_grid_cell(g, i[0], i[1], i[2], c);
-	e0 = lerp(c[0], c[1], l[0]);
-	e1 = lerp(c[2], c[3], l[0]);
-	e2 = lerp(c[4], c[5], l[0]);
-	e3 = lerp(c[6], c[7], l[0]);
-	return lerp(lerp(e0, e1, l[1]), lerp(e2, e3, l[1]), l[2]);
+	return vx_grid_trilinear_inline(g, p);
 }

@@ -330,3 +330,63 @@ vx_tf_correct(double alpha, double r)
 		return 1;
 	return 1 - pow(1 - alpha, r);
 }
+
+void
+vx_tf_optic_of(const vx_tf_sample *c, vx_tf_optic *o)
+{
+	o->sigma = c->alpha <= 0 ? 0 : c->alpha >= 1 ? VX_TF_SIGMA_MAX :
+	    fmin(-log1p(-c->alpha), VX_TF_SIGMA_MAX);
+	for (int k = 0; k < 3; k++) {
+		double t = c->transport[k];
+
+		o->color[k] = c->color[k];
+		o->ltr[k] = t >= 1 ? 0 : t <= 0 ? -VX_TF_SIGMA_MAX :
+		    fmax(log(t), -VX_TF_SIGMA_MAX);
+	}
+	o->surface = c->surface;
+}
+
+int
+vx_tf_lut_build(vx_tf_lut *t, const vx_tf *tf, double lo, double hi, int n,
+    vx_err *e)
+{
+	memset(t, 0, sizeof *t);
+	if (tf->has_table || tf->gradient.n > 0)
+		return vx_err_set(e, VX_EDATA, "transfer table: the function "
+		    "depends on the gradient magnitude");
+	if (!isfinite(lo) || !isfinite(hi) || lo > hi || n < 1 ||
+	    n > VX_TF_MAX_LUT)
+		return vx_err_set(e, VX_EDATA, "transfer table: %d intervals "
+		    "over [%g, %g]", n, lo, hi);
+	if ((t->node = vx_malloc(((size_t)n + 1) * 8 * sizeof *t->node, e)) ==
+	    NULL)
+		return VX_ENOMEM;
+	t->n = n;
+	t->lo = lo;
+	t->scale = hi > lo ? n / (hi - lo) : 0;
+	for (int i = 0; i <= n; i++) {
+		vx_tf_sample c;
+		vx_tf_optic o;
+		float *p = t->node + 8 * (size_t)i;
+
+		/* the nodes' values exactly as eval finds them: lo + i / scale
+		 * is i's x; the last node at hi itself */
+		vx_tf_classify(tf, i == n ? hi : hi > lo ? lo + i / t->scale :
+		    lo, 0, &c);
+		vx_tf_optic_of(&c, &o);
+		p[0] = (float)o.sigma;
+		for (int k = 0; k < 3; k++) {
+			p[1 + k] = (float)o.color[k];
+			p[4 + k] = (float)o.ltr[k];
+		}
+		p[7] = (float)o.surface;
+	}
+	return 0;
+}
+
+void
+vx_tf_lut_free(vx_tf_lut *t)
+{
+	free(t->node);
+	memset(t, 0, sizeof *t);
+}

@@ -117,6 +117,77 @@ void vx_grid_cell(const vx_grid *g, int64_t x, int64_t y, int64_t z,
  * where a corner it weighs is not finite. */
 double vx_grid_trilinear(const vx_grid *g, const double p[3]);
 
+/* vx_grid_cell_inline, vx_grid_trilinear_inline: the same functions (the
+ * same bits), inline for inner loops. */
+#define VX_GRID_CELL_FETCH_(T)                                           \
+	do {                                                             \
+		const T *d_ = (const T *)g->data;                        \
+		c[0] = (float)d_[x0 + y0 + z0]; c[1] = (float)d_[x1 + y0 + z0]; \
+		c[2] = (float)d_[x0 + y1 + z0]; c[3] = (float)d_[x1 + y1 + z0]; \
+		c[4] = (float)d_[x0 + y0 + z1]; c[5] = (float)d_[x1 + y0 + z1]; \
+		c[6] = (float)d_[x0 + y1 + z1]; c[7] = (float)d_[x1 + y1 + z1]; \
+	} while (0)
+
+static inline __attribute__((always_inline)) void
+vx_grid_cell_inline(const vx_grid *g, int64_t x, int64_t y, int64_t z,
+    float c[8])
+{
+	int64_t x0 = g->lay.off[0][x], x1 = g->lay.off[0][x + 1];
+	int64_t y0 = g->lay.off[1][y], y1 = g->lay.off[1][y + 1];
+	int64_t z0 = g->lay.off[2][z], z1 = g->lay.off[2][z + 1];
+
+	switch (g->type) {
+	case VX_U8: VX_GRID_CELL_FETCH_(uint8_t); break;
+	case VX_U16: VX_GRID_CELL_FETCH_(uint16_t); break;
+	case VX_I16: VX_GRID_CELL_FETCH_(int16_t); break;
+	case VX_F32: VX_GRID_CELL_FETCH_(float); break;
+	default:
+		for (int i = 0; i < 8; i++)
+			c[i] = 0;
+		break;
+	}
+}
+
+static inline double
+vx_grid_lerp_(double a, double b, double s)
+{
+	return a + (b - a) * s;
+}
+
+static inline double
+vx_grid_trilinear_inline(const vx_grid *g, const double pin[3])
+{
+	double l[3], e0, e1, e2, e3;
+	int64_t i[3];
+	float c[8];
+
+	for (int a = 0; a < 3; a++) {
+		double hi = (double)(g->dims[a] - 1), p = pin[a];
+
+		if (!(p >= 0))
+			p = 0;
+		if (p > hi)
+			p = hi;
+		i[a] = (int64_t)p;
+		if (i[a] > g->dims[a] - 2)
+			i[a] = g->dims[a] - 2;
+		if (i[a] < 0)
+			i[a] = 0;
+		l[a] = p - (double)i[a];
+		if (g->dims[a] == 1)
+			l[a] = 0;
+	}
+	/* a dimension of 1 has no cells: fetch with x+1 clamped by the guard
+	 * entry of the offset tables */
+	vx_grid_cell_inline(g, i[0], i[1], i[2], c);
+	e0 = vx_grid_lerp_(c[0], c[1], l[0]);
+	e1 = vx_grid_lerp_(c[2], c[3], l[0]);
+	e2 = vx_grid_lerp_(c[4], c[5], l[0]);
+	e3 = vx_grid_lerp_(c[6], c[7], l[0]);
+	return vx_grid_lerp_(vx_grid_lerp_(e0, e1, l[1]),
+	    vx_grid_lerp_(e2, e3, l[1]), l[2]);
+}
+
 /* vx_grid_range: compute vmin/vmax over the real (unpadded) samples,
  * ignoring NaN and infinities; sets has_range (0 if no finite sample). */
 void vx_grid_range(vx_grid *g);

@@ -35,8 +35,10 @@
 #define VX_TF_H
 
 #include <stdint.h>
+#include <string.h>
 
 #include "vx_enum.h"
+
 #include "vx_err.h"
 
 #define VX_TF_MAX_POINTS  65536        /* per list */
@@ -153,6 +155,102 @@ int vx_tf_range_clear(const vx_tf *tf, double lo, double hi);
 /* vx_tf_correct: alpha for a step of ratio r = d / ref_step (r >= 0):
  * 1 - (1 - alpha)^r; alpha 0 gives exactly 0, alpha 1 exactly 1. */
 double vx_tf_correct(double alpha, double r);
+
+/* ---- the optical form and the classification table ---- */
+
+/* A classified sample in the form a renderer corrects by exponentials:
+ * sigma = -ln(1 - alpha) and ltr[c] = ln(transport[c]), per reference
+ * step, each capped at VX_TF_SIGMA_MAX (alpha 1 and transport 0 become
+ * the cap: e^-cap is below the smallest double), so that a step of ratio
+ * r has alpha 1 - e^(-sigma r) and transport e^(ltr r). */
+#define VX_TF_SIGMA_MAX 800.0
+
+typedef struct vx_tf_optic {
+	double sigma;             /* >= 0 */
+	double color[3];
+	double ltr[3];            /* <= 0 */
+	double surface;
+} vx_tf_optic;
+
+/* vx_tf_optic_of: c in the optical form (exact). */
+void vx_tf_optic_of(const vx_tf_sample *c, vx_tf_optic *o);
+
+/* A 1D classification table: the optical form of a transfer function
+ * without a gradient dependence (no table, no gradient list) at n + 1
+ * evenly spaced values over [lo, hi], linear between them; values outside
+ * take the end nodes' (a renderer builds it over its volume's range, where
+ * every interpolated value lies).  Between two nodes the error against
+ * vx_tf_classify is that of linear interpolation over one spacing
+ * (hi - lo) / n, in sigma rather than alpha: none where the lists are
+ * linear in sigma or constant across the spacing, second order in the
+ * spacing elsewhere, first order in a spacing that holds a control point. */
+#define VX_TF_MAX_LUT (1 << 20)
+
+typedef struct vx_tf_lut {
+	int n;                    /* intervals; 0: absent */
+	double lo, scale;         /* node i at value lo + i / scale */
+	float *node;              /* (n + 1) x 8: sigma, color, ltr, surface */
+} vx_tf_lut;
+
+/* vx_tf_lut_build: t for tf over [lo, hi] with n intervals, n in [1,
+ * VX_TF_MAX_LUT] (lo == hi: one node repeated).  Errors, t absent:
+ * VX_EDATA (tf depends on the gradient, a bound not finite, lo > hi, n
+ * out of range), VX_ENOMEM. */
+int vx_tf_lut_build(vx_tf_lut *t, const vx_tf *tf, double lo, double hi,
+    int n, vx_err *e);
+void vx_tf_lut_free(vx_tf_lut *t);
+
+/* Four floats, for the table's inner loop (GCC and clang vector
+ * extension; plain element-wise arithmetic). */
+typedef float vx_f4 __attribute__((vector_size(16)));
+
+/* vx_tf_lut_at: the table at value v as two quads: q[0] = sigma, color
+ * r, g, b; q[1] = ltr r, g, b, surface (NaN: the empty sample, all 0). */
+static inline void
+vx_tf_lut_at(const vx_tf_lut *t, double v, vx_f4 q[2])
+{
+	double x = (v - t->lo) * t->scale;
+	vx_f4 a0, a1, b0, b1, f;
+	const float *a;
+	int i;
+
+	if (!(x == x)) {
+		q[0] = q[1] = (vx_f4){ 0, 0, 0, 0 };
+		return;
+	}
+	if (x <= 0) {
+		i = 0;
+		x = 0;
+	} else if (x >= t->n) {
+		i = t->n - 1;
+		x = t->n;
+	} else
+		i = (int)x;
+	a = t->node + 8 * (size_t)i;
+	memcpy(&a0, a, sizeof a0);
+	memcpy(&a1, a + 4, sizeof a1);
+	memcpy(&b0, a + 8, sizeof b0);
+	memcpy(&b1, a + 12, sizeof b1);
+	f = (vx_f4){ 1, 1, 1, 1 } * (float)(x - i);
+	q[0] = a0 + f * (b0 - a0);
+	q[1] = a1 + f * (b1 - a1);
+}
+
+/* vx_tf_lut_eval: the table at value v (NaN: the empty sample, sigma 0,
+ * color 0, ltr 0, surface 0). */
+static inline void
+vx_tf_lut_eval(const vx_tf_lut *t, double v, vx_tf_optic *o)
+{
+	vx_f4 q[2];
+
+	vx_tf_lut_at(t, v, q);
+	o->sigma = q[0][0];
+	for (int c = 0; c < 3; c++) {
+		o->color[c] = q[0][1 + c];
+		o->ltr[c] = q[1][c];
+	}
+	o->surface = q[1][3];
+}
 
 /* vx_tf_apply_scene: the scene's transfer lines over tf (which may hold
  * an imported file's function): each list the scene gives replaces tf's

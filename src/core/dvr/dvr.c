@@ -12,7 +12,7 @@
 
 #define KD 1.0
 #define KS 0.2
-#define SHININESS 32.0
+#define SHININESS 32.0          /* surface_f squares 5 times */
 
 void
 vx_dvr_opts_init(vx_dvr_opts *o)
@@ -22,6 +22,8 @@ vx_dvr_opts_init(vx_dvr_opts *o)
 	o->blur_angle = 20;
 	o->blur_samples = 4;
 	o->seed = 1;
+	o->tf_table = 4096;
+	o->cutoff = 1e-3;
 }
 
 /* ---- the plan ---- */
@@ -107,6 +109,22 @@ vx_dvr_plan(const vx_scene *s, const vx_tf *tf, const vx_dvr_opts *o,
 	    "classified" : "samples in level-1 macrocells whose [min, max] "
 	    "the transfer function maps to alpha 0 and transport 1 are "
 	    "skipped");
+	if (tf->has_table || tf->gradient.n > 0)
+		vx_plan_add(p, "classification table", VX_PLAN_OFF, 0, "the "
+		    "transfer function depends on the gradient magnitude: "
+		    "evaluated at every sample");
+	else if (o->tf_table > 0)
+		vx_plan_add(p, "classification table", VX_PLAN_ON, 0, "%d "
+		    "intervals over the volume's range (--tf-table)",
+		    o->tf_table);
+	else
+		vx_plan_add(p, "classification table", VX_PLAN_OFF, 0,
+		    "--tf-table 0: the transfer function evaluated at every "
+		    "sample");
+	vx_plan_add(p, "early termination", o->cutoff > 0 ? VX_PLAN_ON :
+	    VX_PLAN_OFF, 0, o->cutoff > 0 ? "front to back, a pixel stops "
+	    "below transmittance %g (--cutoff)" : "--cutoff 0: every sample "
+	    "taken", o->cutoff);
 	for (int k = 0; k < s->nlight; k++) {
 		const vx_light *l = &s->light[k];
 
@@ -284,6 +302,25 @@ typedef struct ray {
 	int k0, k1;
 } ray;
 
+/* An eye ray in slice steps: it crosses slice k at index-space point
+ * p + k dp (p extrapolated to slice 0), along unit world direction d. */
+typedef struct eray {
+	double p[3], dp[3];
+	float d[3];
+	float ratio;              /* spacing / ref_step */
+} eray;
+
+/* A light as the samples use it (those that shine: the driver and the
+ * local ones). */
+typedef struct flight {
+	int point;                /* 1: from pos; 0: along L */
+	int inv_square;
+	int driver;
+	double L[3];              /* unit direction of travel (not point) */
+	double pos[3];
+	double rad[3];            /* colour x intensity */
+} flight;
+
 typedef struct frame {
 	const vx_scene *s;
 	const vx_dvr_decide *d;
@@ -293,6 +330,13 @@ typedef struct frame {
 	const vx_dvr_opts *o;
 	const vx_dvr_geom *geo;
 	const uint8_t *clear;     /* per level-1 macrocell, or NULL */
+	vx_tf_lut lut;            /* the classification table, or absent */
+	int flat;                 /* an axis of one sample */
+	double vhi[3];            /* dims - 1 per axis */
+	int64_t cmax[3];          /* dims - 2: the last cell */
+	double amb[3];            /* ambient colour x intensity */
+	float cutoff;             /* front to back: a pixel whose
+	                             transmittance is below it is done */
 	size_t *mcoff[3];         /* data cell -> its macrocell's linear
 	                             index share, per axis */
 	double dir[256][2];       /* the blur's directions: cos, sin */
@@ -300,12 +344,19 @@ typedef struct frame {
 	int class_g;              /* classification needs the gradient */
 	int W, H;                 /* eye image */
 	int LW;                   /* light buffer edge */
-	ray *eye, *lray;
+	eray *eye;
+	ray *lray;
 	int32_t *ek, *lk;         /* k0, k1 of each eye and light ray,
-	                             compact: every slice reads them all */
+	                             compact: every slice reads them all; an
+	                             eye ray's k0 moves on past clear
+	                             macrocells and to k1 at the cutoff */
+	int *span;                /* per eye row: the pixels [x0, x1) whose
+	                             rays cross the box */
 	float *acc;               /* eye: r g b, and T (front to back) or A */
 	float *cur, *next;        /* light: D, Ir, Ig, Ib per texel */
 	int k;                    /* the slice being drawn */
+	flight light[VX_SCENE_MAX_LIGHTS];
+	int nlight;
 	double lpos[3];           /* point light position */
 	int lpoint;
 	double lrad[3];           /* driving light radiance (colour x I) */
@@ -316,7 +367,7 @@ typedef struct frame {
 } frame;
 
 typedef struct local_st {
-	uint64_t eye, eye_skip, light, light_skip;
+	uint64_t eye, eye_skip, eye_done, light, light_skip;
 } local_st;
 
 /* ray_setup: the slices ray r crosses inside the box, and its ratio. */
@@ -400,39 +451,125 @@ skip(const frame *f, const double p[3])
 	return f->clear[c];
 }
 
+/* clear_run: 0 when index point p lies in a macrocell that is not clear
+ * (or there is no hierarchy); else how many slices from this one on the
+ * ray of per-slice step dp stays inside that clear macrocell (>= 1): its
+ * samples there are all clear, so the caller moves past them at once. */
+static int
+clear_run(const frame *f, const double p[3], const double dp[3])
+{
+	int64_t i[3];
+	size_t c = 0;
+	double t = HUGE_VAL, j;
+
+	if (f->clear == NULL)
+		return 0;
+	for (int a = 0; a < 3; a++) {
+		int64_t n = f->g->dims[a] - 1;
+
+		if (!(p[a] >= 0))
+			i[a] = 0;
+		else if (p[a] >= (double)n)
+			i[a] = n - 1;
+		else
+			i[a] = (int64_t)p[a];
+		c += f->mcoff[a][i[a]];
+	}
+	if (!f->clear[c])
+		return 0;
+	for (int a = 0; a < 3; a++) {
+		int64_t w = f->m->width[1][a];
+		double lo = (double)(i[a] / w * w), hi = lo + (double)w;
+
+		if (dp[a] > 0)
+			t = fmin(t, (hi - p[a]) / dp[a]);
+		else if (dp[a] < 0)
+			t = fmin(t, (lo - p[a]) / dp[a]);
+	}
+	/* slices k + j, 0 <= j <= t, lie in the macrocell's closed box, whose
+	 * corner values bound its range; a margin against rounding */
+	j = floor(t - 1e-6);
+	return !(j >= 0) ? 1 : j >= 1 << 30 ? 1 << 30 : (int)j + 1;
+}
+
+/* value: the trilinear value at index point p clamped into the volume:
+ * vx_grid_trilinear's cell and weights, its lerps in single precision
+ * (the samples' own precision); a volume with an axis of one sample goes
+ * through vx_grid_trilinear. */
+static inline __attribute__((always_inline)) double
+value(const frame *f, const double p[3])
+{
+	const vx_grid *g = f->g;
+	int64_t i[3];
+	float l[3], c[8], e0, e1, e2, e3;
+
+	if (f->flat)
+		return vx_grid_trilinear_inline(g, p);
+	for (int a = 0; a < 3; a++) {
+		double q = p[a] > 0 ? p[a] : 0;
+		int64_t j;
+
+		q = q < f->vhi[a] ? q : f->vhi[a];
+		j = (int64_t)q;
+		j = j < f->cmax[a] ? j : f->cmax[a];
+		i[a] = j;
+		l[a] = (float)(q - (double)j);
+	}
+	vx_grid_cell_inline(g, i[0], i[1], i[2], c);
+	e0 = c[0] + (c[1] - c[0]) * l[0];
+	e1 = c[2] + (c[3] - c[2]) * l[0];
+	e2 = c[4] + (c[5] - c[4]) * l[0];
+	e3 = c[6] + (c[7] - c[6]) * l[0];
+	e0 += (e1 - e0) * l[1];
+	e2 += (e3 - e2) * l[1];
+	return e0 + (e2 - e0) * l[2];
+}
+
 /* gradient: the world gradient at index point p (central differences of
  * the interpolated value, one voxel either side). */
 static void
-gradient(const vx_grid *g, const double p[3], double grad[3])
+gradient(const frame *f, const double p[3], double grad[3])
 {
 	for (int a = 0; a < 3; a++) {
 		double q[3] = { p[0], p[1], p[2] }, v1, v0;
 
 		q[a] = p[a] + 1;
-		v1 = vx_grid_trilinear(g, q);
+		v1 = value(f, q);
 		q[a] = p[a] - 1;
-		v0 = vx_grid_trilinear(g, q);
-		grad[a] = (v1 - v0) / (2 * g->spacing[a]);
+		v0 = value(f, q);
+		grad[a] = (v1 - v0) / (2 * f->g->spacing[a]);
 	}
 }
 
-/* sample: classification of the sample at index point p; *grad gets the
- * gradient when classification looks at its magnitude (a table or a
+/* sample: classification of the sample at index point p, as the table's
+ * quads (vx_tf_lut_at: q[0] sigma, color; q[1] ltr, surface); *grad gets
+ * the gradient when classification looks at its magnitude (a table or a
  * gradient list: *has_grad 1); else the caller computes it if it needs
  * the normal. */
-static void
-sample(const frame *f, const double p[3], vx_tf_sample *c, double grad[3],
+static inline void
+sample(const frame *f, const double p[3], vx_f4 q[2], double grad[3],
     int *has_grad)
 {
-	double v = vx_grid_trilinear(f->g, p), gm = 0;
+	double v = value(f, p), gm = 0;
+	vx_tf_sample cs;
+	vx_tf_optic c;
 
 	*has_grad = 0;
+	if (f->lut.n > 0) {
+		vx_tf_lut_at(&f->lut, v, q);
+		return;
+	}
 	if (f->class_g) {
-		gradient(f->g, p, grad);
+		gradient(f, p, grad);
 		gm = sqrt(vx_dot3(grad, grad));
 		*has_grad = 1;
 	}
-	vx_tf_classify(f->tf, v, gm, c);
+	vx_tf_classify(f->tf, v, gm, &cs);
+	vx_tf_optic_of(&cs, &c);
+	q[0] = (vx_f4){ (float)c.sigma, (float)c.color[0], (float)c.color[1],
+	    (float)c.color[2] };
+	q[1] = (vx_f4){ (float)c.ltr[0], (float)c.ltr[1], (float)c.ltr[2],
+	    (float)c.surface };
 }
 
 /* light_at: bilinear D, I from buffer b at light image point (px, py);
@@ -447,8 +584,10 @@ light_at(const frame *f, const float *b, double px, double py, double out[4])
 		out[0] = out[1] = out[2] = out[3] = 1;
 		return;
 	}
-	x = fmax(0, fmin(x, n - 1));
-	y = fmax(0, fmin(y, n - 1));
+	x = x < n - 1 ? x : n - 1;
+	x = x > 0 ? x : 0;
+	y = y < n - 1 ? y : n - 1;
+	y = y > 0 ? y : 0;
 	x0 = (int)x;
 	y0 = (int)y;
 	x1 = x0 + 1 < n ? x0 + 1 : x0;
@@ -472,13 +611,17 @@ static double
 surface_f(const frame *f, const double n[3], const double l[3],
     const double v[3])
 {
-	double r = KD * fmax(0, vx_dot3(n, l));
+	double nl = vx_dot3(n, l), r = KD * (nl > 0 ? nl : 0);
 
 	if (f->d->specular) {
-		double h[3] = { l[0] + v[0], l[1] + v[1], l[2] + v[2] };
+		double h[3] = { l[0] + v[0], l[1] + v[1], l[2] + v[2] }, x;
 
 		vx_unit3(h);
-		r += KS * pow(fmax(0, vx_dot3(n, h)), SHININESS);
+		x = vx_dot3(n, h);
+		x = x > 0 ? x : 0;
+		for (int i = 0; i < 5; i++)    /* x^SHININESS, 2^5 */
+			x *= x;
+		r += KS * x;
 	}
 	return r;
 }
@@ -486,15 +629,16 @@ surface_f(const frame *f, const double n[3], const double l[3],
 /* radiance of one eye sample at world point w, seen along unit d. */
 static void
 radiance(const frame *f, const double w[3], const double d[3],
-    const vx_tf_sample *c, const double grad[3], double out[3])
+    const vx_f4 q[2], const double grad[3], double out[3])
 {
 	const vx_scene *s = f->s;
 	double v[3] = { -d[0], -d[1], -d[2] }, n[3] = { 0, 0, 0 };
+	double color[3] = { q[0][1], q[0][2], q[0][3] }, surface = q[1][3];
 	int has_n = 0;
 
 	for (int a = 0; a < 3; a++)
-		out[a] = c->color[a] * s->ambient[a] * s->ambient_intensity;
-	if (f->d->surface && c->surface > 0) {
+		out[a] = color[a] * f->amb[a];
+	if (f->d->surface && surface > 0) {
 		n[0] = -grad[0];
 		n[1] = -grad[1];
 		n[2] = -grad[2];
@@ -506,40 +650,31 @@ radiance(const frame *f, const double w[3], const double d[3],
 			n[2] = -n[2];
 		}
 	}
-	for (int k = 0; k < s->nlight; k++) {
-		const vx_light *l = &s->light[k];
-		double L[3], tl[3], Ll = l->intensity, pc, sw, lt[3];
+	for (int k = 0; k < f->nlight; k++) {
+		const flight *l = &f->light[k];
+		double L[3], tl[3], Ll = 1, pc, sw, lt[3];
 
-		if (!(k == f->d->driver || f->d->local[k]))
-			continue;
-		if (l->type == VX_LIGHT_DIRECTIONAL ||
-		    (l->type == VX_LIGHT_HEADLIGHT &&
-		    s->camera.projection == VX_ORTHOGRAPHIC)) {
-			memcpy(L, l->type == VX_LIGHT_DIRECTIONAL ? l->direction :
-			    s->camera.fwd, sizeof L);
-			vx_unit3(L);
-		} else {
-			const double *pos = l->type == VX_LIGHT_HEADLIGHT ?
-			    s->camera.o : l->position;
+		if (l->point) {
 			double r2;
 
 			for (int a = 0; a < 3; a++)
-				L[a] = w[a] - pos[a];
+				L[a] = w[a] - l->pos[a];
 			r2 = vx_dot3(L, L);
 			vx_unit3(L);
-			if (l->falloff == VX_FALLOFF_INVERSE_SQUARE)
+			if (l->inv_square)
 				Ll /= r2 > 0 ? r2 : HUGE_VAL;
-		}
+		} else
+			memcpy(L, l->L, sizeof L);
 		pc = vx_phase_table_eval(&f->phase, vx_dot3(L, v));
 		sw = 1;
 		if (has_n) {
 			tl[0] = -L[0];
 			tl[1] = -L[1];
 			tl[2] = -L[2];
-			sw = (1 - c->surface) + c->surface * surface_f(f, n, tl,
+			sw = (1 - surface) + surface * surface_f(f, n, tl,
 			    v);
 		}
-		if (k == f->d->driver && f->d->light_buffer) {
+		if (l->driver && f->d->light_buffer) {
 			double px, py, dep, b[4];
 
 			if (vx_camera_project(&f->geo->light, w, &px, &py, &dep))
@@ -549,13 +684,13 @@ radiance(const frame *f, const double w[3], const double d[3],
 			for (int a = 0; a < 3; a++) {
 				lt[a] = b[0] * pc;
 				if (f->d->scatter)
-					lt[a] += s->albedo[a] * fmax(b[1 + a] - b[0],
-					    0);
+					lt[a] += s->albedo[a] * (b[1 + a] > b[0] ?
+					    b[1 + a] - b[0] : 0);
 			}
 		} else
 			lt[0] = lt[1] = lt[2] = pc;
 		for (int a = 0; a < 3; a++)
-			out[a] += c->color[a] * sw * Ll * l->color[a] * lt[a];
+			out[a] += color[a] * sw * Ll * l->rad[a] * lt[a];
 	}
 }
 
@@ -564,32 +699,41 @@ eye_rows(void *ctx, void *local, const vx_par_block *b)
 {
 	const frame *f = ctx;
 	local_st *ls = local;
+	const vx_grid *g = f->g;
 	int k = f->k, btf = f->geo->back_to_front;
 
 	for (int64_t y = b->lo[1]; y < b->hi[1]; y++)
-		for (int x = 0; x < f->W; x++) {
+		for (int x = f->span[2 * y]; x < f->span[2 * y + 1]; x++) {
 			size_t i = (size_t)y * (size_t)f->W + (size_t)x;
-			const ray *r = &f->eye[i];
+			const eray *r = &f->eye[i];
+			int32_t *ek = f->ek + 2 * i;
 			float *acc = f->acc + 4 * i;
-			double w[3], p[3], grad[3] = { 0, 0, 0 }, rad[3], a;
-			vx_tf_sample c;
-			int hg;
+			double w[3], p[3], d[3], grad[3] = { 0, 0, 0 }, rad[3], a;
+			vx_f4 c[2];
+			int hg, run;
 
-			if (k < f->ek[2 * i] || k >= f->ek[2 * i + 1])
+			if (k < ek[0] || k >= ek[1])
 				continue;
-			ls->eye++;
-			at(f, r, k, w, p);
-			if (skip(f, p)) {
-				ls->eye_skip++;
+			for (int q = 0; q < 3; q++)
+				p[q] = r->p[q] + k * r->dp[q];
+			if ((run = clear_run(f, p, r->dp)) > 0) {
+				int to = run < ek[1] - k ? k + run : ek[1];
+
+				ls->eye_skip += (uint64_t)(to - k);
+				ek[0] = to;
 				continue;
 			}
-			sample(f, p, &c, grad, &hg);
-			if (c.alpha <= 0)
+			sample(f, p, c, grad, &hg);
+			if (c[0][0] <= 0)
 				continue;
-			if (!hg && f->d->surface && c.surface > 0)
-				gradient(f->g, p, grad);
-			a = vx_tf_correct(c.alpha, r->ratio);
-			radiance(f, w, r->d, &c, grad, rad);
+			if (!hg && f->d->surface && c[1][3] > 0)
+				gradient(f, p, grad);
+			a = -expm1(-c[0][0] * (double)r->ratio);
+			for (int q = 0; q < 3; q++) {
+				w[q] = g->origin[q] + p[q] * g->spacing[q];
+				d[q] = r->d[q];
+			}
+			radiance(f, w, d, c, grad, rad);
 			if (btf) {
 				for (int q = 0; q < 3; q++)
 					acc[q] = (float)(acc[q] * (1 - a) + a *
@@ -600,6 +744,10 @@ eye_rows(void *ctx, void *local, const vx_par_block *b)
 					acc[q] = (float)(acc[q] + acc[3] * a *
 					    rad[q]);
 				acc[3] = (float)(acc[3] * (1 - a));
+				if (acc[3] < f->cutoff) {
+					ls->eye_done += (uint64_t)(ek[1] - k - 1);
+					ek[0] = ek[1];
+				}
 			}
 		}
 	return 0;
@@ -654,7 +802,7 @@ light_rows(void *ctx, void *local, const vx_par_block *b)
 			const float *in = f->cur + 4 * i;
 			float *o = f->next + 4 * i;
 			double w[3], p[3], grad[3] = { 0, 0, 0 }, a, tr[3], bl[3];
-			vx_tf_sample c;
+			vx_f4 c[2];
 			int hg;
 
 			/* outside its slices a texel's value stays: both
@@ -671,17 +819,16 @@ light_rows(void *ctx, void *local, const vx_par_block *b)
 				ls->light_skip++;
 				continue;
 			}
-			sample(f, p, &c, grad, &hg);
-			if (c.alpha <= 0 && c.transport[0] >= 1 &&
-			    c.transport[1] >= 1 && c.transport[2] >= 1)
+			sample(f, p, c, grad, &hg);
+			if (c[0][0] <= 0 && c[1][0] >= 0 && c[1][1] >= 0 &&
+			    c[1][2] >= 0)
 				continue;
-			a = vx_tf_correct(c.alpha, r->ratio);
+			a = -expm1(-c[0][0] * r->ratio);
 			o[0] = (float)(in[0] * (1 - a));
 			if (!f->d->scatter)
 				continue;
 			for (int q = 0; q < 3; q++)
-				tr[q] = c.transport[q] >= 1 ? 1 :
-				    pow(c.transport[q], r->ratio);
+				tr[q] = c[1][q] >= 0 ? 1 : exp(c[1][q] * r->ratio);
 			if (a > 0 && f->blur_tan > 0) {
 				double dist = r->ratio * f->geo->ref_step;
 				double tex = f->texel;
@@ -708,8 +855,8 @@ merge(void *ctx, void *local, int t)
 	local_st *sum = ctx, *l = local;
 
 	(void)t;
-	sum->eye += l->eye;
 	sum->eye_skip += l->eye_skip;
+	sum->eye_done += l->eye_done;
 	sum->light += l->light;
 	sum->light_skip += l->light_skip;
 	return 0;
@@ -794,6 +941,46 @@ vx_dvr_render(const vx_scene *s, const vx_dvr_decide *d, const vx_tf *tf,
 				f.mcoff[a][i] = (size_t)(i / m->width[1][a]) * sd;
 		}
 	}
+	if (o->tf_table > 0 && !f.class_g) {
+		double vlo = g->vmin, vhi = g->vmax;
+
+		if (!g->has_range)
+			vlo = vhi = 0;
+		if ((rc = vx_tf_lut_build(&f.lut, tf, vlo, vhi, o->tf_table,
+		    e)) != 0)
+			goto done;
+	}
+	f.cutoff = (float)o->cutoff;
+	for (int a = 0; a < 3; a++) {
+		f.flat |= g->dims[a] < 2;
+		f.vhi[a] = (double)(g->dims[a] - 1);
+		f.cmax[a] = g->dims[a] - 2;
+		f.amb[a] = s->ambient[a] * s->ambient_intensity;
+	}
+	for (int k = 0; k < s->nlight; k++) {
+		const vx_light *l = &s->light[k];
+		flight *fl = &f.light[f.nlight];
+
+		if (!(k == d->driver || d->local[k]))
+			continue;
+		memset(fl, 0, sizeof *fl);
+		fl->driver = k == d->driver;
+		if (l->type == VX_LIGHT_DIRECTIONAL ||
+		    (l->type == VX_LIGHT_HEADLIGHT &&
+		    s->camera.projection == VX_ORTHOGRAPHIC)) {
+			memcpy(fl->L, l->type == VX_LIGHT_DIRECTIONAL ?
+			    l->direction : s->camera.fwd, sizeof fl->L);
+			vx_unit3(fl->L);
+		} else {
+			fl->point = 1;
+			memcpy(fl->pos, l->type == VX_LIGHT_HEADLIGHT ?
+			    s->camera.o : l->position, sizeof fl->pos);
+			fl->inv_square = l->falloff == VX_FALLOFF_INVERSE_SQUARE;
+		}
+		for (int a = 0; a < 3; a++)
+			fl->rad[a] = l->intensity * l->color[a];
+		f.nlight++;
+	}
 	if ((rc = vx_image_alloc(out, f.W, f.H, 4, e)) != 0)
 		goto done;
 	snprintf(out->name, sizeof out->name, "color");
@@ -801,23 +988,45 @@ vx_dvr_render(const vx_scene *s, const vx_dvr_decide *d, const vx_tf *tf,
 	f.eye = vx_malloc(np * sizeof *f.eye, e);
 	f.ek = vx_malloc(np * 2 * sizeof *f.ek, e);
 	f.acc = vx_malloc(np * 4 * sizeof *f.acc, e);
-	if (f.eye == NULL || f.ek == NULL || f.acc == NULL) {
+	f.span = vx_malloc((size_t)f.H * 2 * sizeof *f.span, e);
+	if (f.eye == NULL || f.ek == NULL || f.acc == NULL || f.span == NULL) {
 		rc = VX_ENOMEM;
 		goto done;
 	}
 	vx_grid_box(g, lo, hi);
-	for (int y = 0; y < f.H; y++)
+	for (int y = 0; y < f.H; y++) {
+		f.span[2 * y] = f.W;
+		f.span[2 * y + 1] = 0;
 		for (int x = 0; x < f.W; x++) {
 			size_t i = (size_t)y * (size_t)f.W + (size_t)x;
-			ray *r = &f.eye[i];
+			eray *er = &f.eye[i];
+			ray r;
+			double lam0, dlam;
 
-			vx_camera_ray(&s->camera, x + 0.5, y + 0.5, r->o, r->d);
-			ray_setup(r, &geo, lo, hi);
-			f.ek[2 * i] = r->k0;
-			f.ek[2 * i + 1] = r->k1;
+			vx_camera_ray(&s->camera, x + 0.5, y + 0.5, r.o, r.d);
+			ray_setup(&r, &geo, lo, hi);
+			f.ek[2 * i] = r.k0;
+			f.ek[2 * i + 1] = r.k1;
 			f.acc[4 * i] = f.acc[4 * i + 1] = f.acc[4 * i + 2] = 0;
 			f.acc[4 * i + 3] = geo.back_to_front ? 0 : 1;
+			memset(er, 0, sizeof *er);
+			if (r.k1 <= r.k0)
+				continue;
+			sum.eye += (uint64_t)(r.k1 - r.k0);
+			if (x < f.span[2 * y])
+				f.span[2 * y] = x;
+			f.span[2 * y + 1] = x + 1;
+			lam0 = (geo.tmin + 0.5 * geo.dt - r.so) / r.sd;
+			dlam = geo.dt / r.sd;
+			for (int a = 0; a < 3; a++) {
+				er->p[a] = (r.o[a] + lam0 * r.d[a] - g->origin[a]) /
+				    g->spacing[a];
+				er->dp[a] = dlam * r.d[a] / g->spacing[a];
+				er->d[a] = (float)r.d[a];
+			}
+			er->ratio = (float)r.ratio;
 		}
+	}
 	if (d->light_buffer) {
 		size_t nl = (size_t)f.LW * (size_t)f.LW;
 		const vx_light *l = &s->light[d->driver];
@@ -897,12 +1106,14 @@ vx_dvr_render(const vx_scene *s, const vx_dvr_decide *d, const vx_tf *tf,
 	st->light_size = f.LW;
 	st->eye_samples = sum.eye;
 	st->eye_skipped = sum.eye_skip;
+	st->eye_done = sum.eye_done;
 	st->light_samples = sum.light;
 	st->light_skipped = sum.light_skip;
 done:
 	if (rc != 0)
 		vx_image_free(out);
 	free(f.eye);
+	free(f.span);
 	free(f.acc);
 	free(f.lray);
 	if (f.next != f.cur)
@@ -911,6 +1122,7 @@ done:
 	free(f.ek);
 	free(f.lk);
 	free((void *)f.clear);
+	vx_tf_lut_free(&f.lut);
 	for (int a = 0; a < 3; a++)
 		free(f.mcoff[a]);
 	st->seconds = vx_par_seconds() - t0;

@@ -58,9 +58,18 @@
  * attenuation); the blur and the indirect term only with scattering; the
  * gradient is computed only when the transfer function needs it
  * (vx_tf_needs_gradient).  Empty space: samples in level-1 macrocells
- * whose [min, max] is clear (vx_tf_range_clear) are skipped; a sample of
- * alpha 0 and transport 1 changes nothing either way, so skipping changes
- * no pixel.
+ * whose [min, max] is clear (vx_tf_range_clear) are skipped (an eye ray
+ * moves on at once to the slice where it leaves such a macrocell); a
+ * sample of alpha 0 and transport 1 changes nothing either way, so
+ * skipping changes no pixel.
+ *
+ * Approximations, each with its knob (vx_dvr_opts): classification
+ * through a table (vx_tf_lut) of tf_table intervals over the volume's
+ * range, in the optical form (vx_tf_optic: one exponential corrects a
+ * sample's opacity and transport for its spacing) unless the function
+ * depends on the gradient; early ray termination front to back at the
+ * transmittance cutoff; eye samples at p + k dp with their trilinear
+ * weights and lerps in single precision.
  *
  * Determinism: each slice's eye pass and light pass run in parallel over
  * rows; every output value depends only on its pixel or texel and the
@@ -92,6 +101,12 @@ typedef struct vx_dvr_opts {
 	int blur_samples;         /* 1..VX_DVR_MAX_BLUR (4) */
 	uint64_t seed;            /* the blur's jitter (1) */
 	int no_skip;              /* 1: sample inside clear macrocells too */
+	int tf_table;             /* classification table intervals over
+	                             the volume's range (vx_tf_lut; 4096);
+	                             0: vx_tf_classify at every sample */
+	double cutoff;            /* front to back: a pixel is done when its
+	                             transmittance falls below it (1e-3);
+	                             0: never */
 } vx_dvr_opts;
 
 /* vx_dvr_opts_init: the defaults above. */
@@ -137,6 +152,7 @@ typedef struct vx_dvr_stats {
 	int threads, nslices, light_size;
 	uint64_t eye_samples;     /* eye ray / slice crossings inside the box */
 	uint64_t eye_skipped;     /* of them, in clear macrocells */
+	uint64_t eye_done;        /* of them, behind the cutoff */
 	uint64_t light_samples, light_skipped;
 	double seconds;           /* the whole frame */
 	double setup_s, eye_s, light_s;   /* its phases */

@@ -82,16 +82,3 @@ vx_phase_table_hg(vx_phase_table *t, double g)
 		    2.0 * i / (VX_PHASE_TABLE_N - 1) - 1));
 }
 
-double
-vx_phase_table_eval(const vx_phase_table *t, double c)
-{
-	double x = (c + 1) * 0.5 * (VX_PHASE_TABLE_N - 1);
-	int i;
-
-	if (!(x > 0))
-		return t->v[0];
-	if (x >= VX_PHASE_TABLE_N - 1)
-		return t->v[VX_PHASE_TABLE_N - 1];
-	i = (int)x;
-	return t->v[i] + (x - i) * (t->v[i + 1] - t->v[i]);
-}
