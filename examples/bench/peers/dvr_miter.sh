@@ -17,7 +17,7 @@
 # sample's colour is the txf's RGB (mite: (E - 1 + ka amb) RGB, E 1 by default).
 # Threads: -nt THREADS (hoover's pthreads).  Early ray termination: a ray stops once its
 # opacity reaches NEAR1 (-n1; default 0.99, miter's own default, as a user runs it; 1
-# turns it off: voxlux's dvr composites every slice).
+# turns it off; voxlux's dvr stops at transmittance 0.001, its --cutoff).
 # The volume is read through a detached header stating node centring (mip_teem.sh says
 # why); camera.py teem gives the camera: the near and far planes clip to the box, and
 # the near plane, where hoover takes its first sample, lies OFFSET (default STEP / 2)
