@@ -42,7 +42,7 @@ Ratios pair two runs of the same round; the tables give the median of the per-ro
 ratios and the ratio of the minima, of wall and of CPU time.
 
 Pictures: before the rounds, miter renders once more with early ray termination off
-(-n1 1: it composites every sample, as dvr does); voxlux's unshaded picture is compared
+(-n1 1: it composites every sample; dvr stops at transmittance 0.001); voxlux's unshaded picture is compared
 with it, with the timed miter picture (-n1 0.99) and with VTK's unshaded one: relative
 RMSE of the premultiplied RGB over the pixels either image covers (any channel > 0),
 divided by voxlux's mean there (tests/cli/vximg.py relrmse-all's measure), and the
