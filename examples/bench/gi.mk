@@ -9,6 +9,11 @@
 #                                          SH rows, Table 2 with the SH frames, the
 #                                          cost a path against bake-irr, memory: results/gi-sh/
 #   make -C examples/bench gi-sh GI_SH_PARTS=shmem    one part: sht1, t2, shcost, shmem
+#   make -C examples/bench gi-t2           Table 2 in one process (t2bench.c: every
+#                                          mode each round, GI_T2_ROUNDS rounds, 1 thread):
+#                                          results/gi-t2/t2bench.txt
+#   make -C examples/bench gi-probe        where a bake's paths go (bakeprobe.c):
+#                                          results/gi-t2/bakeprobe.txt
 #
 # Datasets: the MRI head (ch2, skin at 40: examples/scenes/head-gi-sky.scn) and,
 # when $(DATA) has it, the Visible Human CT head (skin at 600.5:
@@ -35,7 +40,11 @@ GI_SH_ORDER ?= 5
 # the CT head's skin-to-bone band for the memory prediction (gibench.py)
 GI_SH_VHF_BAND ?= 600.5,1224.5
 
-.PHONY: gi gi-sh
+GI_T2_OUT ?= results/gi-t2
+GI_T2_ROUNDS ?= 41
+GI_T2_THREADS ?= 1
+
+.PHONY: gi gi-sh gi-t2 gi-probe
 
 $(OUT)/gi/%.vx: $$($$*_SRC)
 	@mkdir -p $(@D)
@@ -55,3 +64,29 @@ gi-sh: $(foreach c,$(GI_CASES),$(OUT)/gi/$(c).vx)
 	  --samples $(GI_SAMPLES) --max-paths $(GI_MAX_PATHS) --max-lazy-paths $(GI_SH_MAX_LAZY_PATHS) \
 	  --sh-order $(GI_SH_ORDER) --sh-vhf-band $(GI_SH_VHF_BAND) \
 	  $(foreach c,$(GI_CASES),--dataset $(c) $(OUT)/gi/$(c).vx $($(c)_GISCENE) $($(c)_GIRANGE))
+
+# Table 2 in one process: the ch2 band's bake at 4 samples a texel (the
+# frame time does not depend on the count) in each store
+$(OUT)/t2bench $(OUT)/bakeprobe: $(OUT)/%: %.c $(VX_LIB)
+	@mkdir -p $(@D)
+	$(CC) -std=c11 -O2 -g -Wall -Wextra -Wshadow -Wno-unused-parameter -fopenmp \
+	  $(VX_INC) -o $@ $< $(VX_LIB) -lpng -lz -lm
+
+$(OUT)/gi-t2/ch2-accum.vx: $(OUT)/gi/ch2.vx
+	@mkdir -p $(@D)
+	$(VX_BIN)/bake-irr --scene $(ch2_GISCENE) --samples 4 -o $@.tmp $< && mv $@.tmp $@
+
+$(OUT)/gi-t2/ch2-f32.vx $(OUT)/gi-t2/ch2-f16.vx: $(OUT)/gi-t2/ch2-%.vx: $(OUT)/gi-t2/ch2-accum.vx
+	$(VX_BIN)/bake-irr --scene $(ch2_GISCENE) --samples 0 \
+	  $(if $(filter f32,$*),--final,--half) -o $@.tmp $< && mv $@.tmp $@
+
+gi-t2: $(OUT)/t2bench $(foreach s,accum f32 f16,$(OUT)/gi-t2/ch2-$(s).vx)
+	@mkdir -p $(GI_T2_OUT)
+	$(OUT)/t2bench --scene $(ch2_GISCENE) -n $(GI_T2_ROUNDS) -j $(GI_T2_THREADS) \
+	  $(foreach s,accum f32 f16,--irr $(s)=$(OUT)/gi-t2/ch2-$(s).vx) \
+	  $(OUT)/gi/ch2.vx > $(GI_T2_OUT)/t2bench.txt && cat $(GI_T2_OUT)/t2bench.txt
+
+gi-probe: $(OUT)/bakeprobe $(OUT)/gi/ch2.vx
+	@mkdir -p $(GI_T2_OUT)
+	$(OUT)/bakeprobe --scene $(ch2_GISCENE) --samples 4 --every 8 \
+	  $(OUT)/gi/ch2.vx > $(GI_T2_OUT)/bakeprobe.txt && cat $(GI_T2_OUT)/bakeprobe.txt

@@ -6,10 +6,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "tool.h"
 #include "vx_grid.h"
+#include "vx_par.h"
 #include "vx_stream.h"
 
 static const char usage[] =
@@ -17,8 +17,9 @@ static const char usage[] =
     "[-v] [-o OUT] [IN|-]";
 
 typedef struct opts {
-	const char *in, *out, *name, *bricks;
-	int linear, stats;
+	const char *in, *bricks;
+	int linear;
+	tool_run_opts run;       /* -o, --name, --stats */
 } opts;
 
 static void
@@ -27,37 +28,25 @@ parse_args(opts *o, int argc, char **argv)
 	static const struct option lo[] = {
 		{ "bricks", required_argument, NULL, 'b' },
 		{ "linear", no_argument, NULL, 'l' },
-		{ "name", required_argument, NULL, 'n' },
-		{ "stats", no_argument, NULL, 's' },
-		{ "verbose", no_argument, NULL, 'v' },
+		{ "name", required_argument, NULL, TOOL_O_NAME },
+		{ "stats", no_argument, NULL, TOOL_O_STATS },
+		{ "verbose", no_argument, NULL, TOOL_O_STATS },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 },
 	};
 	int ch;
 
 	memset(o, 0, sizeof *o);
-	o->out = "-";
+	tool_run_opts_init(&o->run);
 	while ((ch = getopt_long(argc, argv, ":vo:", lo, NULL)) != -1) {
-		switch (ch) {
-		case 'b':
+		if (ch == 'b')
 			o->bricks = optarg;
-			break;
-		case 'l':
+		else if (ch == 'l')
 			o->linear = 1;
-			break;
-		case 'n':
-			o->name = optarg;
-			break;
-		case 's':
-		case 'v':
-			o->stats = 1;
-			break;
-		case 'o':
-			o->out = optarg;
-			break;
-		default:
+		else if (ch == 'v')
+			o->run.stats = 1;
+		else if (!tool_run_opt(&o->run, ch, optarg))
 			tool_opt_other(ch, usage, argv);
-		}
 	}
 	if (o->linear && o->bricks)
 		tool_usage_fail(usage, "--bricks and --linear exclude each "
@@ -109,15 +98,6 @@ input_zlevel(const vx_hdr *h)
 	return enc != NULL && strcmp(enc, "zlib") == 0 ? 6 : 0;
 }
 
-static double
-now(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 int
 main(int argc, char **argv)
 {
@@ -137,7 +117,7 @@ main(int argc, char **argv)
 	parse_args(&o, argc, argv);
 	vx_stream_init(&s);
 	tool_read_stream(&s, o.in);
-	if (vx_grid_view_stream(&g, &s, o.name, &idx, &e) != 0)
+	if (vx_grid_view_stream(&g, &s, o.run.name, &idx, &e) != 0)
 		tool_fail_err(&e);
 	if (o.linear)
 		snprintf(spec, sizeof spec, "linear");
@@ -150,12 +130,12 @@ main(int argc, char **argv)
 		snprintf(spec, sizeof spec, "bricked %dx%dx%d %dx%dx%d",
 		    br[0][0], br[0][1], br[0][2], br[1][0], br[1][1], br[1][2]);
 	}
-	t0 = now();
+	t0 = vx_par_seconds();
 	if (vx_grid_relayout(&b, &g, spec, &e) != 0) {
 		vx_err_push(&e, "%s", g.name);
 		tool_fail_err(&e);
 	}
-	if (o.stats) {
+	if (o.run.stats) {
 		double real = (double)g.dims[0] * (double)g.dims[1] *
 		    (double)g.dims[2];
 
@@ -168,7 +148,7 @@ main(int argc, char **argv)
 		    was, spec,
 		    (long long)b.lay.pdims[0], (long long)b.lay.pdims[1],
 		    (long long)b.lay.pdims[2], b.nsample, real,
-		    100.0 * ((double)b.nsample - real) / real, now() - t0);
+		    100.0 * ((double)b.nsample - real) / real, vx_par_seconds() - t0);
 	}
 	/* the volume is the same, only its layout changes: keys this version
 	 * does not know pass through (formats/stream.md 9.1) */
@@ -182,7 +162,7 @@ main(int argc, char **argv)
 		tool_fail_err(&e);
 	vx_hdr_free(&h);
 	vx_stream_replace(&s, (size_t)idx, &c);
-	tool_write_stream(&s, o.out);
+	tool_write_stream(&s, o.run.out);
 	vx_stream_free(&s);
 	return tool_finish();
 }

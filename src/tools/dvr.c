@@ -22,17 +22,16 @@ static const char usage[] =
     "    [--fov DEG] [--light SPEC] [--lights none] [--effects WORDS]\n"
     "    [--background R,G,B] [--set LINE] [--name NAME] [--slices N]\n"
     "    [--light-size N] [--blur-angle DEG] [--blur-samples N] [--seed N]\n"
-    "    [--no-skip] [--tf-table N] [--cutoff T] [-j N] [--stats] [--explain]\n"
-    "    [-n] [--hdr] [-z LEVEL] [--pfm FILE] [--bits 8|16] [--exposure STOPS]\n"
-    "    [-o OUT] [STREAM|-]\n"
+    "    [--no-skip] [--no-jitter] [--tf-table N] [--cutoff T] [-j N]\n"
+    "    [--stats] [--explain] [-n] [--hdr] [-z LEVEL] [--pfm FILE]\n"
+    "    [--bits 8|16] [--exposure STOPS] [-o OUT] [STREAM|-]\n"
     "    [--reference raymarch|pathtrace [--spp N] [--bounces N]\n"
     "    [--march-step S]]";
 
 typedef struct opts {
-	const char *in, *out, *name, *pfm;
-	int hdr, zlevel, bits, stats, explain, dry, ortho;
-	long threads;
-	double exposure;
+	const char *in, *name;
+	int ortho;
+	tool_run_opts run;        /* -o, -j, --hdr, --stats, ... */
 	vx_dvr_opts d;
 	tool_scene_opts so;
 	int ref;                  /* --reference given */
@@ -44,8 +43,8 @@ static void
 parse(opts *o, int argc, char **argv)
 {
 	enum { O_ORTHO = 256, O_NAME, O_SLICES, O_LSIZE, O_BANGLE, O_BSAMP,
-	    O_SEED, O_NOSKIP, O_STATS, O_EXPLAIN, O_HDR, O_BITS, O_EXPOSURE,
-	    O_PFM, O_REF, O_SPP, O_BOUNCES, O_MSTEP, O_TFTABLE, O_CUTOFF };
+	    O_SEED, O_NOSKIP, O_REF, O_SPP, O_BOUNCES, O_MSTEP, O_TFTABLE,
+	    O_CUTOFF, O_NOJITTER };
 	static const struct option lo[] = {
 		{ "scene", 1, 0, TOOL_O_SCENE },
 		{ "size", 1, 0, TOOL_O_SIZE }, { "view", 1, 0, TOOL_O_VIEW },
@@ -57,30 +56,23 @@ parse(opts *o, int argc, char **argv)
 		{ "slices", 1, 0, O_SLICES }, { "light-size", 1, 0, O_LSIZE },
 		{ "blur-angle", 1, 0, O_BANGLE },
 		{ "blur-samples", 1, 0, O_BSAMP }, { "seed", 1, 0, O_SEED },
-		{ "no-skip", 0, 0, O_NOSKIP }, { "stats", 0, 0, O_STATS },
+		{ "no-skip", 0, 0, O_NOSKIP },
 		{ "tf-table", 1, 0, O_TFTABLE }, { "cutoff", 1, 0, O_CUTOFF },
-		{ "explain", 0, 0, O_EXPLAIN }, { "dry-run", 0, 0, 'n' },
-		{ "hdr", 0, 0, O_HDR }, { "bits", 1, 0, O_BITS },
-		{ "exposure", 1, 0, O_EXPOSURE }, { "pfm", 1, 0, O_PFM },
-		{ "output", 1, 0, 'o' }, { "threads", 1, 0, 'j' },
+		{ "no-jitter", 0, 0, O_NOJITTER },
+		{ "exposure", 1, 0, TOOL_O_EXPOSURE },
+		{ "pfm", 1, 0, TOOL_O_PFM },
 		{ "reference", 1, 0, O_REF }, { "spp", 1, 0, O_SPP },
 		{ "bounces", 1, 0, O_BOUNCES }, { "march-step", 1, 0, O_MSTEP },
-		{ "help", 0, 0, 'h' }, { 0, 0, 0, 0 }
+		TOOL_RUN_LONG, TOOL_RENDER_LONG, { 0, 0, 0, 0 }
 	};
 	int c;
 
 	memset(o, 0, sizeof *o);
-	o->out = "-";
-	o->bits = 8;
-	o->zlevel = 1;
+	tool_run_opts_init(&o->run);
 	vx_dvr_opts_init(&o->d);
 	vx_dvrref_opts_init(&o->r);
-	while ((c = getopt_long(argc, argv, ":o:j:nhz:", lo, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, TOOL_RUN_SHORT, lo, NULL)) != -1) {
 		switch (c) {
-		case 'o': o->out = optarg; break;
-		case 'z': o->zlevel = (int)tool_parse_long("-z", optarg, 0, 9); break;
-		case 'j': o->threads = tool_parse_long("-j", optarg, 0, 4096); break;
-		case 'n': o->dry = o->explain = 1; break;
 		case O_ORTHO: o->ortho = 1; break;
 		case O_NAME: o->name = optarg; break;
 		case O_SLICES:
@@ -104,24 +96,13 @@ parse(opts *o, int argc, char **argv)
 			    0x7fffffffffffffffL);
 			break;
 		case O_NOSKIP: o->d.no_skip = 1; break;
+		case O_NOJITTER: o->d.jitter = 0; break;
 		case O_TFTABLE:
 			o->d.tf_table = (int)tool_parse_long("--tf-table", optarg,
 			    0, VX_TF_MAX_LUT);
 			break;
 		case O_CUTOFF:
 			o->d.cutoff = tool_parse_double("--cutoff", optarg, 0, 1);
-			break;
-		case O_STATS: o->stats = 1; break;
-		case O_EXPLAIN: o->explain = 1; break;
-		case O_HDR: o->hdr = 1; break;
-		case O_PFM: o->pfm = optarg; break;
-		case O_BITS:
-			o->bits = (int)tool_parse_long("--bits", optarg, 8, 16);
-			if (o->bits != 8 && o->bits != 16)
-				tool_usage_fail(usage, "--bits: 8 or 16");
-			break;
-		case O_EXPOSURE:
-			o->exposure = tool_parse_double("--exposure", optarg, -64, 64);
 			break;
 		/* the references (vx_dvrref.h) */
 		case O_REF:
@@ -150,7 +131,8 @@ parse(opts *o, int argc, char **argv)
 			    1e-9, 1e9);
 			break;
 		default:
-			if (!tool_scene_opt(&o->so, c, optarg, usage))
+			if (!tool_run_opt(&o->run, c, optarg) &&
+			    !tool_scene_opt(&o->so, c, optarg, usage))
 				tool_opt_other(c, usage, argv);
 		}
 	}
@@ -318,7 +300,7 @@ main(int argc, char **argv)
 	if (vx_grid_check_box(&g, &e) != 0)
 		tool_fail_err(&e);
 	tool_scene_tf(&tf, &s);
-	nthr = tool_threads(o.threads);
+	nthr = tool_threads(o.run.threads);
 	o.d.nthreads = nthr;
 	vx_dvr_plan(&s, &tf, &o.d, &d, &plan);
 	vx_grid_box(&g, lo, hi);
@@ -327,23 +309,16 @@ main(int argc, char **argv)
 	if (vx_dvr_geometry(&s, &d, &tf, &g, &o.d, &geo, &e) != 0)
 		tool_fail_err(&e);
 	o.r.nthreads = nthr;
-	if (o.explain && o.ref)
+	if (o.run.explain && o.ref)
 		explain_reference(&o, &s, &tf, &d, &g, nthr);
-	if (o.explain && !o.ref) {
-		size_t n = vx_plan_format(&plan, NULL, 0) + 1;
-		char *buf = malloc(n);
-
-		if (buf == NULL)
-			tool_fail(VX_ENOMEM, "out of memory");
-		vx_plan_format(&plan, buf, n);
-		fprintf(stderr, "%s", buf);
-		free(buf);
+	if (o.run.explain && !o.ref) {
+		tool_plan_print(&plan);
 		explain_geometry(&s, &d, &geo, &g, nthr);
 	}
 	vx_macro_init(&m);
 	if (!o.d.no_skip && !o.ref)
-		tool_macro_load(&m, &st, &g, gi, nthr, o.dry);
-	if (o.dry) {
+		tool_macro_load(&m, &st, &g, gi, nthr, o.run.dry);
+	if (o.run.dry) {
 		vx_macro_free(&m);
 		vx_tf_free(&tf);
 		vx_grid_free(&g);
@@ -357,41 +332,23 @@ main(int argc, char **argv)
 		if (vx_dvrref_render(&s, &d, &tf, &g, &o.r, &color, &rs,
 		    &e) != 0)
 			tool_fail_err(&e);
-		if (o.stats)
+		if (o.run.stats)
 			stats_reference(&o, &rs);
 	} else {
 		if (vx_dvr_render(&s, &d, &tf, &g, o.d.no_skip ? NULL : &m,
 		    &o.d, &color, &ds, &e) != 0)
 			tool_fail_err(&e);
-		if (o.stats)
+		if (o.run.stats)
 			print_stats(&ds);
 	}
-	if (o.pfm) {
-		/* linear RGB over the background: what a PFM can hold */
-		vx_image flat;
+	{
+		/* the volume and its hierarchy are consumed */
+		static const char *const drawn[] = { VX_CHUNK_VOLUME,
+		    VX_CHUNK_MACRO, NULL };
+		const vx_image *img[3] = { &color, NULL, NULL };
 
-		if (vx_image_flatten(&flat, &color, 1, s.background, &e) != 0)
-			tool_fail_err(&e);
-		tool_write_pfm(o.pfm, &flat);
-		vx_image_free(&flat);
+		tool_render_write(&o.run, &st, drawn, &s, img, NULL);
 	}
-	if (o.hdr) {
-		static const char *const consumed[] = { VX_CHUNK_VOLUME,
-		    VX_CHUNK_MACRO, VX_CHUNK_SCENE, VX_CHUNK_IMAGE, NULL };
-		vx_stream out;
-		vx_chunk c;
-
-		vx_stream_init(&out);
-		tool_stream_keep(&out, &st, consumed);
-		if (vx_scene_to_stream(&s, &out, &e) != 0 ||
-		    vx_image_to_chunk(&color, o.zlevel, &c, &e) != 0 ||
-		    vx_stream_append(&out, &c, &e) != 0)
-			tool_fail_err(&e);
-		tool_write_stream(&out, o.out);
-		vx_stream_free(&out);
-	} else
-		tool_write_png_radiance(o.out, &color, o.exposure, s.background,
-		    o.bits, &st);
 	vx_image_free(&color);
 	vx_macro_free(&m);
 	vx_tf_free(&tf);

@@ -7,12 +7,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "tool.h"
 #include "vx_grid.h"
 #include "vx_macro.h"
 #include "vx_macroio.h"
+#include "vx_par.h"
 #include "vx_stream.h"
 #include "vx_tetimport.h"
 #include "vx_tetleaf.h"
@@ -22,12 +22,12 @@ static const char usage[] =
     "[--density D] [--bbox] [-j N] [--stats] [-o OUT] [IN|-]";
 
 typedef struct opts {
-	const char *in, *out, *name, *sizes;
+	const char *in, *sizes;
 	long levels;     /* -1: not given */
 	long jobs;
-	int stats;
 	double density;  /* meshes: leaves per tet (0: not given) */
 	int bbox;        /* meshes: bounding-box lists */
+	tool_run_opts run;       /* -o, --name, --stats */
 } opts;
 
 static void
@@ -36,8 +36,8 @@ parse_args(opts *o, int argc, char **argv)
 	static const struct option lo[] = {
 		{ "levels", required_argument, NULL, 'L' },
 		{ "sizes", required_argument, NULL, 'S' },
-		{ "name", required_argument, NULL, 'n' },
-		{ "stats", no_argument, NULL, 's' },
+		{ "name", required_argument, NULL, TOOL_O_NAME },
+		{ "stats", no_argument, NULL, TOOL_O_STATS },
 		{ "density", required_argument, NULL, 'D' },
 		{ "bbox", no_argument, NULL, 'B' },
 		{ "help", no_argument, NULL, 'h' },
@@ -46,7 +46,7 @@ parse_args(opts *o, int argc, char **argv)
 	int ch;
 
 	memset(o, 0, sizeof *o);
-	o->out = "-";
+	tool_run_opts_init(&o->run);
 	o->levels = -1;
 	while ((ch = getopt_long(argc, argv, ":j:o:", lo, NULL)) != -1) {
 		switch (ch) {
@@ -56,12 +56,6 @@ parse_args(opts *o, int argc, char **argv)
 			break;
 		case 'S':
 			o->sizes = optarg;
-			break;
-		case 'n':
-			o->name = optarg;
-			break;
-		case 's':
-			o->stats = 1;
 			break;
 		case 'D':
 			o->density = tool_parse_double("--density", optarg,
@@ -73,11 +67,9 @@ parse_args(opts *o, int argc, char **argv)
 		case 'j':
 			o->jobs = tool_parse_long("-j", optarg, 1, 1024);
 			break;
-		case 'o':
-			o->out = optarg;
-			break;
 		default:
-			tool_opt_other(ch, usage, argv);
+			if (!tool_run_opt(&o->run, ch, optarg))
+				tool_opt_other(ch, usage, argv);
 		}
 	}
 	o->in = tool_opt_input(argc, argv, usage);
@@ -96,15 +88,6 @@ find_owned(const vx_stream *s, const char *type, const char *name)
 	if (vx_macro_find_owned(s, type, name, &i, &e) != 0)
 		tool_fail_err(&e);
 	return i;
-}
-
-static double
-now(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 static void
@@ -204,14 +187,14 @@ mesh_main(vx_stream *s, long idx, const opts *o, int nlev,
 		tool_fail_err(&e);
 	if (o->sizes == NULL && nlev > 0)
 		vx_macro_default_sizes(VX_F32, nlev, sizes);
-	t0 = now();
+	t0 = vx_par_seconds();
 	if (vx_tetleaf_build_levels(&lg, &m, density, o->bbox ?
 	    VX_TETLEAF_BBOX : 0, nlev, (const int (*)[3])sizes, nt, &e) != 0) {
 		vx_err_push(&e, "%s", m.name);
 		tool_fail_err(&e);
 	}
-	if (o->stats)
-		print_mesh_stats(&lg, &m, density, o->bbox, now() - t0, nt);
+	if (o->run.stats)
+		print_mesh_stats(&lg, &m, density, o->bbox, vx_par_seconds() - t0, nt);
 	memset(&c, 0, sizeof c);
 	if (vx_tetleaf_to_chunk(&lg, &m, 0, &c, &e) != 0)
 		tool_fail_err(&e);
@@ -250,33 +233,33 @@ main(int argc, char **argv)
 	tool_read_stream(&s, o.in);
 	{
 		int is_mesh = 0;
-		long src = vx_tetmesh_find_source(&s, o.name, &is_mesh);
+		long src = vx_tetmesh_find_source(&s, o.run.name, &is_mesh);
 
 		if (src >= 0 && is_mesh) {
 			mesh_main(&s, src, &o, nlev, sizes);
-			tool_write_stream(&s, o.out);
+			tool_write_stream(&s, o.run.out);
 			vx_stream_free(&s);
 			return tool_finish();
 		}
-		if (src < 0 && o.name != NULL)
+		if (src < 0 && o.run.name != NULL)
 			tool_fail(VX_EDATA, "no volume or mesh named '%s' in the "
-			    "stream", o.name);
+			    "stream", o.run.name);
 	}
 	if (o.density > 0 || o.bbox)
 		tool_usage_fail(usage, "--density and --bbox apply to tet "
 		    "meshes");
-	if (vx_grid_view_stream(&g, &s, o.name, &idx, &e) != 0)
+	if (vx_grid_view_stream(&g, &s, o.run.name, &idx, &e) != 0)
 		tool_fail_err(&e);
 	if (o.sizes == NULL && nlev > 0)
 		vx_macro_default_sizes(g.type, nlev, sizes);
 	nt = tool_threads(o.jobs);
-	t0 = now();
+	t0 = vx_par_seconds();
 	if (vx_macro_build(&m, &g, nlev, (const int (*)[3])sizes, nt, &e) != 0) {
 		vx_err_push(&e, "%s", g.name);
 		tool_fail_err(&e);
 	}
-	if (o.stats)
-		print_stats(&m, &g, now() - t0, nt);
+	if (o.run.stats)
+		print_stats(&m, &g, vx_par_seconds() - t0, nt);
 	/* the volume's chunk goes out as it came in: its CRC lets a renderer
 	 * skip the pass over the samples that proves the cells match */
 	m.vchunk_crc = vx_chunk_crc_of(&s.chunk[idx]);
@@ -290,7 +273,7 @@ main(int argc, char **argv)
 		tool_fail_err(&e);
 	vx_macro_free(&m);
 	vx_grid_free(&g);
-	tool_write_stream(&s, o.out);
+	tool_write_stream(&s, o.run.out);
 	vx_stream_free(&s);
 	return tool_finish();
 }

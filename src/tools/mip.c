@@ -27,48 +27,35 @@ static const char usage[] =
     "    [STREAM|-]";
 
 typedef struct opts {
-	const char *in, *out, *name, *depth;
-	int bits, stats, explain, dry, hdr, zlevel, lastt, exhaustive, persp;
-	int has_window;
+	const char *in;
+	int lastt, exhaustive, persp, has_window;
 	double window[2];
 	vx_colormap cmap;
-	long threads;
+	tool_run_opts run;        /* -o, -j, --hdr, --stats, ... */
 	tool_scene_opts so;      /* --scene, --size, --view, --fov */
 } opts;
 
 static void
 parse(opts *o, int argc, char **argv)
 {
-	enum { O_PERSP = 256, O_NAME, O_WINDOW, O_CMAP, O_BITS, O_NOLAST,
-	    O_EXH, O_STATS, O_EXPLAIN, O_HDR, O_DEPTH };
+	enum { O_PERSP = 256, O_WINDOW, O_CMAP, O_NOLAST, O_EXH };
 	static const struct option lo[] = {
-		{ "scene", 1, 0, TOOL_O_SCENE }, { "size", 1, 0, TOOL_O_SIZE },
-		{ "view", 1, 0, TOOL_O_VIEW }, { "perspective", 0, 0, O_PERSP },
-		{ "fov", 1, 0, TOOL_O_FOV }, { "name", 1, 0, O_NAME },
+		{ "scene", 1, 0, TOOL_O_SCENE }, TOOL_SCENE_LONG_CAMERA,
+		{ "perspective", 0, 0, O_PERSP }, { "name", 1, 0, TOOL_O_NAME },
 		{ "window", 1, 0, O_WINDOW }, { "colormap", 1, 0, O_CMAP },
-		{ "bits", 1, 0, O_BITS }, { "no-last-t", 0, 0, O_NOLAST },
-		{ "exhaustive", 0, 0, O_EXH }, { "stats", 0, 0, O_STATS },
-		{ "explain", 0, 0, O_EXPLAIN }, { "dry-run", 0, 0, 'n' },
-		{ "hdr", 0, 0, O_HDR }, { "depth", 1, 0, O_DEPTH },
-		{ "output", 1, 0, 'o' }, { "threads", 1, 0, 'j' },
-		{ "help", 0, 0, 'h' }, { 0, 0, 0, 0 }
+		{ "no-last-t", 0, 0, O_NOLAST }, { "exhaustive", 0, 0, O_EXH },
+		{ "depth", 1, 0, TOOL_O_DEPTH },
+		TOOL_RUN_LONG, TOOL_RENDER_LONG, { 0, 0, 0, 0 }
 	};
 	int c;
 
 	memset(o, 0, sizeof *o);
-	o->out = "-";
-	o->bits = 8;
+	tool_run_opts_init(&o->run);
 	o->lastt = 1;
-	o->zlevel = 1;
 	o->cmap = VX_COLORMAP_GRAY;
-	while ((c = getopt_long(argc, argv, ":o:j:nhz:", lo, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, TOOL_RUN_SHORT, lo, NULL)) != -1) {
 		switch (c) {
-		case 'o': o->out = optarg; break;
-		case 'z': o->zlevel = (int)tool_parse_long("-z", optarg, 0, 9); break;
-		case 'j': o->threads = tool_parse_long("-j", optarg, 0, 4096); break;
-		case 'n': o->dry = o->explain = 1; break;
 		case O_PERSP: o->persp = 1; break;
-		case O_NAME: o->name = optarg; break;
 		case O_WINDOW:
 			tool_parse_doubles("--window", optarg, o->window, 2);
 			if (!(o->window[0] < o->window[1]))
@@ -79,17 +66,11 @@ parse(opts *o, int argc, char **argv)
 			o->cmap = (vx_colormap)tool_parse_enum("--colormap",
 			    &vx_colormap_enum, optarg);
 			break;
-		case O_BITS:
-			o->bits = tool_parse_bits(optarg);
-			break;
 		case O_NOLAST: o->lastt = 0; break;
 		case O_EXH: o->exhaustive = 1; break;
-		case O_STATS: o->stats = 1; break;
-		case O_EXPLAIN: o->explain = 1; break;
-		case O_HDR: o->hdr = 1; break;
-		case O_DEPTH: o->depth = optarg; break;
 		default:
-			if (!tool_scene_opt(&o->so, c, optarg, usage))
+			if (!tool_run_opt(&o->run, c, optarg) &&
+			    !tool_scene_opt(&o->so, c, optarg, usage))
 				tool_opt_other(c, usage, argv);
 		}
 	}
@@ -100,7 +81,6 @@ static void
 explain(const opts *o, const vx_scene *s, const vx_macro *m, int nthr)
 {
 	vx_plan p;
-	char buf[4096];
 	int nl = s->nlight;
 
 	vx_plan_init(&p, "mip");
@@ -115,8 +95,7 @@ explain(const opts *o, const vx_scene *s, const vx_macro *m, int nthr)
 	vx_plan_add(&p, "lights", VX_PLAN_OFF, 0, "a projection is not shaded: "
 	    "%d light%s and %d surface%s of the scene ignored", nl,
 	    nl == 1 ? "" : "s", s->nsurface, s->nsurface == 1 ? "" : "s");
-	vx_plan_format(&p, buf, sizeof buf);
-	fprintf(stderr, "%s", buf);
+	tool_plan_print(&p);
 	fprintf(stderr, "mip: %dx%d %s, %d hierarchy level%s, %d thread%s\n",
 	    s->camera.w, s->camera.h, s->camera.projection == VX_ORTHOGRAPHIC ?
 	    "orthographic" : "perspective", m->nlev, m->nlev == 1 ? "" : "s",
@@ -131,7 +110,7 @@ main(int argc, char **argv)
 	vx_grid g;
 	vx_macro m;
 	vx_scene s;
-	vx_image val, dep;
+	vx_image val, dep, disp;
 	vx_err e = { 0, "" };
 	vx_mip_stats ms;
 	double lo[3], hi[3], wlo, whi;
@@ -154,22 +133,22 @@ main(int argc, char **argv)
 	for (i = 0; i < o.so.n; i++)
 		if (vx_scene_option(&s, o.so.name[i], o.so.val[i], &e) != 0)
 			tool_fail_err(&e);
-	if (vx_grid_view_stream(&g, &st, o.name, &gi, &e) != 0) {
+	if (vx_grid_view_stream(&g, &st, o.run.name, &gi, &e) != 0) {
 		/* no such volume, but a tet mesh: say so */
 		int is_mesh = 0;
 
-		if (vx_tetmesh_find_source(&st, o.name, &is_mesh) >= 0 && is_mesh)
+		if (vx_tetmesh_find_source(&st, o.run.name, &is_mesh) >= 0 && is_mesh)
 			tool_fail(VX_EDATA, "%s%s%s is a tet mesh: mip draws "
 			    "volumes (raycast draws a mesh's isosurfaces)",
-			    o.name ? "'" : "the stream's source", o.name ? o.name :
-			    "", o.name ? "'" : "");
+			    o.run.name ? "'" : "the stream's source", o.run.name ? o.run.name :
+			    "", o.run.name ? "'" : "");
 		tool_fail_err(&e);
 	}
-	nthr = tool_threads(o.threads);
-	tool_macro_load(&m, &st, &g, gi, nthr, o.dry);
-	if (o.explain)
+	nthr = tool_threads(o.run.threads);
+	tool_macro_load(&m, &st, &g, gi, nthr, o.run.dry);
+	if (o.run.explain)
 		explain(&o, &s, &m, nthr);
-	if (o.dry)
+	if (o.run.dry)
 		return tool_finish();
 	vx_grid_box(&g, lo, hi);
 	if (vx_camera_resolve(&s.camera, lo, hi, &e) != 0)
@@ -187,7 +166,7 @@ main(int argc, char **argv)
 	if (vx_mip_render(&s.camera, &g, &m, &mo, &val, &dep, &ms, &e) != 0)
 		tool_fail_err(&e);
 	clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c1);
-	if (o.stats) {
+	if (o.run.stats) {
 		double sec = ms.seconds;
 		double cpu = (double)(c1.tv_sec - c0.tv_sec) +
 		    1e-9 * (double)(c1.tv_nsec - c0.tv_nsec);
@@ -206,28 +185,10 @@ main(int argc, char **argv)
 		    (unsigned long long)ms.cells_skipped,
 		    (unsigned long long)ms.macro_opened);
 	}
-	if (o.depth != NULL)
-		tool_write_pfm(o.depth, &dep);
-	if (o.hdr) {
-		static const char *const consumed[] = { VX_CHUNK_VOLUME,
-		    VX_CHUNK_MACRO, VX_CHUNK_IMAGE, NULL };
-		vx_stream os;
-		vx_chunk c;
-
-		vx_stream_init(&os);
-		tool_stream_keep(&os, &st, consumed);
-		if (vx_image_to_chunk(&val, o.zlevel, &c, &e) != 0 ||
-		    vx_stream_append(&os, &c, &e) != 0 ||
-		    vx_image_to_chunk(&dep, o.zlevel, &c, &e) != 0 ||
-		    vx_stream_append(&os, &c, &e) != 0)
-			tool_fail_err(&e);
-		tool_write_stream(&os, o.out);
-		vx_stream_free(&os);
-	} else {
-		vx_image disp;
+	vx_image_init(&disp);
+	if (!o.run.hdr) {
+		/* the window mapped to [0,1], gray or color-mapped (sRGB) */
 		int nc = o.cmap == VX_COLORMAP_GRAY ? 1 : 3;
-		size_t hl = 0;
-		const char *hist = vx_stream_history(&st, &hl);
 
 		wlo = o.has_window ? o.window[0] : g.vmin;
 		whi = o.has_window ? o.window[1] : g.vmax;
@@ -250,10 +211,16 @@ main(int argc, char **argv)
 						    (float)vx_srgb_oetf(rgb[k]);
 				}
 			}
-		/* display values as they are (no color-space chunk) */
-		tool_write_png(o.out, &disp, o.bits, -1, hist, hl, NULL, 0);
-		vx_image_free(&disp);
 	}
+	{
+		/* the volume and its hierarchy are consumed */
+		static const char *const drawn[] = { VX_CHUNK_VOLUME,
+		    VX_CHUNK_MACRO, NULL };
+		const vx_image *img[3] = { &val, &dep, NULL };
+
+		tool_render_write(&o.run, &st, drawn, &s, img, &disp);
+	}
+	vx_image_free(&disp);
 	vx_image_free(&val);
 	vx_image_free(&dep);
 	vx_macro_free(&m);

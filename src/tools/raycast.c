@@ -37,60 +37,42 @@ static const char usage[] =
     "        [--lazy] [--lazy-save STREAM] [--spp N] [-o OUT] [STREAM|-]";
 
 typedef struct opts {
-	const char *in, *out, *name, *depth, *normals;
-	int hdr, zlevel, bits, stats, explain, dry, flat, aa, solver, nomask;
-	int nobin, binblock, lazy, spp;
+	const char *in;
+	int flat, aa, solver, nomask, nobin, binblock, lazy, spp;
 	const char *lazy_save;
-	long threads;
-	double exposure;
 	int ortho;
+	tool_run_opts run;         /* -o, -j, --hdr, --stats, ... */
 	tool_scene_opts so;       /* --scene and the scene options */
 } opts;
 
 static void
 parse(opts *o, int argc, char **argv)
 {
-	enum { O_ORTHO = 256, O_NAME, O_SOLVER, O_FLAT, O_AA, O_STATS,
-	    O_EXPLAIN, O_HDR, O_BITS, O_EXPOSURE, O_DEPTH, O_NORMALS,
-	    O_NOMASK, O_NOBIN, O_BINBLOCK, O_LAZY, O_LAZYSAVE, O_SPP };
+	enum { O_ORTHO = 256, O_SOLVER, O_FLAT, O_AA, O_NOMASK,
+	    O_NOBIN, O_BINBLOCK, O_LAZY, O_LAZYSAVE, O_SPP };
 	static const struct option lo[] = {
-		{ "scene", 1, 0, TOOL_O_SCENE }, { "iso", 1, 0, TOOL_O_ISO },
-		{ "size", 1, 0, TOOL_O_SIZE }, { "view", 1, 0, TOOL_O_VIEW },
-		{ "ortho", 0, 0, O_ORTHO }, { "fov", 1, 0, TOOL_O_FOV },
-		{ "light", 1, 0, TOOL_O_LIGHT }, { "lights", 1, 0, TOOL_O_LIGHTS },
-		{ "effects", 1, 0, TOOL_O_EFFECTS },
-		{ "background", 1, 0, TOOL_O_BG },
-		{ "set", 1, 0, TOOL_O_SET }, { "name", 1, 0, O_NAME },
+		TOOL_SCENE_LONG, { "ortho", 0, 0, O_ORTHO },
+		{ "name", 1, 0, TOOL_O_NAME },
 		{ "solver", 1, 0, O_SOLVER }, { "flat", 0, 0, O_FLAT },
 		{ "no-cellmask", 0, 0, O_NOMASK },
 		{ "no-binning", 0, 0, O_NOBIN },
 		{ "bin-block", 1, 0, O_BINBLOCK },
 		{ "lazy", 0, 0, O_LAZY }, { "lazy-save", 1, 0, O_LAZYSAVE },
-		{ "spp", 1, 0, O_SPP },
-		{ "aa", 1, 0, O_AA }, { "stats", 0, 0, O_STATS },
-		{ "explain", 0, 0, O_EXPLAIN }, { "dry-run", 0, 0, 'n' },
-		{ "hdr", 0, 0, O_HDR }, { "bits", 1, 0, O_BITS },
-		{ "exposure", 1, 0, O_EXPOSURE }, { "depth", 1, 0, O_DEPTH },
-		{ "normals", 1, 0, O_NORMALS }, { "output", 1, 0, 'o' },
-		{ "threads", 1, 0, 'j' }, { "help", 0, 0, 'h' },
-		{ 0, 0, 0, 0 }
+		{ "spp", 1, 0, O_SPP }, { "aa", 1, 0, O_AA },
+		{ "exposure", 1, 0, TOOL_O_EXPOSURE },
+		{ "depth", 1, 0, TOOL_O_DEPTH },
+		{ "normals", 1, 0, TOOL_O_NORMALS },
+		TOOL_RUN_LONG, TOOL_RENDER_LONG, { 0, 0, 0, 0 }
 	};
 	int c;
 
 	memset(o, 0, sizeof *o);
-	o->out = "-";
-	o->bits = 8;
+	tool_run_opts_init(&o->run);
 	o->aa = 1;
-	o->zlevel = 1;
 	o->solver = VX_CELL_EXACT;
-	while ((c = getopt_long(argc, argv, ":o:j:nhz:", lo, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, TOOL_RUN_SHORT, lo, NULL)) != -1) {
 		switch (c) {
-		case 'o': o->out = optarg; break;
-		case 'z': o->zlevel = (int)tool_parse_long("-z", optarg, 0, 9); break;
-		case 'j': o->threads = tool_parse_long("-j", optarg, 0, 4096); break;
-		case 'n': o->dry = o->explain = 1; break;
 		case O_ORTHO: o->ortho = 1; break;
-		case O_NAME: o->name = optarg; break;
 		case O_SOLVER:
 			o->solver = tool_parse_enum("--solver",
 			    &vx_cell_solver_enum, optarg);
@@ -108,19 +90,9 @@ parse(opts *o, int argc, char **argv)
 			    VX_RAYCAST_BLOCK_MAX);
 			break;
 		case O_AA: o->aa = (int)tool_parse_long("--aa", optarg, 1, 16); break;
-		case O_STATS: o->stats = 1; break;
-		case O_EXPLAIN: o->explain = 1; break;
-		case O_HDR: o->hdr = 1; break;
-		case O_BITS:
-			o->bits = tool_parse_bits(optarg);
-			break;
-		case O_EXPOSURE:
-			o->exposure = tool_parse_double("--exposure", optarg, -64, 64);
-			break;
-		case O_DEPTH: o->depth = optarg; break;
-		case O_NORMALS: o->normals = optarg; break;
 		default:
-			if (!tool_scene_opt(&o->so, c, optarg, usage))
+			if (!tool_run_opt(&o->run, c, optarg) &&
+			    !tool_scene_opt(&o->so, c, optarg, usage))
 				tool_opt_other(c, usage, argv);
 		}
 	}
@@ -362,9 +334,10 @@ lazy_bake(vx_irrvol *irr, int have, vx_scene *s, const vx_grid *g,
 }
 
 /* sh_lighting: the SH lighting of order n into c (3 channels of n^2, vx_sh.h's
- * basis): the stream's SHLC chunk (from sh-rotate), else the projection
- * of the scene's environment and sky lights; bands the lighting lacks are
- * 0, bands beyond n dropped */
+ * basis): the stream's SHLC chunk (from sh-rotate), else the sum of the
+ * projections of the scene's environment and sky lights
+ * (vx_shlight_from_scene); bands the lighting lacks are 0, bands beyond n
+ * dropped */
 static void
 sh_lighting(vx_scene *s, const vx_stream *st, int n, double *c, int say)
 {
@@ -390,26 +363,14 @@ sh_lighting(vx_scene *s, const vx_stream *st, int n, double *c, int say)
 			    sl.order < n ? ", higher bands 0" : "", n);
 		return;
 	}
-	if (vx_env_scene_resolve(s, &e) != 0)
+	if (vx_env_scene_resolve(s, &e) != 0 ||
+	    vx_shlight_from_scene(&sl, s, n, &found, NULL, &e) != 0)
 		tool_fail_err(&e);
-	for (int k = 0; k < s->nlight; k++) {
-		const vx_light *l = &s->light[k];
-		vx_env env;
-
-		if (l->type != VX_LIGHT_ENVIRONMENT && l->type != VX_LIGHT_SKY)
-			continue;
-		if (vx_env_load_light(&env, l, &e) != 0) {
-			vx_err_push(&e, "light %d", k + 1);
-			tool_fail_err(&e);
-		}
-		vx_shlight_project(&env, n, c);
-		vx_env_free(&env);
-		found++;
-	}
 	if (found == 0)
 		tool_fail(VX_EUSAGE, "illumination sh: no SH lighting: the "
 		    "stream has no SHLC chunk (sh-rotate makes one) and the "
 		    "scene no environment or sky light");
+	memcpy(c, sl.c, sizeof(double) * 3 * (size_t)nn);
 	if (say)
 		fprintf(stderr, "raycast: SH lighting: %d environment or sky "
 		    "light%s of the scene projected to order %d\n", found,
@@ -450,7 +411,7 @@ main(int argc, char **argv)
 	if (o.spp > 0)
 		s.pt_samples = o.spp;
 	/* what to draw: the named (or first) volume or mesh */
-	want = o.name ? o.name : (s.volume[0] ? s.volume : NULL);
+	want = o.run.name ? o.run.name : (s.volume[0] ? s.volume : NULL);
 	vx_grid_init(&g);
 	vx_tetmesh_init(&mesh);
 	vx_tetleaf_init(&lg);
@@ -468,15 +429,9 @@ main(int argc, char **argv)
 	} else if (vx_grid_view_stream(&g, &st, want, &gi, &e) != 0)
 		tool_fail_err(&e);
 	vx_scene_plan_isosurface(&s, &plan);
-	nthr = tool_threads(o.threads);
-	if (o.explain) {
-		size_t n = vx_plan_format(&plan, NULL, 0) + 1;
-		char *buf = malloc(n);
-
-		if (buf == NULL)
-			tool_fail(VX_ENOMEM, "out of memory");
-		vx_plan_format(&plan, buf, n);
-		fprintf(stderr, "%s", buf);
+	nthr = tool_threads(o.run.threads);
+	if (o.run.explain) {
+		tool_plan_print(&plan);
 		if (is_mesh)
 			fprintf(stderr, "raycast: %dx%d pixels, %d sample%s per "
 			    "pixel, about %.0f rays; mesh '%s' (%zu tets): leaf "
@@ -524,7 +479,6 @@ main(int argc, char **argv)
 				    "nothing between them; a ray that enters none "
 				    "is not walked\n", bb, bb, bb);
 		}
-		free(buf);
 	}
 	if (plan.nsurface_on == 0)
 		tool_fail(VX_EUSAGE, "no surface to draw: give --iso V or a "
@@ -534,10 +488,10 @@ main(int argc, char **argv)
 	vx_macro_init(&m);
 	if (is_mesh)
 		tool_tetleaf_load(&lg, &st, &mesh, o.flat ? 0 :
-		    VX_MACRO_DEFAULT_LEVELS, nthr, o.dry, o.dry);
+		    VX_MACRO_DEFAULT_LEVELS, nthr, o.run.dry, o.run.dry);
 	else if (!o.flat)
-		tool_macro_load(&m, &st, &g, gi, nthr, o.dry);
-	if (o.dry) {
+		tool_macro_load(&m, &st, &g, gi, nthr, o.run.dry);
+	if (o.run.dry) {
 		vx_tetleaf_free(&lg);
 		vx_tetmesh_free(&mesh);
 		vx_macro_free(&m);
@@ -573,7 +527,7 @@ main(int argc, char **argv)
 	ro.solver = o.solver;
 	ro.flat = o.flat;
 	ro.aa = o.aa;
-	ro.timing = o.stats;
+	ro.timing = o.run.stats;
 	ro.no_cellmask = o.nomask;
 	ro.no_binning = o.nobin;
 	ro.bin_block = o.binblock;
@@ -601,13 +555,10 @@ main(int argc, char **argv)
 				    (long long)irr.vdims[1],
 				    (long long)irr.vdims[2]);
 		ro.irr = &irr;
-		ro.irr_interp = s.interp == VX_INTERP_NEAREST ? VX_IRR_NEAREST :
-		    s.interp == VX_INTERP_NEAREST_ISO ? VX_IRR_NEAREST_ISO :
-		    s.interp == VX_INTERP_TRICUBIC ? VX_IRR_TRICUBIC :
-		    VX_IRR_TRILINEAR;
+		ro.irr_interp = s.interp;
 		if (o.lazy) {
 			lazy_bake(&irr, ii >= 0, &s, &g, o.flat ? NULL : &m, &plan,
-			    tex, &ro, nthr, o.stats);
+			    tex, &ro, nthr, o.run.stats);
 			if (o.lazy_save != NULL) {
 				vx_chunk c;
 
@@ -622,8 +573,8 @@ main(int argc, char **argv)
 			}
 		}
 		if (plan.sh) {
-			sh_lighting(&s, &st, irr.sh_order, shl, o.stats ||
-			    o.explain);
+			sh_lighting(&s, &st, irr.sh_order, shl, o.run.stats ||
+			    o.run.explain);
 			ro.shl = shl;
 		}
 	} else if (o.lazy) {
@@ -642,45 +593,25 @@ main(int argc, char **argv)
 	vx_image_init(&normal);
 	if (is_mesh) {
 		if (vx_raycast_render_mesh(&s, &plan, &mesh, &lg, tex, &ro,
-		    &color, (o.depth || o.hdr) ? &depth : NULL,
-		    (o.normals || o.hdr) ? &normal : NULL, &rs, &e) != 0)
+		    &color, (o.run.depth || o.run.hdr) ? &depth : NULL,
+		    (o.run.normals || o.run.hdr) ? &normal : NULL, &rs,
+		    &e) != 0)
 			tool_fail_err(&e);
 	} else if (vx_raycast_render(&s, &plan, &g, o.flat ? NULL : &m, tex,
-	    &ro, &color, (o.depth || o.hdr) ? &depth : NULL,
-	    (o.normals || o.hdr) ? &normal : NULL, &rs, &e) != 0)
+	    &ro, &color, (o.run.depth || o.run.hdr) ? &depth : NULL,
+	    (o.run.normals || o.run.hdr) ? &normal : NULL, &rs, &e) != 0)
 		tool_fail_err(&e);
-	if (o.stats)
+	if (o.run.stats)
 		print_stats(&rs, is_mesh ? &lg.mc : o.flat ? NULL : &m,
 		    s.camera.w, s.camera.h, nthr);
-	if (o.depth)
-		tool_write_pfm(o.depth, &depth);
-	if (o.normals)
-		tool_write_pfm(o.normals, &normal);
-	if (o.hdr) {
-		/* the stream out: history, scene, images and every chunk we did
-		 * not consume (volumes, meshes and their hierarchies are
-		 * consumed) */
-		static const char *const consumed[] = { VX_CHUNK_VOLUME,
-		    VX_CHUNK_MACRO, VX_CHUNK_TETMESH, VX_CHUNK_TETLEAF,
-		    VX_CHUNK_SCENE, VX_CHUNK_IMAGE, NULL };
-		vx_stream out;
-		vx_chunk c;
+	{
+		/* volumes, meshes and their hierarchies are consumed */
+		static const char *const drawn[] = { VX_CHUNK_VOLUME,
+		    VX_CHUNK_MACRO, VX_CHUNK_TETMESH, VX_CHUNK_TETLEAF, NULL };
+		const vx_image *img[3] = { &color, &depth, &normal };
 
-		vx_stream_init(&out);
-		tool_stream_keep(&out, &st, consumed);
-		if (vx_scene_to_stream(&s, &out, &e) != 0)
-			tool_fail_err(&e);
-		const vx_image *imgs[3] = { &color, &depth, &normal };
-		for (k = 0; k < 3; k++) {
-			if (vx_image_to_chunk(imgs[k], o.zlevel, &c, &e) != 0 ||
-			    vx_stream_append(&out, &c, &e) != 0)
-				tool_fail_err(&e);
-		}
-		tool_write_stream(&out, o.out);
-		vx_stream_free(&out);
-	} else
-		tool_write_png_radiance(o.out, &color, o.exposure, s.background,
-		    o.bits, &st);
+		tool_render_write(&o.run, &st, drawn, &s, img, NULL);
+	}
 	for (k = 0; k < VX_SCENE_MAX_SURFACES; k++)
 		vx_grid_free(&texg[k]);
 	vx_image_free(&color);

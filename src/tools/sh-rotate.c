@@ -181,13 +181,20 @@ parse_args(opts *o, int argc, char **argv)
 		    "pixels");
 }
 
-/* the light to project: --env's file, or the scene's one environment or
- * sky; returns 0 when the scene has none */
+/* project: the SH lighting of order --order into sl: the projection of
+ * --env's file (kept in env, for --irradiance-error), or else the sum of the
+ * scene's environment and sky lights (vx_shlight_from_scene); returns how
+ * many maps were projected (0: none, sl untouched), *npix their pixels
+ * and *sec the time the projection took */
 static int
-load_env(vx_env *env, const opts *o, vx_scene *s, const vx_stream *st)
+project(const opts *o, vx_env *env, const vx_stream *st, vx_shlight *sl,
+    size_t *npix, double *sec)
 {
+	static vx_scene s;
+	static vx_shlight p;
 	vx_err e = { 0, "" };
-	int found = 0;
+	double t0;
+	int found = 1;
 
 	if (o->env != NULL) {
 		vx_image img;
@@ -199,23 +206,25 @@ load_env(vx_env *env, const opts *o, vx_scene *s, const vx_stream *st)
 			tool_fail_err(&e);
 		}
 		vx_image_free(&img);
-		return 1;
-	}
-	vx_scene_init(s);
-	tool_scene_load(s, o->scene, st, 0, NULL, NULL);
-	for (int k = 0; k < s->nlight; k++) {
-		const vx_light *l = &s->light[k];
-
-		if (l->type != VX_LIGHT_ENVIRONMENT && l->type != VX_LIGHT_SKY)
-			continue;
-		if (found++)
-			tool_fail(VX_EUSAGE, "light %d: one environment or sky "
-			    "light at most", k + 1);
-		if (vx_env_load_light(env, l, &e) != 0) {
-			vx_err_push(&e, "light %d", k + 1);
+		vx_shlight_init(&p);
+		p.order = o->order;
+		p.has_hash = 1;
+		p.env_hash = env->hash;
+		*npix = vx_env_npixel(env);
+		t0 = vx_par_seconds();
+		vx_shlight_project(env, o->order, p.c);
+		*sec = vx_par_seconds() - t0;
+	} else {
+		vx_scene_init(&s);
+		tool_scene_load(&s, o->scene, st, 0, NULL, NULL);
+		t0 = vx_par_seconds();
+		if (vx_shlight_from_scene(&p, &s, o->order, &found, npix,
+		    &e) != 0)
 			tool_fail_err(&e);
-		}
+		*sec = vx_par_seconds() - t0;
 	}
+	if (found > 0)
+		*sl = p;
 	return found;
 }
 
@@ -401,7 +410,6 @@ main(int argc, char **argv)
 	static double rot[5500];        /* vx_sh_rot_size(16) = 5456 */
 	vx_shlight sl;
 	vx_stream st;
-	vx_scene sc;
 	vx_env env;
 	vx_chunk c;
 	double t0, tproj = 0, trot = 0, r0[3][3];
@@ -417,20 +425,10 @@ main(int argc, char **argv)
 	memset(&env, 0, sizeof env);
 	if (o.in != NULL)
 		tool_read_stream(&st, o.in);
-	have_env = load_env(&env, &o, &sc, &st);
 	if (vx_shlight_from_stream(&sl, &st, &idx, &e) != 0)
 		tool_fail_err(&e);
-	if (have_env) {
-		vx_shlight_init(&sl);
-		sl.order = o.order;
-		sl.has_hash = 1;
-		sl.env_hash = env.hash;
-		npix = vx_env_npixel(&env);
-		t0 = vx_par_seconds();
-		memset(sl.c, 0, sizeof(double) * 3 * o.order * o.order);
-		vx_shlight_project(&env, o.order, sl.c);
-		tproj = vx_par_seconds() - t0;
-	} else if (idx >= 0) {
+	have_env = project(&o, &env, &st, &sl, &npix, &tproj);
+	if (!have_env && idx >= 0) {
 		/* no light in the scene: the stream's SH lighting is turned
 		 * further (truncated to --order when that is smaller) */
 		int n0 = sl.order, n = o.order_set ? o.order : n0;
@@ -448,7 +446,7 @@ main(int argc, char **argv)
 			vx_sh_flip_phase(n, 3, sl.c);
 			sl.phase = VX_SHLIGHT_PHASE_CS;
 		}
-	} else
+	} else if (!have_env)
 		tool_fail(VX_EUSAGE, "no environment: the scene has no "
 		    "environment or sky light and the stream no SH lighting "
 		    "(give --env FILE)");
@@ -465,10 +463,11 @@ main(int argc, char **argv)
 		trot = vx_par_seconds() - t0;
 	}
 	if (o.explain) {
-		fprintf(stderr, "sh-rotate: source %s (%zu pixels), order %d "
+		fprintf(stderr, "sh-rotate: source %s%s (%zu pixels), order %d "
 		    "(%d coefficients x 3), rotation %s; output %s%s%s\n",
 		    have_env ? (o.env ? o.env : "the scene's light") :
-		    "the stream's SH lighting", npix, sl.order,
+		    "the stream's SH lighting", have_env > 1 ? "s, summed" : "",
+		    npix, sl.order,
 		    sl.order * sl.order, o.nrot ? "given" : "none",
 		    o.print ? "text" : o.json ? "JSON" : o.irr ?
 		    "irradiance coefficients" : "SHLC chunk",

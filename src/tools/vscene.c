@@ -20,13 +20,7 @@ main(int argc, char **argv)
 {
 	enum { O_PRINT = 256, O_REMOVE };
 	static const struct option lo[] = {
-		{ "scene", 1, 0, TOOL_O_SCENE }, { "set", 1, 0, TOOL_O_SET },
-		{ "iso", 1, 0, TOOL_O_ISO }, { "size", 1, 0, TOOL_O_SIZE },
-		{ "view", 1, 0, TOOL_O_VIEW }, { "light", 1, 0, TOOL_O_LIGHT },
-		{ "lights", 1, 0, TOOL_O_LIGHTS },
-		{ "effects", 1, 0, TOOL_O_EFFECTS },
-		{ "background", 1, 0, TOOL_O_BG }, { "fov", 1, 0, TOOL_O_FOV },
-		{ "print", 0, 0, O_PRINT }, { "remove", 0, 0, O_REMOVE },
+		TOOL_SCENE_LONG, { "print", 0, 0, O_PRINT }, { "remove", 0, 0, O_REMOVE },
 		{ "output", 1, 0, 'o' }, { "help", 0, 0, 'h' }, { 0, 0, 0, 0 }
 	};
 	const char *in, *out = "-";

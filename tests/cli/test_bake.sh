@@ -99,6 +99,22 @@ P --light sky --light "$D" --set "interreflection bounces 1" \
 P --light sky --light "$D" --set "interreflection bounces 1" \
     --effects +interreflection --spp 3 -j 2 "$T/s.vx" > "$T/p2.vx"
 check_eq "pathtrace: -j 1 = -j 2" "$(px same "$T/p1.vx" "$T/p2.vx")" same
+# the bounce and shadow rays decide cells by the frame's cell mask: the same
+# bits as without one (--no-cellmask), on the Marschner-Lobb field's wavy
+# surface, where bounce rays hit (under the sky alone every ray is a bounce
+# ray: more rays than paths)
+vread --synth ml --size 41 | brick | macrocell > "$T/ml.vx"
+for m in "" --no-cellmask; do
+	P --light sky --light "$D" --set "interreflection bounces 1" \
+	    --effects +interreflection --spp 3 --size 65x65 -j 2 $m \
+	    "$T/ml.vx" > "$T/pm$m.vx"
+done
+check_eq "pathtrace: the GI rays' cell mask changes no bit" \
+    "$(px same "$T/pm.vx" "$T/pm--no-cellmask.vx")" same
+P --light sky --set "interreflection bounces 1" --effects +interreflection \
+    --spp 3 --size 65x65 --stats "$T/ml.vx" 2>"$T/pm.err" >/dev/null
+check "pathtrace on ml: bounce rays hit" awk '/pathtrace:/ { p = $3; r = $5 }
+    END { exit !(r > 1.1 * p) }' "$T/pm.err"
 bake-irr --light sky --light "$D" --iso 0.5 --side high --samples 4 \
     "$T/s.vx" > "$T/d.vx"
 raycast --iso 0.5 --set "illumination irradiance" --size 96x96 --hdr \

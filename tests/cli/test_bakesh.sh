@@ -150,4 +150,13 @@ expect_fail "illumination sh without a transfer volume" 65 "no SH transfer volum
 expect_fail "illumination sh without lighting" 64 "no SH lighting" \
     raycast --iso 0.5 --set "illumination sh" "$T/b3.vx"
 expect_fail "--order out of range" 64 "--order" bake-sh --order 17 "$T/s.vx"
+# one program, two faces: each synopsis names its own options, then the
+# shared ones, and -h and --help print it
+check_eq "bake-sh -h: its synopsis" "$(bake-sh -h | sed -n '1p;2p;7p')" \
+    "$(printf '%s\n' 'usage: bake-sh [--scene FILE] [--set LINE] [--effects WORDS] [--iso V[,V...]]' \
+    '    [--name VOLUME] [--order N] [--channels 1|3] [--scale S]' \
+    '    [--max-memory GB] [-z LEVEL] [-j N] [--stats] [--explain] [-n]')"
+check_eq "bake-irr --help: its synopsis, the shared tail the same" \
+    "$(bake-irr --help | sed -n '1p;3,$p')" \
+    "$(printf '%s\n' 'usage: bake-irr [--scene FILE] [--set LINE] [--light SPEC] [--lights none]'; bake-sh -h | sed -n '3,$p')"
 done_testing

@@ -139,6 +139,18 @@ mip --size 33x33 "$T/sph.vx" > "$T/m.png"
 check_eq "mip: PNG carries the stream's history and its own line" \
     "$(px pngtext "$T/m.png" voxlux-history)" \
     "$(printf 'vread 0.1.0 --synth sphere --size 48\nmip 0.1.0 --size 33x33 %s' "$T/sph.vx")"
+# the renderers share their output options (tool_run_opts): mip's --hdr
+# stream carries the scene it drew, as raycast's and dvr's do, and the
+# three refuse a bad --bits alike
+mip --size 33x33 --hdr "$T/sph.vx" 2>/dev/null > "$T/mscene.vx"
+check_eq "mip --hdr: the stream holds the scene it drew" \
+    "$(vinfo "$T/mscene.vx" | grep -c 'camera auto projection orthographic')" 1
+check_eq "mip --hdr: the scene is the options' (--size)" \
+    "$(vinfo "$T/mscene.vx" | grep -c 'image width 33 height 33')" 1
+for r in raycast mip dvr; do
+	expect_fail "$r --bits 12" 64 "$r: --bits: 8 or 16" $r --bits 12 "$T/sph.vx"
+	expect_fail "$r -z 10" 64 "$r: -z: 10 is out of range" $r -z 10 "$T/sph.vx"
+done
 
 # 9. -z: the images of --hdr are zlib level 1 by default, raw with -z 0,
 # and decode to the same bytes at every level (oracle: vximg.py decodes

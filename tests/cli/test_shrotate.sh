@@ -119,6 +119,13 @@ check_close "pipeline: the SHLC is the second map's" "$(sh-rotate --print "$T/p.
 vscene --light "environment file $T/lin.pfm" "$T/s.vx" | sh-rotate --order 2 --print > "$T/sc.txt"
 check_eq "the scene's environment light projects as --env does" "$(sed 1d "$T/sc.txt")" "$(sed 1d "$T/l0.txt")"
 check_eq "the source hash is the scene's" "$(sed -n '1s/.*source //p' "$T/sc.txt")" "$(vscene --light "environment file $T/lin.pfm" --print "$T/s.vx" | sed -n 's/.* hash \([0-9a-f]*\) .*/\1/p')"
+# the scene's environment and sky lights add: two skies of intensity 2 and 3
+# project as one of 5 (oracle: a constant L has c00 = 2 sqrt(pi) L), with
+# no single source hash
+vscene --lights none --light "sky color 1 1 1 intensity 2" \
+    --light "sky color 1 1 1 intensity 3" "$T/s.vx" | sh-rotate --order 1 --print > "$T/two.txt"
+check_close "two sky lights: their sum" "$(co "$T/two.txt" 0 0 1)" "$(awk -v s=$s4pi 'BEGIN { printf "%.17g", 5 * s }')" 1e-13
+check_eq "two sky lights: no single source hash" "$(sed -n '1s/.*source //p' "$T/two.txt")" none
 
 # ---- errors: one line, the right code ----
 expect_fail "--order 0" 64 "order" sh-rotate --env "$T/c32.pfm" --order 0 --print

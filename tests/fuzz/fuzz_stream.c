@@ -151,12 +151,12 @@ touch_irr(vx_irrvol *v, const vx_grid *g)
 
 		for (int a = 0; a < 3; a++)
 			p[a] = fr[pt][a] * (double)(v->vdims[a] - 1);
-		for (int m = 0; m < VX_IRR_INTERP_LAST; m++) {
+		for (int m = 0; m < VX_INTERP_LAST; m++) {
 			double out[VX_IRR_MAX_COMP], w[64], ws = 0;
 			int64_t idx[64];
 			int n, got, nreach = 0;
 
-			n = vx_irr_weights(v, p, (vx_irr_interp)m, g, 0.5, idx, w);
+			n = vx_irr_weights(v, p, (vx_interp)m, g, 0.5, idx, w);
 			if (n < 0 || n > 64)
 				fuzz_fail("irr: weights count");
 			for (int k = 0; k < n; k++) {
@@ -167,7 +167,7 @@ touch_irr(vx_irrvol *v, const vx_grid *g)
 			}
 			if (n > 0 && fabs(ws - 1) > 1e-9)
 				fuzz_fail("irr: weights do not sum to 1");
-			got = vx_irr_lookup(v, p, (vx_irr_interp)m, g, 0.5, out);
+			got = vx_irr_lookup(v, p, (vx_interp)m, g, 0.5, out);
 			if (got != (n > 0))
 				fuzz_fail("irr: lookup and weights disagree");
 			for (int c = 0; c < nc; c++) {
@@ -175,7 +175,7 @@ touch_irr(vx_irrvol *v, const vx_grid *g)
 					fuzz_fail("irr: lookup not finite");
 				sum += out[c];
 			}
-			vx_irr_reach(v, p, (vx_irr_interp)m, count_reach,
+			vx_irr_reach(v, p, (vx_interp)m, count_reach,
 			    &nreach);
 			if (nreach > 64)
 				fuzz_fail("irr: reach beyond 64 texels");

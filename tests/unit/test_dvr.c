@@ -30,18 +30,8 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "vx_dvr.h"
+#include "helper_dvr.h"
 #include "vx_import.h"
-
-/* scene from text (the test's own, so it parses) */
-static void
-scene(vx_scene *s, const char *text)
-{
-	vx_err e = { 0, "" };
-
-	if (vx_scene_parse(s, text, strlen(text), &e) != 0)
-		fail_msg("%s", e.msg);
-}
 
 /* render g as text says; returns the image (RGBA) and fills st */
 static void
@@ -53,38 +43,13 @@ render(const char *text, const vx_grid *g, const vx_macro *m,
 	vx_plan p;
 	vx_dvr_decide d;
 	vx_err e = { 0, "" };
-	double lo[3], hi[3];
 
-	scene(&s, text);
-	vx_tf_init(&tf);
-	assert_int_equal(vx_tf_apply_scene(&tf, &s, &e), 0);
-	assert_int_equal(vx_tf_check(&tf, &e), 0);
-	vx_dvr_plan(&s, &tf, o, &d, &p);
-	vx_grid_box(g, lo, hi);
-	assert_int_equal(vx_camera_resolve(&s.camera, lo, hi, &e), 0);
+	dvr_prepare(text, g, o, &s, &tf, &d, &p);
 	vx_image_init(img);
 	if (vx_dvr_render(&s, &d, &tf, g, m, o, img, st, &e) != 0)
 		fail_msg("%s", e.msg);
 	vx_tf_free(&tf);
 }
-
-/* a grid of dims, value f(z index) */
-static void
-zgrid(vx_grid *g, int nx, int ny, int nz, double (*f)(int))
-{
-	int64_t dims[3] = { nx, ny, nz };
-	vx_err e = { 0, "" };
-
-	vx_grid_init(g);
-	assert_int_equal(vx_grid_alloc(g, dims, VX_F32, NULL, &e), 0);
-	for (int z = 0; z < nz; z++)
-		for (int y = 0; y < ny; y++)
-			for (int x = 0; x < nx; x++)
-				vx_grid_set(g, x, y, z, f(z));
-	vx_grid_range(g);
-}
-
-static double one(int z) { (void)z; return 1; }
 
 /* 1. Beer-Lambert through a homogeneous slab, any slice count */
 static void
@@ -98,7 +63,7 @@ slab_transmittance(void **state)
 	char text[512];
 
 	(void)state;
-	zgrid(&g, 8, 8, 40, one);   /* depth 39 along z */
+	zgrid(&g, 8, 8, 40, z_one);   /* depth 39 along z */
 	for (size_t i = 0; i < sizeof slices / sizeof slices[0]; i++) {
 		vx_image img;
 		vx_dvr_stats st;
@@ -123,21 +88,12 @@ slab_transmittance(void **state)
 	 * its normal: the path is 39 / cos 30 */
 	{
 		vx_grid w;
-		int64_t dims[3] = { 400, 400, 40 };
-		vx_err e = { 0, "" };
 		vx_image img;
-		double c = cos(30 * M_PI / 180), s = sin(30 * M_PI / 180);
+		double c = cos(30 * M_PI / 180);
 
-		vx_grid_init(&w);
-		assert_int_equal(vx_grid_alloc(&w, dims, VX_U8, NULL, &e), 0);
-		memset(w.data, 1, w.nsample);
-		vx_grid_range(&w);
+		wide_slab(&w);
 		vx_dvr_opts_init(&o);
-		snprintf(text, sizeof text, "camera orthographic eye %.17g 199.5 "
-		    "%.17g look 199.5 199.5 19.5 up 0 1 0 width 4\n"
-		    "image width 4 height 4\nlight none\nambient intensity 1\n"
-		    "effects none\ntransfer opacity 0 %.17g\n",
-		    199.5 + 100 * s, 19.5 + 100 * c, alpha);
+		wide_slab_scene(text, sizeof text, alpha);
 		render(text, &w, NULL, &o, &img, NULL);
 		double want = 1 - exp(-sigma * 39 / c);
 
@@ -150,24 +106,6 @@ slab_transmittance(void **state)
 		vx_grid_free(&w);
 	}
 	vx_grid_free(&g);
-}
-
-/* two slabs of one material along z: receiver z in [6, 13], occluder
- * z in [24, 29] */
-static double
-slabs(int z)
-{
-	return (z >= 6 && z <= 13) || (z >= 24 && z <= 29) ? 1 : 0;
-}
-static double
-receiver(int z)
-{
-	return z >= 6 && z <= 13 ? 1 : 0;
-}
-static double
-occluder(int z)
-{
-	return z >= 24 && z <= 29 ? 1 : 0;
 }
 
 /* the oracle: the sum over material slices j (from the top) of
@@ -197,7 +135,7 @@ static void
 slab_shadow(void **state)
 {
 	const double alpha = 0.2;
-	double (*fs[3])(int) = { slabs, receiver, occluder };
+	double (*fs[3])(int) = { z_slabs, z_receiver, z_occluder };
 	double lit[3], unlit[3];
 	vx_dvr_opts o;
 	char text[512];
@@ -205,6 +143,7 @@ slab_shadow(void **state)
 	(void)state;
 	vx_dvr_opts_init(&o);
 	o.light_size = 16;
+	o.jitter = 0;      /* the oracle counts samples on the voxel planes */
 	for (int i = 0; i < 3; i++)
 		for (int sh = 0; sh < 2; sh++) {
 			vx_grid g;
@@ -236,7 +175,7 @@ slab_shadow(void **state)
 		double z = 38.5 - k;
 		int z0 = (int)floor(z);
 
-		no += 0.5 * (occluder(z0) + occluder(z0 + 1)) >= 0.5;
+		no += 0.5 * (z_occluder(z0) + z_occluder(z0 + 1)) >= 0.5;
 	}
 	assert_true(fabs((lit[0] - lit[2]) - pow(q, 2 * no) * lit[1]) < 1e-5);
 	assert_true(fabs((unlit[0] - unlit[2]) - pow(q, no) * unlit[1]) < 1e-5);
@@ -494,14 +433,10 @@ plan_table(void **state)
 		vx_tf tf;
 		vx_plan p;
 		vx_dvr_decide d;
-		vx_err e = { 0, "" };
 
 		snprintf(text, sizeof text, "transfer opacity 0 0.5\n%s\n",
 		    t[i].text);
-		scene(&s, text);
-		vx_tf_init(&tf);
-		assert_int_equal(vx_tf_apply_scene(&tf, &s, &e), 0);
-		vx_dvr_plan(&s, &tf, &o, &d, &p);
+		dvr_prepare(text, NULL, &o, &s, &tf, &d, &p);
 		if (d.driver != t[i].driver || d.light_buffer != t[i].light_buffer ||
 		    d.scatter != t[i].scatter || d.gradient != t[i].gradient ||
 		    d.surface != t[i].surface || d.specular != t[i].specular ||

@@ -38,17 +38,9 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "helper_dvr.h"
 #include "vx_dvrref.h"
 #include "vx_phase.h"
-
-static void
-scene(vx_scene *s, const char *text)
-{
-	vx_err e = { 0, "" };
-
-	if (vx_scene_parse(s, text, strlen(text), &e) != 0)
-		fail_msg("%s", e.msg);
-}
 
 /* render g as text says, by the reference o (NULL: the slicer with dvr
  * options dv) */
@@ -62,16 +54,9 @@ render(const char *text, const vx_grid *g, const vx_dvrref_opts *o,
 	vx_dvr_decide d;
 	vx_dvr_opts dd;
 	vx_err e = { 0, "" };
-	double lo[3], hi[3];
 
-	scene(&s, text);
-	vx_tf_init(&tf);
-	assert_int_equal(vx_tf_apply_scene(&tf, &s, &e), 0);
-	assert_int_equal(vx_tf_check(&tf, &e), 0);
 	vx_dvr_opts_init(&dd);
-	vx_dvr_plan(&s, &tf, dv ? dv : &dd, &d, &p);
-	vx_grid_box(g, lo, hi);
-	assert_int_equal(vx_camera_resolve(&s.camera, lo, hi, &e), 0);
+	dvr_prepare(text, g, dv ? dv : &dd, &s, &tf, &d, &p);
 	vx_image_init(img);
 	if (o != NULL) {
 		vx_dvrref_plan(&s, &tf, &d, o, &p);
@@ -95,24 +80,6 @@ ref(int method, double step, int spp, int bounces)
 	o.nthreads = 2;
 	return o;
 }
-
-/* a grid of nx x ny x nz f32 samples, value f(z index) */
-static void
-zgrid(vx_grid *g, int nx, int ny, int nz, double (*f)(int))
-{
-	int64_t dims[3] = { nx, ny, nz };
-	vx_err e = { 0, "" };
-
-	vx_grid_init(g);
-	assert_int_equal(vx_grid_alloc(g, dims, VX_F32, NULL, &e), 0);
-	for (int z = 0; z < nz; z++)
-		for (int y = 0; y < ny; y++)
-			for (int x = 0; x < nx; x++)
-				vx_grid_set(g, x, y, z, f(z));
-	vx_grid_range(g);
-}
-
-static double one(int z) { (void)z; return 1; }
 
 /* mean of channel c over the image */
 static double
@@ -140,7 +107,7 @@ slab_transmittance(void **state)
 	vx_image img;
 
 	(void)state;
-	zgrid(&g, 8, 8, 40, one);
+	zgrid(&g, 8, 8, 40, z_one);
 	for (size_t i = 0; i < sizeof steps / sizeof steps[0]; i++) {
 		vx_dvrref_opts o = ref(VX_DVRREF_RAYMARCH, steps[i], 1, 1);
 
@@ -167,21 +134,12 @@ slab_transmittance(void **state)
 	/* oblique, 30 degrees off the normal of a slab that fills the view:
 	 * the path is 39 / cos 30 at any step */
 	{
-		int64_t dims[3] = { 400, 400, 40 };
-		vx_err e = { 0, "" };
-		double c = cos(30 * M_PI / 180), s = sin(30 * M_PI / 180);
+		double c = cos(30 * M_PI / 180);
 		char text[512];
 		vx_dvrref_opts o = ref(VX_DVRREF_RAYMARCH, 0.9, 1, 1);
 
-		vx_grid_init(&g);
-		assert_int_equal(vx_grid_alloc(&g, dims, VX_U8, NULL, &e), 0);
-		memset(g.data, 1, g.nsample);
-		vx_grid_range(&g);
-		snprintf(text, sizeof text, "camera orthographic eye %.17g 199.5 "
-		    "%.17g look 199.5 199.5 19.5 up 0 1 0 width 4\n"
-		    "image width 4 height 4\nlight none\nambient intensity 1\n"
-		    "effects none\ntransfer opacity 0 %.17g\n",
-		    199.5 + 100 * s, 19.5 + 100 * c, alpha);
+		wide_slab(&g);
+		wide_slab_scene(text, sizeof text, alpha);
 		render(text, &g, &o, NULL, &img);
 		want = 1 - exp(-sigma * 39 / c);
 		for (int i = 0; i < 16; i++)
@@ -198,27 +156,11 @@ slab_transmittance(void **state)
  * z = 38.5, 37.5, ...: 9 in the receiver, 7 in the occluder; shadow
  * segments from a receiver sample upward have midpoints at the integers:
  * 6 in the occluder (its thickness 6.5 rounded by the step). */
-static double
-slabs(int z)
-{
-	return (z >= 6 && z <= 13) || (z >= 24 && z <= 29) ? 1 : 0;
-}
-static double
-receiver(int z)
-{
-	return z >= 6 && z <= 13 ? 1 : 0;
-}
-static double
-occluder(int z)
-{
-	return z >= 24 && z <= 29 ? 1 : 0;
-}
-
 static void
 slab_shadow(void **state)
 {
 	const double alpha = 0.2, q = 1 - alpha;
-	double (*fs[3])(int) = { slabs, receiver, occluder };
+	double (*fs[3])(int) = { z_slabs, z_receiver, z_occluder };
 	double pix[3];
 	char text[512];
 	vx_dvrref_opts o = ref(VX_DVRREF_RAYMARCH, 0, 1, 1);
@@ -257,7 +199,7 @@ single_scatter(void **state)
 	vx_grid gr;
 
 	(void)state;
-	zgrid(&gr, 16, 16, 5, one);
+	zgrid(&gr, 16, 16, 5, z_one);
 	for (int side = 0; side < 2; side++) {
 		double cosv = side == 0 ? -1 : 1;
 		double P = 4 * M_PI * vx_phase_hg(g, cosv), want;
@@ -358,7 +300,7 @@ multiple_scatter(void **state)
 	/* the solution checked by an exact identity of H: its zeroth moment
 	 * is (2 / w) (1 - sqrt(1 - w)) */
 	assert_true(fabs(m0 - 2 / w * (1 - sqrt(1 - w))) < 1e-4);
-	zgrid(&g, 64, 64, 40, one);
+	zgrid(&g, 64, 64, 40, z_one);
 	render(text, &g, &o1, NULL, &i1);
 	render(text, &g, &on, NULL, &in);
 	/* one vertex: w / 2; a path's X in [0, 1] */
@@ -447,7 +389,7 @@ slicing_bound(void **state)
 		vx_plan p;
 		vx_tf tf;
 		vx_err e = { 0, "" };
-		double lo[3], hi[3], hl, bound;
+		double hl, bound;
 
 		vx_dvr_opts_init(&dv);
 		dv.slices = 40 << i;
@@ -456,12 +398,7 @@ slicing_bound(void **state)
 		render(text, &g, NULL, &dv, &sl[i]);
 		err[i] = relrmse(&rm, &sl[i]);
 		/* the light ray's spacing: dt / |s . L| */
-		scene(&s, text);
-		vx_tf_init(&tf);
-		assert_int_equal(vx_tf_apply_scene(&tf, &s, &e), 0);
-		vx_dvr_plan(&s, &tf, &dv, &d, &p);
-		vx_grid_box(&g, lo, hi);
-		assert_int_equal(vx_camera_resolve(&s.camera, lo, hi, &e), 0);
+		dvr_prepare(text, &g, &dv, &s, &tf, &d, &p);
 		assert_int_equal(vx_dvr_geometry(&s, &d, &tf, &g, &dv, &geo, &e),
 		    0);
 		hl = geo.dt / fabs(geo.axis[0] * geo.light_dir[0] +

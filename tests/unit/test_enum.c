@@ -164,7 +164,6 @@ library_tables(void **state)
 		{ &vx_diff_map_enum, VX_DIFF_ABS, VX_DIFF_LAST },
 		{ &vx_cell_solver_enum, VX_CELL_EXACT, VX_CELL_SOLVER_LAST },
 		{ &vx_irr_store_enum, VX_IRR_ACCUM, VX_IRR_STORE_LAST },
-		{ &vx_irr_interp_enum, VX_IRR_TRILINEAR, VX_IRR_INTERP_LAST },
 	};
 	size_t i;
 	int v;

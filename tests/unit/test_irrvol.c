@@ -218,18 +218,27 @@ lookup_modes(void **state)
 		fill(&v, 1);
 		for (int a = 0; a < 3; a++)
 			u[a] = p[a] / v.step[a];
-		assert_int_equal(vx_irr_lookup(&v, p, VX_IRR_TRILINEAR, &g, 0,
+		assert_int_equal(vx_irr_lookup(&v, p, VX_INTERP_TRILINEAR, &g, 0,
 		    rgb), 1);
 		assert_true(fabs(rgb[0] - u[0]) < 1e-5);
 		assert_true(fabs(rgb[1] - (u[1] + 0.5)) < 1e-5);
 		assert_true(fabs(rgb[2] - u[2] * 0.25) < 1e-5);
-		assert_int_equal(vx_irr_lookup(&v, p, VX_IRR_NEAREST, &g, 0,
+		/* the unknown mode (a zeroed options record) reads as
+		 * trilinear, bit for bit */
+		{
+			double t[3];
+
+			assert_int_equal(vx_irr_lookup(&v, p, VX_INTERP_UNKNOWN,
+			    &g, 0, t), 1);
+			assert_memory_equal(t, rgb, sizeof t);
+		}
+		assert_int_equal(vx_irr_lookup(&v, p, VX_INTERP_NEAREST, &g, 0,
 		    rgb), 1);
 		assert_true(fabs(rgb[0] - floor(u[0] + 0.5)) < 1e-6);
 		assert_true(fabs(rgb[2] - floor(u[2] + 0.5) * 0.25) < 1e-6);
 		/* tricubic B-spline reproduces linear functions in the
 		 * interior too (it is exact for degree 1) */
-		assert_int_equal(vx_irr_lookup(&v, p, VX_IRR_TRICUBIC, &g, 0,
+		assert_int_equal(vx_irr_lookup(&v, p, VX_INTERP_TRICUBIC, &g, 0,
 		    rgb), 1);
 		assert_true(fabs(rgb[0] - u[0]) < 1e-5);
 		/* nearest-iso: the texel whose value is closest to iso; with
@@ -242,7 +251,7 @@ lookup_modes(void **state)
 			for (int a = 0; a < 3; a++)
 				b[a] = (int64_t)floor(u[a]);
 			vx_irr_texel_point(&v, b[0] + 1, b[1] + 1, b[2] + 1, q);
-			assert_int_equal(vx_irr_lookup(&v, p, VX_IRR_NEAREST_ISO,
+			assert_int_equal(vx_irr_lookup(&v, p, VX_INTERP_NEAREST_ISO,
 			    &g, q[0] + 2 * q[1] + 3 * q[2], rgb), 1);
 			assert_true(fabs(rgb[0] - (double)(b[0] + 1)) < 1e-6);
 			assert_true(fabs(rgb[2] - (double)(b[2] + 1) * 0.25) <
@@ -268,17 +277,131 @@ lookup_modes(void **state)
 				    VX_TEXEL_NAN;
 		}
 		vx_irr_finish(&v);
-		assert_int_equal(vx_irr_lookup(&v, p, VX_IRR_TRILINEAR, &g, 0,
+		assert_int_equal(vx_irr_lookup(&v, p, VX_INTERP_TRILINEAR, &g, 0,
 		    rgb), 1);
 		assert_true(fabs(rgb[0] - 4) < 1e-6);   /* texel (4,4,4) alone */
 		s = vx_irr_texel(&v, 4, 4, 4);
 		vx_irr_accp(&v, s)->flags |= VX_TEXEL_FLAT;
 		vx_irr_finish(&v);
-		assert_int_equal(vx_irr_lookup(&v, p, VX_IRR_TRILINEAR, &g, 0,
+		assert_int_equal(vx_irr_lookup(&v, p, VX_INTERP_TRILINEAR, &g, 0,
 		    rgb), 0);
 		assert_true(rgb[0] == 0 && rgb[1] == 0 && rgb[2] == 0);
 		vx_irr_free(&v);
 	}
+	vx_grid_free(&g);
+}
+
+/* The trilinear lookup, whether its 8 texels lie in one brick or straddle
+ * bricks, is the documented sum bit for bit: texels k = x + 2y + 4z of the
+ * lattice cell holding the point, the usable ones weighted by the products
+ * of their fractions, the sum divided by the weights' sum when that is not
+ * 1 (oracle: that formula evaluated here in the same order); for random
+ * values, sparse bricks, unusable texels and points (inside, on brick
+ * faces, clamped outside), at scales 0.5, 1 and 2, every store. */
+static void
+trilinear_matches_formula(void **state)
+{
+	static const double scales[] = { 0.5, 1, 2 };
+	static const vx_irr_store st[] = { VX_IRR_ACCUM, VX_IRR_F32,
+	    VX_IRR_F16 };
+	uint64_t r = 99;
+	vx_grid g;
+	vx_err e = { 0, "" };
+	int in = 0, across = 0;
+
+	(void)state;
+	make_grid(&g, 23, 18, 20);
+	for (int it = 0; it < 9; it++) {
+		vx_irrvol v;
+		size_t nb;
+
+		vx_irr_init(&v);
+		assert_int_equal(vx_irr_setup(&v, &g, 0, scales[it % 3],
+		    VX_IRR_ACCUM, &e), 0);
+		nb = (size_t)(v.bdims[0] * v.bdims[1] * v.bdims[2]);
+		for (size_t b = 0; b < nb; b++)
+			if ((b + (size_t)it) % 4 != 0)
+				assert_int_equal(vx_irr_want_brick(&v, b, &e), 0);
+		for (int64_t k = 0; k < v.dims[2]; k++)
+		for (int64_t j = 0; j < v.dims[1]; j++)
+		for (int64_t i = 0; i < v.dims[0]; i++) {
+			int64_t s = vx_irr_texel(&v, i, j, k);
+			double rgb[3];
+
+			if (s < 0)
+				continue;
+			for (int c = 0; c < 3; c++) {
+				r = r * 6364136223846793005u + 1442695040888963407u;
+				rgb[c] = (double)(r >> 40) / (1 << 20);
+			}
+			r = r * 6364136223846793005u + 1442695040888963407u;
+			if ((r >> 60) != 0) {   /* 1 in 16 left unsampled */
+				vx_irr_acc_add(&v, vx_irr_accp(&v, s), rgb);
+				vx_irr_accp(&v, s)->flags |= VX_TEXEL_WANTED;
+			}
+			if ((r >> 56 & 15) == 3)
+				vx_irr_accp(&v, s)->flags |= VX_TEXEL_FLAT;
+		}
+		vx_irr_finish(&v);
+		if (st[it / 3] != VX_IRR_ACCUM)
+			assert_int_equal(vx_irr_finalize(&v, st[it / 3], &e), 0);
+		for (int q = 0; q < 3000; q++) {
+			double p[3], u[3], f[3], want[3] = { 0, 0, 0 };
+			double got[3], ws = 0;
+			int64_t b[3];
+			int ok;
+
+			for (int a = 0; a < 3; a++) {
+				r = r * 6364136223846793005u + 1442695040888963407u;
+				p[a] = (double)(r >> 40) / (1 << 24) *
+				    (double)(g.dims[a] + 2) - 1;
+				if (q % 5 == 0)   /* on lattice planes */
+					p[a] = floor(p[a] / v.step[a]) * v.step[a];
+			}
+			for (int a = 0; a < 3; a++) {
+				double hi = (double)(v.dims[a] - 1);
+
+				u[a] = p[a] / v.step[a];
+				if (!(u[a] > 0))
+					u[a] = 0;
+				if (u[a] > hi)
+					u[a] = hi;
+				b[a] = (int64_t)floor(u[a]);
+				if (b[a] > v.dims[a] - 2)
+					b[a] = v.dims[a] - 2;
+				f[a] = u[a] - (double)b[a];
+				if (f[a] > 1)
+					f[a] = 1;
+			}
+			for (int k = 0; k < 8; k++) {
+				int64_t s = vx_irr_texel(&v, b[0] + (k & 1),
+				    b[1] + (k >> 1 & 1), b[2] + (k >> 2 & 1));
+				double wt = ((k & 1) ? f[0] : 1 - f[0]) *
+				    ((k >> 1 & 1) ? f[1] : 1 - f[1]) *
+				    ((k >> 2 & 1) ? f[2] : 1 - f[2]);
+
+				if (s < 0 || !vx_irr_usable(&v, s))
+					continue;
+				ws += wt;
+				for (int c = 0; c < 3; c++)
+					want[c] += wt * v.mean[3 * s + c];
+			}
+			if (ws > 0 && ws != 1)
+				for (int c = 0; c < 3; c++)
+					want[c] /= ws;
+			if (!(ws > 0))
+				want[0] = want[1] = want[2] = 0;
+			ok = vx_irr_lookup(&v, p, VX_INTERP_TRILINEAR, &g, 0, got);
+			assert_int_equal(ok, ws > 0);
+			assert_memory_equal(got, want, sizeof got);
+			if ((b[0] % 8 == 7) || (b[1] % 8 == 7) || (b[2] % 8 == 7))
+				across++;
+			else
+				in++;
+		}
+		vx_irr_free(&v);
+	}
+	assert_true(in > 10000 && across > 3000);
 	vx_grid_free(&g);
 }
 
@@ -476,6 +599,7 @@ main(void)
 		cmocka_unit_test(lattice_table),
 		cmocka_unit_test(accum_grouping),
 		cmocka_unit_test(lookup_modes),
+		cmocka_unit_test(trilinear_matches_formula),
 		cmocka_unit_test(chunk_roundtrip),
 		cmocka_unit_test(merge_rules),
 		cmocka_unit_test(half_saturates),

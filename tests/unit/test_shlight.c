@@ -1,6 +1,7 @@
 /* test_shlight.c: the SHLC chunk (vx_shlight.h, formats/shlight.md): a
  * round trip keeps every bit, and a table of malformed chunks (each made by
- * editing a good one's header or body) is refused with VX_EDATA. */
+ * editing a good one's header or body) is refused with VX_EDATA; a scene's
+ * environment and sky lights project as their sum. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -11,6 +12,7 @@
 #include <math.h>
 #include <cmocka.h>
 
+#include "vx_scene.h"
 #include "vx_shlight.h"
 
 /* sample: order n, coefficients that are distinct, non-trivial doubles,
@@ -210,6 +212,61 @@ from_stream(void **state)
 	vx_stream_free(&s);
 }
 
+/* a scene's lights: none, one sky, two skies, a sky beside a point light
+ * (not projected).  Oracle: a constant radiance L over the sphere has the
+ * constant term L * 4 pi * Y00 = 2 sqrt(pi) L and no other; lights add. */
+static void
+from_scene(void **state)
+{
+	static const struct {
+		const char *light[3];   /* --light specs after "lights none" */
+		double k;               /* the summed intensity */
+		int n;                  /* lights projected */
+	} t[] = {
+		{ { "point position 0 0 5", NULL, NULL }, 0, 0 },
+		{ { "sky color 1 0.5 0.25 intensity 2", NULL, NULL }, 2, 1 },
+		{ { "sky color 1 0.5 0.25 intensity 2",
+		    "sky color 1 0.5 0.25 intensity 3", NULL }, 5, 2 },
+		{ { "sky color 1 0.5 0.25 intensity 3", "point position 0 0 5",
+		    NULL }, 3, 1 },
+	};
+	static const double col[3] = { 1, 0.5, 0.25 };
+	const double y = 2 * sqrt(3.14159265358979323846);
+	vx_err e = { 0, "" };
+
+	(void)state;
+	for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+		vx_scene s;
+		vx_shlight l;
+		int n = -1;
+		size_t np = 0;
+
+		vx_scene_init(&s);
+		assert_int_equal(vx_scene_option(&s, "lights", "none", &e), 0);
+		for (int k = 0; k < 3 && t[i].light[k] != NULL; k++)
+			assert_int_equal(vx_scene_option(&s, "light",
+			    t[i].light[k], &e), 0);
+		assert_int_equal(vx_shlight_from_scene(&l, &s, 3, &n, &np, &e),
+		    0);
+		assert_int_equal(n, t[i].n);
+		assert_int_equal(np, (size_t)t[i].n);  /* a sky: one pixel */
+		assert_int_equal(l.order, 3);
+		assert_int_equal(l.has_hash, t[i].n == 1);
+		for (int c = 0; c < 3; c++)
+			for (int j = 0; j < 9; j++)
+				assert_true(fabs(l.c[c * 9 + j] - (j == 0 ?
+				    y * t[i].k * col[c] : 0)) < 1e-12);
+	}
+	{
+		vx_scene s;
+		vx_shlight l;
+
+		vx_scene_init(&s);
+		assert_int_equal(vx_shlight_from_scene(&l, &s, 17, NULL, NULL,
+		    &e), VX_EINTERNAL);
+	}
+}
+
 int
 main(void)
 {
@@ -218,6 +275,7 @@ main(void)
 		cmocka_unit_test(writer_refuses),
 		cmocka_unit_test(malformed),
 		cmocka_unit_test(from_stream),
+		cmocka_unit_test(from_scene),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

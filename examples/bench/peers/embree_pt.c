@@ -23,44 +23,27 @@
  * the picture is the same at any thread count. */
 #define _GNU_SOURCE
 #include <embree3/rtcore.h>
-#include <errno.h>
 #include <getopt.h>
 #include <math.h>
 #include <omp.h>
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-#include <unistd.h>
 
-#define MESH_MAGIC "VXMESH01"
-#define MAX_FRAMES 1000
-#define MAX_IMAGE 16384
+#include "embree_common.h"
+
 #define MAX_SPP 65536
 #define MAX_BOUNCES 64
 #define PI 3.14159265358979323846
 
-static const char *usage =
+const char *peer_name = "embree_pt";
+const char *peer_usage =
 	"usage: embree_pt -m MESH -o OUT.pfm --eye X Y Z --look X Y Z [--up X Y Z]\n"
 	"                 --fov DEG [--size W H] [--spp N] [--bounces B]\n"
 	"                 [--sky R G B] [--sun DX DY DZ R G B] [--albedo R G B]\n"
 	"                 [--eps E] [--seed S] [--packets] [-j THREADS] [-n FRAMES]\n"
 	"                 [-w WARMUPS]";
-
-typedef struct {
-	uint32_t nv, nt;
-	float *pos;		/* nv*3 */
-	uint32_t *tri;		/* nt*3 */
-	float *nrm;		/* nv*3 */
-} mesh;
-
-typedef struct {
-	double eye[3], f[3], u[3], v[3];
-	double fov;
-	int w, h;
-} camera;
 
 typedef struct {
 	int spp, bounces, packets;
@@ -76,163 +59,6 @@ typedef struct {
 typedef struct {
 	uint64_t covered, paths, primary, shadow, bounce;
 } counts;
-
-_Noreturn static void die(int code, const char *fmt, ...)
-	__attribute__((format(printf, 2, 3)));
-
-static void
-die(int code, const char *fmt, ...)
-{
-	va_list ap;
-
-	fputs("embree_pt: ", stderr);
-	va_start(ap, fmt);
-	vfprintf(stderr, fmt, ap);
-	va_end(ap);
-	fputc('\n', stderr);
-	exit(code);
-}
-
-static double
-parse_num(const char *opt, const char *s)
-{
-	char *end;
-	double x;
-
-	errno = 0;
-	x = strtod(s, &end);
-	if (errno || end == s || *end || !isfinite(x))
-		die(64, "%s: not a number: '%s'", opt, s);
-	return x;
-}
-
-/* parse_vecn: the option's argument and the n - 1 following argv words. */
-static void
-parse_vecn(const char *opt, int argc, char **argv, double *out, int n)
-{
-	if (optind + n - 1 > argc)
-		die(64, "%s needs %d numbers\n%s", opt, n, usage);
-	out[0] = parse_num(opt, optarg);
-	for (int i = 1; i < n; i++)
-		out[i] = parse_num(opt, argv[optind++]);
-}
-
-static uint32_t
-le32(const unsigned char *p)
-{
-	return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 |
-	    (uint32_t)p[3] << 24;
-}
-
-/* read_mesh: load and validate a VXMESH01 file (as embree_render does);
- * exits on error.  The counts are checked against the file size before
- * anything is allocated. */
-static void
-read_mesh(const char *path, mesh *m)
-{
-	FILE *f = fopen(path, "rb");
-	unsigned char hdr[16];
-	long size;
-	uint64_t need;
-
-	if (!f)
-		die(66, "%s: %s", path, strerror(errno));
-	if (fread(hdr, 1, 16, f) != 16 || memcmp(hdr, MESH_MAGIC, 8) != 0)
-		die(65, "%s: not a VXMESH01 mesh", path);
-	m->nv = le32(hdr + 8);
-	m->nt = le32(hdr + 12);
-	if (fseek(f, 0, SEEK_END) != 0 || (size = ftell(f)) < 0)
-		die(74, "%s: cannot seek", path);
-	need = 16 + (uint64_t)m->nv * 24 + (uint64_t)m->nt * 12;
-	if ((uint64_t)size != need)
-		die(65, "%s: %ld bytes, the counts (%u vertices, %u triangles) "
-		    "need %llu", path, size, m->nv, m->nt,
-		    (unsigned long long)need);
-	if (m->nv == 0 || m->nt == 0)
-		die(65, "%s: empty mesh", path);
-	if (fseek(f, 16, SEEK_SET) != 0)
-		die(74, "%s: cannot seek", path);
-	m->pos = malloc((size_t)m->nv * 12);
-	m->tri = malloc((size_t)m->nt * 12);
-	m->nrm = malloc((size_t)m->nv * 12);
-	if (!m->pos || !m->tri || !m->nrm)
-		die(71, "%s: out of memory", path);
-	if (fread(m->pos, 12, m->nv, f) != m->nv ||
-	    fread(m->tri, 12, m->nt, f) != m->nt ||
-	    fread(m->nrm, 12, m->nv, f) != m->nv)
-		die(74, "%s: short read", path);
-	fclose(f);
-	for (size_t i = 0; i < (size_t)m->nt * 3; i++)
-		if (m->tri[i] >= m->nv)
-			die(65, "%s: triangle %zu refers to vertex %u of %u",
-			    path, i / 3, m->tri[i], m->nv);
-}
-
-static double
-dot(const double a[3], const double b[3])
-{
-	return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void
-cross(const double a[3], const double b[3], double out[3])
-{
-	out[0] = a[1] * b[2] - a[2] * b[1];
-	out[1] = a[2] * b[0] - a[0] * b[2];
-	out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-/* unit: a / |a|; 0 when a is zero (or not finite). */
-static int
-unit(double a[3])
-{
-	double l = sqrt(dot(a, a));
-
-	if (!(l > 0) || !isfinite(l))
-		return 0;
-	a[0] /= l;
-	a[1] /= l;
-	a[2] /= l;
-	return 1;
-}
-
-/* camera_setup: the frame f (forward), u (right), v (up) from eye, look, up,
- * as voxlux's vx_camera_resolve does it (README.md, "Camera"). */
-static void
-camera_setup(camera *c, const double look[3], const double up_in[3])
-{
-	double up[3] = {up_in[0], up_in[1], up_in[2]};
-
-	for (int i = 0; i < 3; i++)
-		c->f[i] = look[i] - c->eye[i];
-	if (!unit(c->f))
-		die(64, "eye and look coincide");
-	if (!unit(up))
-		die(64, "--up must be a nonzero vector");
-	cross(c->f, up, c->u);
-	if (!(sqrt(dot(c->u, c->u)) > 1e-9)) {
-		double z[3] = {0, 0, 1}, y[3] = {0, 1, 0};
-
-		cross(c->f, fabs(c->f[2]) < 0.9 ? z : y, c->u);
-	}
-	unit(c->u);
-	cross(c->u, c->f, c->v);
-	unit(c->v);
-}
-
-/* camera_dir: the unit direction through the centre of pixel (px, py),
- * (0,0) top-left; the ray starts at the eye. */
-static void
-camera_dir(const camera *c, int px, int py, double d[3])
-{
-	double sx = 2.0 * (px + 0.5) / c->w - 1.0;
-	double sy = 1.0 - 2.0 * (py + 0.5) / c->h;
-	double aspect = (double)c->w / c->h, t = tan(c->fov * PI / 360.0);
-
-	for (int i = 0; i < 3; i++)
-		d[i] = c->f[i] + sx * t * aspect * c->u[i] + sy * t * c->v[i];
-	unit(d);
-}
 
 /* ---- random numbers ---- */
 
@@ -599,62 +425,6 @@ render(const tracer *T, const camera *c, float *img, counts *total)
 	}
 }
 
-/* cpu_seconds: CPU time of the whole process (all threads). */
-static double
-cpu_seconds(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-	return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-
-static int
-cmp_double(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-
-	return (x > y) - (x < y);
-}
-
-static double
-median(double *v, int n)
-{
-	qsort(v, n, sizeof *v, cmp_double);
-	return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-/* write_pfm: RGB PFM, little-endian, rows bottom to top; atomically. */
-static void
-write_pfm(const char *path, const float *img, int w, int h)
-{
-	char tmp[4096];
-	FILE *f;
-
-	if (snprintf(tmp, sizeof tmp, "%s.tmp%ld", path, (long)getpid()) >=
-	    (int)sizeof tmp)
-		die(73, "%s: path too long", path);
-	if (!(f = fopen(tmp, "wb")))
-		die(73, "%s: %s", tmp, strerror(errno));
-	fprintf(f, "PF\n%d %d\n-1.0\n", w, h);
-	for (int y = h - 1; y >= 0; y--)
-		fwrite(img + 3 * (size_t)y * w, sizeof(float), 3 * (size_t)w, f);
-	if (fflush(f) != 0 || ferror(f) || fclose(f) != 0) {
-		remove(tmp);
-		die(74, "%s: write failed", path);
-	}
-	if (rename(tmp, path) != 0) {
-		remove(tmp);
-		die(73, "%s: %s", path, strerror(errno));
-	}
-}
-
-static void
-on_embree_error(void *user, enum RTCError code, const char *str)
-{
-	die(70, "embree error %d: %s", (int)code, str ? str : "");
-}
-
 int
 main(int argc, char **argv)
 {
@@ -680,10 +450,9 @@ main(int argc, char **argv)
 	double *times, *cpu, build_s, build_cpu_s;
 	int threads = 0, frames = 1, warmups = 1, have_eye = 0, have_look = 0;
 	int opt, i;
-	camera cam = {.fov = 0, .w = 512, .h = 512};
+	camera cam = {.fov = 0, .ortho = 0, .w = 512, .h = 512};
 	scene s = {.spp = 16, .bounces = 1, .sky = {1, 1, 1},
 	    .albedo = {0.8, 0.8, 0.8}, .eps = 1e-3, .seed = 0};
-	char config[64] = "";
 	counts k;
 	RTCDevice dev;
 	RTCScene rs;
@@ -731,12 +500,12 @@ main(int argc, char **argv)
 		case O_EPS: s.eps = parse_num("--eps", optarg); break;
 		case O_SEED: s.seed = (uint64_t)parse_num("--seed", optarg); break;
 		case O_PACKETS: s.packets = 1; break;
-		case 'h': puts(usage); return 0;
-		default: die(64, "%s", usage);
+		case 'h': puts(peer_usage); return 0;
+		default: die(64, "%s", peer_usage);
 		}
 	}
 	if (optind != argc || !meshpath || !out || !have_eye || !have_look)
-		die(64, "%s", usage);
+		die(64, "%s", peer_usage);
 	if (!(cam.fov > 0 && cam.fov < 180))
 		die(64, "--fov: 0 < DEG < 180");
 	if (frames < 1 || frames > MAX_FRAMES || warmups < 0 ||
@@ -760,22 +529,9 @@ main(int argc, char **argv)
 			die(64, "--sun: no direction");
 	}
 	camera_setup(&cam, look, up);
-	if (threads > 0) {
-		omp_set_num_threads(threads);
-		snprintf(config, sizeof config, "threads=%d", threads);
-	} else
-		threads = omp_get_max_threads();
-
 	read_mesh(meshpath, &m);
-	if (!(dev = rtcNewDevice(config[0] ? config : NULL)))
-		die(70, "rtcNewDevice failed (%d)", (int)rtcGetDeviceError(NULL));
-	rtcSetDeviceErrorFunction(dev, on_embree_error, NULL);
-	geom = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
-	memcpy(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
-	    RTC_FORMAT_FLOAT3, 12, m.nv), m.pos, (size_t)m.nv * 12);
-	memcpy(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0,
-	    RTC_FORMAT_UINT3, 12, m.nt), m.tri, (size_t)m.nt * 12);
-	rtcCommitGeometry(geom);
+	dev = peer_device(&threads);
+	geom = peer_geometry(dev, &m, RTC_BUILD_QUALITY_MEDIUM);
 	rs = rtcNewScene(dev);
 	rtcAttachGeometry(rs, geom);
 	b0 = cpu_seconds();
@@ -825,7 +581,7 @@ main(int argc, char **argv)
 		printf("ns_per_path %.2f (frame time / paths) ns_per_path_cpu "
 		    "%.2f\n", 1e9 * tm / np, 1e9 * cm / np);
 	}
-	write_pfm(out, img, cam.w, cam.h);
+	write_pfm(out, img, cam.w, cam.h, 3);
 
 	rtcReleaseScene(rs);
 	rtcReleaseGeometry(geom);
@@ -833,8 +589,6 @@ main(int argc, char **argv)
 	free(img);
 	free(times);
 	free(cpu);
-	free(m.pos);
-	free(m.tri);
-	free(m.nrm);
+	free_mesh(&m);
 	return 0;
 }

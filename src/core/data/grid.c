@@ -24,6 +24,14 @@ static const vx_enum_name type_names[] = {
 };
 const vx_enum vx_type_enum = { "type", type_names, "unknown", 0 };
 
+static const vx_enum_name interp_names[] = {
+	{ "nearest", VX_INTERP_NEAREST }, { "trilinear", VX_INTERP_TRILINEAR },
+	{ "tricubic", VX_INTERP_TRICUBIC },
+	{ "nearest-iso", VX_INTERP_NEAREST_ISO }, { NULL, VX_INTERP_UNKNOWN }
+};
+const vx_enum vx_interp_enum = { "interpolation", interp_names, "unknown",
+    0 };
+
 /* ---- layouts ---- */
 
 void

@@ -52,14 +52,6 @@ static const vx_enum_name illum_names[] = {
 };
 const vx_enum vx_illum_enum = { "illumination", illum_names, "unknown", 0 };
 
-static const vx_enum_name interp_names[] = {
-	{ "nearest", VX_INTERP_NEAREST }, { "trilinear", VX_INTERP_TRILINEAR },
-	{ "tricubic", VX_INTERP_TRICUBIC },
-	{ "nearest-iso", VX_INTERP_NEAREST_ISO }, { NULL, VX_INTERP_UNKNOWN }
-};
-const vx_enum vx_interp_enum = { "interpolation", interp_names, "unknown",
-    0 };
-
 static const vx_enum_name phase_names[] = {
 	{ "isotropic", VX_PHASE_ISOTROPIC },
 	{ "henyey-greenstein", VX_PHASE_HENYEY_GREENSTEIN },

@@ -32,6 +32,23 @@ size_t vx_type_size(vx_type t);
  * "unknown" for the others. */
 extern const vx_enum vx_type_enum;
 
+/* vx_interp: how a value between the points of a lattice is read: the
+ * scene's "illumination ... interpolation" (formats/scene.md) and the
+ * lookups of the irradiance and SH transfer volumes (vx_irrvol.h), which
+ * read VX_INTERP_UNKNOWN as trilinear.  No chunk stores it.  The names
+ * (vx_enum.h): "nearest", "trilinear", "tricubic", "nearest-iso";
+ * VX_INTERP_UNKNOWN and "unknown" for the others. */
+typedef enum vx_interp {
+	VX_INTERP_UNKNOWN = 0,
+	VX_INTERP_NEAREST,
+	VX_INTERP_TRILINEAR,
+	VX_INTERP_TRICUBIC,
+	VX_INTERP_NEAREST_ISO,     /* of the 8 texels around, the one whose own
+	                              isovalue is closest to the hit's */
+	VX_INTERP_LAST
+} vx_interp;
+extern const vx_enum vx_interp_enum;
+
 /* Largest volume a grid may hold, in samples (padded).  Protects against
  * header words that claim absurd sizes before anything is allocated. */
 #define VX_GRID_MAX_SAMPLES ((uint64_t)1 << 36)

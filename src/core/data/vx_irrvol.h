@@ -242,32 +242,23 @@ vx_irr_usable(const vx_irrvol *v, int64_t s)
 
 /* ---- lookup ---- */
 
-typedef enum vx_irr_interp {
-	VX_IRR_TRILINEAR = 0,
-	VX_IRR_NEAREST,
-	VX_IRR_NEAREST_ISO,            /* of the 8 around, the texel whose own
-	                                  isovalue is closest to the hit's */
-	VX_IRR_TRICUBIC,               /* cubic B-spline over 4x4x4 texels */
-	VX_IRR_INTERP_LAST
-} vx_irr_interp;
-
 /* vx_irr_lookup: the texel value (ncomp components: RGB irradiance, or
  * the transfer vector) at index-space point p (of the volume) by
- * interpolation mode m; for NEAREST_ISO, g is the volume (its trilinear
+ * interpolation mode m (VX_INTERP_UNKNOWN: trilinear); for NEAREST_ISO, g is the volume (its trilinear
  * value at each texel is the texel's isovalue) and iso the hit's isovalue.
  * Returns 1 with out[0..ncomp-1] set, or 0 when no usable texel is in
  * reach (out 0). */
-int vx_irr_lookup(const vx_irrvol *v, const double p[3], vx_irr_interp m,
+int vx_irr_lookup(const vx_irrvol *v, const double p[3], vx_interp m,
     const vx_grid *g, double iso, double *out);
 /* vx_irr_weights: the texels a lookup combines and their weights (summing
  * to 1): at most 64; returns how many (0: none usable). */
-int vx_irr_weights(const vx_irrvol *v, const double p[3], vx_irr_interp m,
+int vx_irr_weights(const vx_irrvol *v, const double p[3], vx_interp m,
     const vx_grid *g, double iso, int64_t idx[64], double w[64]);
 /* vx_irr_reach: call fn for every texel the lookup at p by mode m reads
  * (inside the lattice; present or not): what lazy illumination must have
  * baked before the lookup. */
 typedef void (*vx_irr_need_fn)(void *ctx, int64_t i, int64_t j, int64_t k);
-void vx_irr_reach(const vx_irrvol *v, const double p[3], vx_irr_interp m,
+void vx_irr_reach(const vx_irrvol *v, const double p[3], vx_interp m,
     vx_irr_need_fn fn, void *ctx);
 
 /* ---- merging ---- */
@@ -306,9 +297,8 @@ size_t vx_irr_texel_bytes(vx_irr_store s, int ncomp);
 size_t vx_irr_texel_memory(vx_irr_store s, int ncomp);
 size_t vx_irr_bytes(const vx_irrvol *v);
 
-/* The names (vx_enum.h): stores "accum", "f32", "f16"; interpolations
- * "trilinear", "nearest", "nearest-iso", "tricubic"; -1 and "?" for the
- * others. */
-extern const vx_enum vx_irr_store_enum, vx_irr_interp_enum;
+/* The names (vx_enum.h) of the stores: "accum", "f32", "f16"; -1 and "?"
+ * for the others. */
+extern const vx_enum vx_irr_store_enum;
 
 #endif

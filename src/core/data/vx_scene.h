@@ -20,6 +20,7 @@
 #include "vx_camera.h"
 #include "vx_enum.h"
 #include "vx_err.h"
+#include "vx_grid.h"
 #include "vx_stream.h"
 #include "vx_tf.h"
 
@@ -130,15 +131,6 @@ typedef enum vx_illum {
 	VX_ILLUM_PATHTRACE,       /* per-pixel path tracing (the reference) */
 	VX_ILLUM_LAST
 } vx_illum;
-
-typedef enum vx_interp {
-	VX_INTERP_UNKNOWN = 0,
-	VX_INTERP_NEAREST,
-	VX_INTERP_TRILINEAR,
-	VX_INTERP_TRICUBIC,
-	VX_INTERP_NEAREST_ISO,
-	VX_INTERP_LAST
-} vx_interp;
 
 typedef enum vx_phase {
 	VX_PHASE_UNKNOWN = 0,
@@ -281,12 +273,12 @@ int vx_scene_to_stream(const vx_scene *s, vx_stream *st, vx_err *e);
 
 /* ---- names and helpers ----
  * The words of the format (vx_enum.h): light types, environment layouts,
- * falloffs, illumination modes, interpolations, phases, colormaps (an
+ * falloffs, illumination modes, phases, colormaps (an
  * unknown name has the UNKNOWN value, an unknown value the name
  * "unknown"); effects, named by their VX_FX_ bit (an unknown bit has no
  * name, NULL). */
 extern const vx_enum vx_light_type_enum, vx_env_layout_enum, vx_falloff_enum,
-    vx_illum_enum, vx_interp_enum, vx_phase_enum, vx_colormap_enum,
+    vx_illum_enum, vx_phase_enum, vx_colormap_enum,
     vx_effect_enum;
 /* vx_colormap_eval: color for t (clamped to [0,1]) under map m; unknown
  * maps give gray.  The maps are piecewise linear (formats/scene.md). */

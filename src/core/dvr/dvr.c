@@ -24,6 +24,7 @@ vx_dvr_opts_init(vx_dvr_opts *o)
 	o->seed = 1;
 	o->tf_table = 4096;
 	o->cutoff = 1e-3;
+	o->jitter = 1;
 }
 
 /* ---- the plan ---- */
@@ -121,6 +122,11 @@ vx_dvr_plan(const vx_scene *s, const vx_tf *tf, const vx_dvr_opts *o,
 		vx_plan_add(p, "classification table", VX_PLAN_OFF, 0,
 		    "--tf-table 0: the transfer function evaluated at every "
 		    "sample");
+	vx_plan_add(p, "jitter", o->jitter ? VX_PLAN_ON : VX_PLAN_OFF, 0, "%s",
+	    o->jitter ? "each eye ray's samples shifted along it by its "
+	    "pixel's own fraction of a slice (--seed): fine noise instead of "
+	    "the slices' rings" : "--no-jitter: every ray samples on the "
+	    "slice planes");
 	vx_plan_add(p, "early termination", o->cutoff > 0 ? VX_PLAN_ON :
 	    VX_PLAN_OFF, 0, o->cutoff > 0 ? "front to back, a pixel stops "
 	    "below transmittance %g (--cutoff)" : "--cutoff 0: every sample "
@@ -1016,7 +1022,13 @@ vx_dvr_render(const vx_scene *s, const vx_dvr_decide *d, const vx_tf *tf,
 			if (x < f.span[2 * y])
 				f.span[2 * y] = x;
 			f.span[2 * y + 1] = x + 1;
+			/* jitter: the ray's samples shifted along it by one
+			 * offset in [-1/2, 1/2) of a slice, a pure function of
+			 * (seed, pixel): slices' rings become fine noise */
 			lam0 = (geo.tmin + 0.5 * geo.dt - r.so) / r.sd;
+			if (o->jitter)
+				lam0 += (vx_rng_uniform(o->seed, (uint64_t)i,
+				    0, 1) - 0.5) * geo.dt / r.sd;
 			dlam = geo.dt / r.sd;
 			for (int a = 0; a < 3; a++) {
 				er->p[a] = (r.o[a] + lam0 * r.d[a] - g->origin[a]) /

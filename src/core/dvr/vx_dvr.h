@@ -69,7 +69,10 @@
  * sample's opacity and transport for its spacing) unless the function
  * depends on the gradient; early ray termination front to back at the
  * transmittance cutoff; eye samples at p + k dp with their trilinear
- * weights and lerps in single precision.
+ * weights and lerps in single precision; with jitter, each eye ray's
+ * samples shifted along it by its own offset in [-1/2, 1/2) of a slice, a
+ * pure function of (seed, pixel), so the planes' rings (wood grain) become
+ * fine noise; the light buffer is read where the sample is.
  *
  * Determinism: each slice's eye pass and light pass run in parallel over
  * rows; every output value depends only on its pixel or texel and the
@@ -99,11 +102,15 @@ typedef struct vx_dvr_opts {
 	int light_size;           /* light buffer edge, texels (default 256) */
 	double blur_angle;        /* cone apex angle, degrees, [0, 90) (20) */
 	int blur_samples;         /* 1..VX_DVR_MAX_BLUR (4) */
-	uint64_t seed;            /* the blur's jitter (1) */
+	uint64_t seed;            /* the jitters: the eye rays' and the
+	                             blur's (1) */
 	int no_skip;              /* 1: sample inside clear macrocells too */
 	int tf_table;             /* classification table intervals over
 	                             the volume's range (vx_tf_lut; 4096);
 	                             0: vx_tf_classify at every sample */
+	int jitter;               /* 1: each eye ray's samples shifted along
+	                             it by a pixel's own fraction of a slice
+	                             (default 1) */
 	double cutoff;            /* front to back: a pixel is done when its
 	                             transmittance falls below it (1e-3);
 	                             0: never */

@@ -250,3 +250,39 @@ vx_shlight_project(const vx_env *env, int order, double *c)
 			vx_sh_accumulate(order, dir, om, rgb, 3, c);
 	}
 }
+
+int
+vx_shlight_from_scene(vx_shlight *l, const vx_scene *s, int order,
+    int *nlight, size_t *npixel, vx_err *e)
+{
+	int n = 0;
+	size_t np = 0;
+
+	vx_shlight_init(l);
+	if (order < 1 || order > VX_SHLIGHT_MAX_ORDER)
+		return vx_err_set(e, VX_EINTERNAL, "SH lighting: order %d "
+		    "outside 1 .. %d", order, VX_SHLIGHT_MAX_ORDER);
+	l->order = order;
+	for (int k = 0; k < s->nlight; k++) {
+		const vx_light *lt = &s->light[k];
+		vx_env env;
+
+		if (lt->type != VX_LIGHT_ENVIRONMENT && lt->type != VX_LIGHT_SKY)
+			continue;
+		if (vx_env_load_light(&env, lt, e) != 0)
+			return vx_err_push(e, "light %d", k + 1);
+		vx_shlight_project(&env, order, l->c);
+		l->env_hash = env.hash;
+		np += vx_env_npixel(&env);
+		vx_env_free(&env);
+		n++;
+	}
+	l->has_hash = n == 1;
+	if (n != 1)
+		l->env_hash = 0;
+	if (nlight != NULL)
+		*nlight = n;
+	if (npixel != NULL)
+		*npixel = np;
+	return 0;
+}

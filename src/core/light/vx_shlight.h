@@ -64,4 +64,17 @@ int vx_shlight_from_stream(vx_shlight *l, const vx_stream *s, long *idx,
  * quadrature's error grows with the order for coarse maps. */
 void vx_shlight_project(const vx_env *env, int order, double *c);
 
+/* vx_shlight_from_scene: l (initialized here) of order `order` (1 .. 16)
+ * from scene s: the sum of the projections (vx_shlight_project) of every
+ * environment and sky light of s, each read by vx_env_load_light (its
+ * file's hash checked when the light carries one).  The lights add, as
+ * light does: two lights light a surface as their sum.  The source hash is
+ * the light's map's when there is exactly one, else none.  *nlight gets
+ * how many lights were projected (0: l's coefficients are 0) and *npixel
+ * their maps' pixels, all together (either may be NULL).  Errors: as
+ * vx_env_load_light's, with "light N: " before; VX_EINTERNAL for an order
+ * out of range. */
+int vx_shlight_from_scene(vx_shlight *l, const vx_scene *s, int order,
+    int *nlight, size_t *npixel, vx_err *e);
+
 #endif

@@ -53,6 +53,7 @@ vx_raycast_opts_init(vx_raycast_opts *o)
 	o->solver = VX_CELL_EXACT;
 	o->aa = 1;
 	o->tile = 16;
+	o->irr_interp = VX_INTERP_TRILINEAR;
 	o->shadow_offset = 1e-3;
 }
 
@@ -437,6 +438,7 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 	rc_frame F;
 	vx_par team;
 	vx_par_time tm;
+	vx_gi gim;               /* the estimator with the frame's cell mask */
 	double t0, tb0;
 	int tile, rc;
 	int aa = o->aa >= 1 ? o->aa : 1;
@@ -512,6 +514,17 @@ render(rc_shared *S_, const vx_scene *s, const vx_plan *p,
 		}
 		if (mask->ready)
 			S.sf.tr.mask = mask;
+	}
+	/* path tracing: the bounce and shadow rays trace one of the frame's
+	 * isovalues through the same hierarchy, so they decide cells by the
+	 * frame's mask too (the same cells visited: vx_macrowalk.h); with
+	 * several isovalues the mask does not match one and they walk as
+	 * without it */
+	if (S.sf.gi != NULL && S.sf.tr.mask != NULL &&
+	    S.sf.gi->tr.m == S.sf.tr.m && S.sf.gi->tr.mask == NULL) {
+		gim = *S.sf.gi;
+		gim.tr.mask = S.sf.tr.mask;
+		S.sf.gi = &gim;
 	}
 	tile = o->tile > 0 ? o->tile : 16;
 	if ((rc = vx_par_init(&team, o->nthreads, sizeof(rc_local), e)) != 0) {

@@ -65,7 +65,7 @@ typedef struct vx_raycast_opts {
 	                            building their bits (the same picture) */
 	const vx_irrvol *irr;    /* the plan's irradiance volume (volumes
 	                            only; required when plan.irradiance) */
-	vx_irr_interp irr_interp;   /* how it is read */
+	vx_interp irr_interp;   /* how it is read */
 	const double *shl;       /* the plan's SH lighting when plan.sh
 	                            (vx_surface.h) */
 	vx_irr_need_fn irr_need; /* non-NULL: a collecting pass for lazy

@@ -75,7 +75,7 @@ typedef struct vx_surfaces {
 	 * which): */
 	const vx_irrvol *irr;    /* irradiance: the baked volume, or an SH
 	                            transfer volume (irr->sh_order > 0), */
-	vx_irr_interp irr_interp;     /* read so; */
+	vx_interp irr_interp;     /* read so; */
 	const double *shl;       /* SH: the lighting's radiance coefficients
 	                            in vx_sh.h's basis, 3 channels of
 	                            irr->sh_order^2 each (r's first): E of

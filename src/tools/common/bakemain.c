@@ -22,24 +22,22 @@
 #include "vx_par.h"
 #include "vx_scene.h"
 
+/* the options both take, after each one's own */
+#define USAGE_COMMON \
+    "    [--samples N] [--target-error E] [--round N] [--min-samples N]\n" \
+    "    [--bounces N] [--offset VOXELS] [--seed N] [--first-sample N]\n" \
+    "    [--iso-range A,B] [--margin M] [--all] [--side low|high]\n" \
+    "    [--merge STREAM] [--fresh] [--lazy] [--half|--final] [--fixed BITS]\n" \
+    "    [--max-memory GB] [-z LEVEL] [-j N] [--stats] [--explain] [-n]\n" \
+    "    [-o OUT] [IN|-]"
 static const char usage_irr[] =
     "bake-irr [--scene FILE] [--set LINE] [--light SPEC] [--lights none]\n"
     "    [--effects WORDS] [--iso V[,V...]] [--name VOLUME] [--scale S]\n"
-    "    [--samples N] [--target-error E] [--round N] [--min-samples N]\n"
-    "    [--bounces N] [--offset VOXELS] [--seed N] [--first-sample N]\n"
-    "    [--iso-range A,B] [--margin M] [--all] [--side low|high]\n"
-    "    [--merge STREAM] [--fresh] [--lazy] [--half|--final] [--fixed BITS]\n"
-    "    [--max-memory GB] [-z LEVEL] [-j N] [--stats] [--explain] [-n]\n"
-    "    [-o OUT] [IN|-]";
+    USAGE_COMMON;
 static const char usage_sh[] =
     "bake-sh [--scene FILE] [--set LINE] [--effects WORDS] [--iso V[,V...]]\n"
     "    [--name VOLUME] [--order N] [--channels 1|3] [--scale S]\n"
-    "    [--samples N] [--target-error E] [--round N] [--min-samples N]\n"
-    "    [--bounces N] [--offset VOXELS] [--seed N] [--first-sample N]\n"
-    "    [--iso-range A,B] [--margin M] [--all] [--side low|high]\n"
-    "    [--merge STREAM] [--fresh] [--lazy] [--half|--final] [--fixed BITS]\n"
-    "    [--max-memory GB] [-z LEVEL] [-j N] [--stats] [--explain] [-n]\n"
-    "    [-o OUT] [IN|-]";
+    USAGE_COMMON;
 static const char *usage;
 static const char *me;         /* the tool's name */
 static int sh;                 /* 1: bake-sh */
@@ -51,8 +49,8 @@ static const vx_enum_name side_names[] = {
 static const vx_enum sides = { "side", side_names, "?", 0 };
 
 typedef struct opts {
-	const char *in, *out, *name, *merge;
-	int stats, explain, dry, fresh, all, zlevel, fixed, lazy;
+	const char *in, *merge;
+	int fresh, all, fixed, lazy;
 	int has_bounces, bounces, has_range, has_first, has_samples, high;
 	int order, channels;
 	double max_gb;
@@ -60,7 +58,7 @@ typedef struct opts {
 	double range[2], margin;
 	uint64_t seed;
 	uint32_t first;
-	long threads;
+	tool_run_opts run;       /* -o, -j, -z, -n, --stats, --explain */
 	vx_bake_opts b;
 	tool_scene_opts so;      /* --scene and the scene options */
 } opts;
@@ -68,16 +66,14 @@ typedef struct opts {
 static void
 parse(opts *o, int argc, char **argv)
 {
-	enum { O_NAME = 256, O_SCALE, O_SAMPLES, O_TARGET, O_ROUND, O_MIN, O_BOUNCES,
+	enum { O_SCALE = 256, O_SAMPLES, O_TARGET, O_ROUND, O_MIN, O_BOUNCES,
 	    O_OFFSET, O_SEED, O_FIRST, O_RANGE, O_MARGIN, O_ALL, O_MERGE,
-	    O_FRESH, O_HALF, O_FINAL, O_FIXED, O_STATS, O_EXPLAIN, O_SIDE,
+	    O_FRESH, O_HALF, O_FINAL, O_FIXED, O_SIDE,
 	    O_LAZY, O_ORDER, O_CHANNELS, O_MAXMEM };
 	static const struct option lo[] = {
-		{ "scene", 1, 0, TOOL_O_SCENE }, { "set", 1, 0, TOOL_O_SET },
-		{ "light", 1, 0, TOOL_O_LIGHT },
-		{ "lights", 1, 0, TOOL_O_LIGHTS },
-		{ "effects", 1, 0, TOOL_O_EFFECTS }, { "iso", 1, 0, TOOL_O_ISO },
-		{ "name", 1, 0, O_NAME }, { "scale", 1, 0, O_SCALE },
+		{ "scene", 1, 0, TOOL_O_SCENE }, { "iso", 1, 0, TOOL_O_ISO },
+		TOOL_SCENE_LONG_LIGHTS,
+		{ "name", 1, 0, TOOL_O_NAME }, { "scale", 1, 0, O_SCALE },
 		{ "samples", 1, 0, O_SAMPLES },
 		{ "target-error", 1, 0, O_TARGET }, { "round", 1, 0, O_ROUND },
 		{ "min-samples", 1, 0, O_MIN }, { "bounces", 1, 0, O_BOUNCES },
@@ -87,27 +83,22 @@ parse(opts *o, int argc, char **argv)
 		{ "all", 0, 0, O_ALL }, { "merge", 1, 0, O_MERGE },
 		{ "fresh", 0, 0, O_FRESH }, { "half", 0, 0, O_HALF },
 		{ "final", 0, 0, O_FINAL }, { "fixed", 1, 0, O_FIXED },
-		{ "stats", 0, 0, O_STATS }, { "explain", 0, 0, O_EXPLAIN },
 		{ "side", 1, 0, O_SIDE }, { "lazy", 0, 0, O_LAZY },
 		{ "order", 1, 0, O_ORDER }, { "channels", 1, 0, O_CHANNELS },
-		{ "max-memory", 1, 0, O_MAXMEM },
-		{ "dry-run", 0, 0, 'n' }, { "output", 1, 0, 'o' },
-		{ "threads", 1, 0, 'j' }, { "help", 0, 0, 'h' },
-		{ 0, 0, 0, 0 }
+		{ "max-memory", 1, 0, O_MAXMEM }, TOOL_RUN_LONG, { 0, 0, 0, 0 }
 	};
 	int ch;
 
 	memset(o, 0, sizeof *o);
-	o->out = "-";
+	tool_run_opts_init(&o->run);
+	o->run.zlevel = 0;
 	o->fixed = VX_IRR_FIXED;
 	o->seed = 1;
-	o->zlevel = 0;
 	o->store = VX_IRR_ACCUM;
 	o->order = 5;
 	vx_bake_opts_init(&o->b);
-	while ((ch = getopt_long(argc, argv, ":j:o:nz:", lo, NULL)) != -1) {
+	while ((ch = getopt_long(argc, argv, TOOL_RUN_SHORT, lo, NULL)) != -1) {
 		switch (ch) {
-		case O_NAME: o->name = optarg; break;
 		case O_SCALE:
 			o->b.scale = tool_parse_double("--scale", optarg, 1e-3,
 			    64);
@@ -186,18 +177,9 @@ parse(opts *o, int argc, char **argv)
 			o->max_gb = tool_parse_double("--max-memory", optarg,
 			    1e-6, 1e9);
 			break;
-		case O_STATS: o->stats = 1; break;
-		case O_EXPLAIN: o->explain = 1; break;
-		case 'n': o->dry = 1; o->explain = 1; break;
-		case 'z':
-			o->zlevel = (int)tool_parse_long("-z", optarg, 0, 9);
-			break;
-		case 'o': o->out = optarg; break;
-		case 'j':
-			o->threads = tool_parse_long("-j", optarg, 0, 1024);
-			break;
 		default:
-			if (!tool_scene_opt(&o->so, ch, optarg, usage))
+			if (!tool_run_opt(&o->run, ch, optarg) &&
+			    !tool_scene_opt(&o->so, ch, optarg, usage))
 				tool_opt_other(ch, usage, argv);
 		}
 	}
@@ -325,10 +307,10 @@ tool_bake_main(int argc, char **argv, int want_sh)
 	vx_scene_init(&s);
 	tool_scene_opts_load(&s, &o.so, &st);
 	vx_grid_init(&g);
-	if (vx_grid_view_stream(&g, &st, o.name ? o.name : (s.volume[0] ?
+	if (vx_grid_view_stream(&g, &st, o.run.name ? o.run.name : (s.volume[0] ?
 	    s.volume : NULL), &gidx, &e) != 0)
 		tool_fail_err(&e);
-	nthr = tool_threads(o.threads);
+	nthr = tool_threads(o.run.threads);
 	if (!sh) {
 		tool_gi_setup(&gi, &s, &g, NULL);
 	} else if (vx_gi_setup(&gi, &s, &g, NULL, &e) != 0) {
@@ -460,7 +442,7 @@ tool_bake_main(int argc, char **argv, int want_sh)
 		if (!o.has_samples)
 			o.b.samples = 0;
 	}
-	if (o.explain) {
+	if (o.run.explain) {
 		double paths = (double)bs.wanted * o.b.samples;
 
 		fprintf(stderr, "%s: plan: %s %lld x %lld x %lld texels at "
@@ -518,7 +500,7 @@ tool_bake_main(int argc, char **argv, int want_sh)
 		    paths * (1 + gi.bounces) * (1 + gi.nlight +
 		    (gi.has_env ? 1 : 0)), nthr, nthr == 1 ? "" : "s");
 	}
-	if (o.dry) {
+	if (o.run.dry) {
 		vx_irr_free(&v);
 		vx_grid_free(&g);
 		vx_stream_free(&st);
@@ -540,20 +522,20 @@ tool_bake_main(int argc, char **argv, int want_sh)
 	v.samples += o.b.samples;
 	if (o.store != VX_IRR_ACCUM && vx_irr_finalize(&v, o.store, &e) != 0)
 		tool_fail_err(&e);
-	if (o.stats)
+	if (o.run.stats)
 		print_stats(&bs, &v, nthr);
 	{
 		vx_chunk c;
 
 		memset(&c, 0, sizeof c);
-		if (vx_irr_to_chunk(&v, o.zlevel, &c, &e) != 0)
+		if (vx_irr_to_chunk(&v, o.run.zlevel, &c, &e) != 0)
 			tool_fail_err(&e);
 		if (iidx >= 0)
 			vx_stream_replace(&st, (size_t)iidx, &c);
 		else if (vx_stream_append(&st, &c, &e) != 0)
 			tool_fail_err(&e);
 	}
-	tool_write_stream(&st, o.out);
+	tool_write_stream(&st, o.run.out);
 	vx_irr_free(&v);
 	vx_macro_free(&m);
 	vx_grid_free(&g);

@@ -48,12 +48,97 @@ enum {
 	TOOL_O_SET, TOOL_O_ISO, TOOL_O_SIZE, TOOL_O_VIEW, TOOL_O_FOV,
 	TOOL_O_LIGHT, TOOL_O_LIGHTS, TOOL_O_EFFECTS, TOOL_O_BG
 };
+/* Their getopt_long entries: TOOL_SCENE_LONG all of them; a program that
+ * takes some lists --scene (and --iso, --background) itself beside the
+ * camera's (--size, --view, --fov) or the lights' (--set, --light,
+ * --lights, --effects). */
+#define TOOL_SCENE_LONG_CAMERA \
+	{ "size", 1, 0, TOOL_O_SIZE }, { "view", 1, 0, TOOL_O_VIEW }, \
+	{ "fov", 1, 0, TOOL_O_FOV }
+#define TOOL_SCENE_LONG_LIGHTS \
+	{ "set", 1, 0, TOOL_O_SET }, { "light", 1, 0, TOOL_O_LIGHT }, \
+	{ "lights", 1, 0, TOOL_O_LIGHTS }, { "effects", 1, 0, TOOL_O_EFFECTS }
+#define TOOL_SCENE_LONG \
+	{ "scene", 1, 0, TOOL_O_SCENE }, { "iso", 1, 0, TOOL_O_ISO }, \
+	{ "background", 1, 0, TOOL_O_BG }, TOOL_SCENE_LONG_CAMERA, \
+	TOOL_SCENE_LONG_LIGHTS
 #define TOOL_SCENE_MAXSET 64
 typedef struct tool_scene_opts {
 	const char *file;        /* --scene, or NULL */
 	int n;
 	const char *name[TOOL_SCENE_MAXSET], *val[TOOL_SCENE_MAXSET];
 } tool_scene_opts;
+
+/* The options the programs share beyond the scene's: where the output
+ * goes, which volume, threads, the report on standard error, and for the
+ * renderers the picture's form.  A renderer or baker (raycast, mip, dvr,
+ * bake-irr, bake-sh) takes the short options TOOL_RUN_SHORT and lists
+ * TOOL_RUN_LONG (and TOOL_RENDER_LONG for a renderer, and any of --name,
+ * --exposure, --depth, --normals, --pfm by their TOOL_O_* codes) in its
+ * getopt_long table; another program (brick, macrocell, sh-rotate) lists
+ * the few it takes.  Each gives every option its own switch does not take
+ * to tool_run_opt, which takes only what the program's table lets
+ * getopt_long return. */
+enum {
+	TOOL_O_STATS = 0x4100, TOOL_O_EXPLAIN, TOOL_O_HDR, TOOL_O_BITS,
+	TOOL_O_EXPOSURE, TOOL_O_DEPTH, TOOL_O_NORMALS, TOOL_O_PFM, TOOL_O_NAME
+};
+#define TOOL_RUN_SHORT ":o:j:nhz:"
+#define TOOL_RUN_LONG \
+	{ "output", 1, 0, 'o' }, { "threads", 1, 0, 'j' }, \
+	{ "dry-run", 0, 0, 'n' }, { "stats", 0, 0, TOOL_O_STATS }, \
+	{ "explain", 0, 0, TOOL_O_EXPLAIN }, { "help", 0, 0, 'h' }
+#define TOOL_RENDER_LONG \
+	{ "hdr", 0, 0, TOOL_O_HDR }, { "bits", 1, 0, TOOL_O_BITS }
+typedef struct tool_run_opts {
+	const char *out;         /* -o, --output FILE: "-" (standard output)
+	                            unless given */
+	const char *name;        /* --name NAME: the volume or mesh (NULL
+	                            unless given) */
+	long threads;            /* -j, --threads N: 0 (all cores) unless
+	                            given */
+	int zlevel;              /* -z LEVEL, 0 to 9: the zlib level of the
+	                            stream's images (default 1) */
+	int stats, explain;      /* --stats, --explain */
+	int dry;                 /* -n, --dry-run: explain, then stop */
+	int hdr;                 /* --hdr: a stream of float images, not a
+	                            PNG */
+	int bits;                /* --bits 8|16: the PNG's (default 8) */
+	double exposure;         /* --exposure STOPS, -64 to 64 (default 0) */
+	const char *depth;       /* --depth FILE.pfm: the depth image */
+	const char *normals;     /* --normals FILE.pfm: the normal image */
+	const char *pfm;         /* --pfm FILE: the color over the background */
+} tool_run_opts;
+
+/* tool_run_opts_init: the defaults above. */
+void tool_run_opts_init(tool_run_opts *r);
+
+/* tool_run_opt: take option c (a short option of TOOL_RUN_SHORT other
+ * than -h, or a TOOL_O_* code above) with value val into r; returns 0,
+ * taking nothing, for any other c.  Bad values exit 64. */
+int tool_run_opt(tool_run_opts *r, int c, const char *val);
+
+/* tool_plan_print: p's text (vx_plan_format) on standard error. */
+struct vx_plan;
+void tool_plan_print(const struct vx_plan *p);
+
+/* tool_render_write: a renderer's result as its options r say.  The
+ * images are img[0], the picture (linear radiance, or mip's values), and
+ * img[1] and img[2] (depth and normals; each NULL when not made).  First
+ * --depth and --normals write img[1] and img[2] as PFMs, --pfm img[0]
+ * flattened over s's background (vx_image_flatten: linear RGB).  Then with
+ * --hdr the stream to r->out: the chunks of in not consumed (those whose
+ * type is in drawn, a NULL-terminated list of what the picture was drawn
+ * from, and every scene and image; moved from in), the scene s, then the
+ * images, at -z's level; otherwise the PNG: display, its values as they
+ * are with no color-space chunk, or when display is NULL img[0] made
+ * display exactly as tonemap(1) would (tool_write_png_radiance, with
+ * --exposure and s's background); the history from in.  Exits on error. */
+struct vx_image;
+struct vx_scene;
+void tool_render_write(const tool_run_opts *r, vx_stream *in,
+    const char *const *drawn, const struct vx_scene *s,
+    const struct vx_image *const img[3], const struct vx_image *display);
 
 /* tool_scene_opt: record scene option c (a TOOL_O_* code) with value val;
  * returns 0, recording nothing, for any other c.  More than
