@@ -42,8 +42,11 @@ Ratios pair two runs of the same round; the tables give the median of the per-ro
 ratios and the ratio of the minima, of wall and of CPU time.
 
 Pictures: before the rounds, miter renders once more with early ray termination off
-(-n1 1: it composites every sample; dvr stops at transmittance 0.001); voxlux's unshaded picture is compared
-with it, with the timed miter picture (-n1 0.99) and with VTK's unshaded one: relative
+(-n1 1: it composites every sample; dvr stops at transmittance 0.001), and dvr unshaded
+once more with --no-jitter (its samples on the slice planes, which miter samples too;
+by default dvr shifts each eye ray's samples by a per-pixel fraction of a slice).  That
+picture is compared with miter -n1 1, with the timed miter picture (-n1 0.99) and with
+VTK's unshaded one, and the timed (jittered) dvr picture with miter -n1 1: relative
 RMSE of the premultiplied RGB over the pixels either image covers (any channel > 0),
 divided by voxlux's mean there (tests/cli/vximg.py relrmse-all's measure), and the
 relative difference of the means.  D-side-by-side.png holds the pictures, D-diff.png
@@ -191,11 +194,12 @@ class Bench:
         return cmd, {"ms": num("render_ms", text), "cpu_ms": num("render_cpu_ms", text),
                      "first_ms": num("first_ms", text), "proc_ms": 1e3 * wall}
 
-    def voxlux(self, d, v):
-        tag = "vx-" + v
+    def voxlux(self, d, v, extra=(), suffix=""):
+        tag = "vx-" + v + suffix
         cmd = [os.path.join(self.vx, "dvr"), "--scene", self.path("%s-%s.scn" % (d, v)),
-               "-j", str(self.a.threads), "--stats", "--pfm", self.path("%s-%s.pfm" % (d, tag)),
-               "-o", self.path("%s-%s.png" % (d, tag)), self.path(d + ".vxs")]
+               "-j", str(self.a.threads), "--stats"] + list(extra) + \
+            ["--pfm", self.path("%s-%s.pfm" % (d, tag)),
+             "-o", self.path("%s-%s.png" % (d, tag)), self.path(d + ".vxs")]
         text, wall, cpu = run(cmd)
         ms = None
         for line in text.splitlines():
@@ -231,6 +235,10 @@ class Bench:
             cmd, r = self.miter(d, "1", "miter-n1")
             self.cmds[d + " miter-n1"] = cmd
             self.times[d + " miter-n1"] = [r]
+            log("%s: dvr unshaded on the slice planes (the picture)" % d)
+            cmd, r = self.voxlux(d, "unshaded", ["--no-jitter"], "-nojitter")
+            self.cmds[d + " vx-unshaded-nojitter"] = cmd
+            self.times[d + " vx-unshaded-nojitter"] = [r]
         work = [(d, t, fn) for d in self.datasets for t, fn in self.configs(d)]
         for rnd in range(a.runs):
             k = (rnd * 5) % len(work)
@@ -257,17 +265,22 @@ class Bench:
     # ---- pictures ----
     def pictures(self, d):
         img = {t: volio.read_pfm_rgb(self.path("%s-%s.pfm" % (d, t)))
-               for t in ("vx-unshaded", "miter-n1", "miter", "vtk", "vtk-shaded", "vx-local", "vx-lit")}
-        ref = img["vx-unshaded"]
+               for t in ("vx-unshaded-nojitter", "vx-unshaded", "miter-n1", "miter", "vtk",
+                         "vtk-shaded", "vx-local", "vx-lit")}
+        ref = img["vx-unshaded-nojitter"]
         errs = {}
-        for t in ("miter-n1", "miter", "vtk"):
-            x = img[t]
+        for t in ("miter-n1", "miter", "vtk", "jitter"):
+            # "jitter": the timed (jittered) unshaded picture against miter -n1 1
+            x = img["vx-unshaded" if t == "jitter" else t]
+            if t == "jitter":
+                ref = img["miter-n1"]
             m = (ref.max(axis=2) > 0) | (x.max(axis=2) > 0)
             mean = ref[m].mean()
             errs[t] = {"relrmse": float(np.sqrt(((x - ref)[m] ** 2).mean()) / mean),
                        "relmean": float(x[m].mean() / mean - 1),
                        "p99": float(np.percentile(np.abs(x - ref)[m], 99) / mean),
                        "pixels": int(m.sum())}
+        ref = img["vx-unshaded-nojitter"]
         gap = np.zeros((ref.shape[0], 8, 3))
         row1 = np.concatenate([ref, gap, img["miter-n1"], gap, img["vtk"]], axis=1)
         row2 = np.concatenate([img["vx-local"], gap, img["vtk-shaded"], gap, img["vx-lit"]], axis=1)
@@ -363,19 +376,23 @@ class Bench:
                 L.append("| %s | %s | %s | %.2f | %.2f | %s | %s | %s |" % (
                     d, what, goal, med, mins, f(cmed, "%.2f"), f(cmins, "%.2f"),
                     "; ".join(x for x in (met(med, mins), met(cmed, cmins)) if x)))
-        L.append("\n### Pictures: voxlux unshaded against the unshaded peers\n")
+        L.append("\n### Pictures: voxlux unshaded (--no-jitter) against the unshaded peers\n")
         L.append("| data | peer | relative RMSE | mean, relative | 99th percentile of abs diff / mean | pixels |")
         L.append("|---|---|---|---|---|---|")
         for d in self.datasets:
             for t, what in (("miter-n1", "teem-miter, -n1 1 (no early termination)"),
                             ("miter", "teem-miter, -n1 0.99 (timed)"),
-                            ("vtk", "VTK unshaded")):
-                e = self.errors[d][t]
+                            ("vtk", "VTK unshaded"),
+                            ("jitter", "teem-miter -n1 1 against the timed (jittered) dvr")):
+                e = self.errors[d].get(t)
+                if e is None:
+                    continue
                 L.append("| %s | %s | %.2f%% | %+.2f%% | %.2f%% | %d |" % (
                     d, what, 100 * e["relrmse"], 100 * e["relmean"], 100 * e["p99"], e["pixels"]))
         L.append("\nPictures in %s: D-side-by-side.png (top: voxlux unshaded, teem-miter -n1 1,"
                  " VTK unshaded; bottom: voxlux local, VTK shaded, voxlux lit; linear RGB to"
-                 " sRGB, no exposure), D-diff.png (|miter -n1 1 - voxlux|, |miter - voxlux|,"
+                 " sRGB, no exposure; voxlux unshaded is the --no-jitter picture),"
+                 " D-diff.png (|miter -n1 1 - voxlux|, |miter - voxlux|,"
                  " |VTK - voxlux|, times 10, linear: white = 0.1)." % self.out)
         L.append("\n### dvr --stats (last round)\n")
         L.append("```")
