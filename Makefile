@@ -9,7 +9,7 @@
 #   make fuzz         libFuzzer targets (clang) over the committed corpus
 #   make bench        benchmarks (see examples/bench)
 #   make demo         the README's first command
-#   make cloud        a coarse volume made a cloud by noise (examples/cloud)
+#   make cloud        a coarse volume made a cloud by dvr's noise (examples/cloud)
 #
 # New modules, programs and tests are picked up by wildcard: a file in a
 # layer folder of src/core/ (LAYERS, in order) joins the library (.c, and

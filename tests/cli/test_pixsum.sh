@@ -79,6 +79,12 @@ dv dvr-ml-ortho "$T/ml.vx" --size 64x64 --view 20,30 --ortho --light-size 48 \
     --set "transfer opacity 0 0 0.45 0 0.55 0.4 1 0.4" --set "transfer surface 0 1" \
     --set "transfer color 0 0.2 0.5 1 1 1 0.6 0.3" --set "light point position 2 -3 2" \
     --effects "volumetric-shadows specular"
+# the cloud of examples/cloud, small: dvr's perturbation (coordinates and
+# density) with volumetric shadows and scattering
+vread --synth sphere --size 32,32,20 --spacing 0.1,0.1,0.1 --origin -1.55,-1.55,-0.95 \
+    | macrocell --levels 1 --sizes 2x2x2 > "$T/blob.vx"
+dv dvr-cloud "$T/blob.vx" --scene examples/cloud/cloud.scn --size 64x44 --slices 48 \
+    --light-size 48 -j 2
 if [ -n "$have_ch2" ]; then
 	rc ch2-127-j1 "$T/ch2-b.vx" --scene $HL --set "$CAM_CH2" --iso 127.5 --size 128x128 -j 1
 	rc ch2-127-j2 "$T/ch2-b.vx" --scene $HL --set "$CAM_CH2" --iso 127.5 --size 128x128 -j 2

@@ -132,6 +132,20 @@ put("pfm", "truncated.pfm", pfm(b"PF", 4, 4, b"-1", [1, 2, 3]))
 put("pfm", "huge.pfm", b"PF\n4294967296 1\n-1\n" + bytes(12))
 
 
+# ---- PGM (heightfield's maps) ----
+put("pgm", "gray8.pgm", b"P5\n3 2\n255\n" + bytes([0, 1, 2, 128, 254, 255]))
+put("pgm", "gray16.pgm", b"P5 2 2 65535\n" + struct.pack(">4H", 0, 1, 65534,
+    65535))
+put("pgm", "comments.pgm", b"P5\n# made by hand\n2 1 # size\n# maxval\n"
+    b"100\n" + bytes([0, 100]))
+put("pgm", "over-maxval.pgm", b"P5\n2 1\n100\n" + bytes([5, 200]))
+put("pgm", "truncated.pgm", b"P5\n4 4\n255\n" + bytes(5))
+put("pgm", "huge.pgm", b"P5\n65536 65536\n255\n" + bytes(4))
+# the harness once wanted samples over a 16-bit maxval back within 1e-3
+put("pgm", "regress-maxval-65534.pgm", b"P5 2 2 65534\n" +
+    bytes([0, 0, 0, 0x2a, 0xff, 0xfe, 0xff, 0xbf]))
+
+
 # ---- PNG ----
 def png_chunk(t, d):
     return (struct.pack(">I", len(d)) + t + d +

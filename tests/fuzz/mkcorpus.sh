@@ -53,6 +53,6 @@ bin/tonemap --bits 16 -o "$out/png/tonemap16.png" "$tmp/img.vxs"
 cp tests/malformed/volm-extent-overflow.vxs tests/malformed/volm-extent-diagonal.vxs \
     "$out/stream/"
 mkdir -p "$out/scene"
-cp examples/scenes/*.scn "$out/scene/"
+cp examples/scenes/*.scn examples/cloud/cloud.scn "$out/scene/"
 python3 tests/fuzz/mkcorpus.py "$out"
 du -sk "$out"

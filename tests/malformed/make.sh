@@ -987,6 +987,49 @@ case("tf-empty.vp", TF, 66, "empty file", "an empty file", b"")
 case("tf-missing.vp", "vinfo --transfer auto NOFILE", 66, "No such file",
      "a transfer function that does not exist", None)
 
+# ---- height maps (heightfield: PGM, PNG, PFM) ----
+HF = "heightfield -o OUT FILE"
+case("hf-pgm-truncated.pgm", HF, 65, "needs 4 data bytes",
+     "2x2 8-bit PGM with 3 samples", b"P5\n2 2\n255\n" + bytes(3))
+case("hf-pgm-long.pgm", HF, 65, "the file has 5",
+     "2x2 8-bit PGM with 5 samples", b"P5\n2 2\n255\n" + bytes(5))
+case("hf-pgm-16-odd.pgm", HF, 65, "2-byte samples",
+     "2x1 16-bit PGM with 3 data bytes", b"P5\n2 1\n65535\n" + bytes(3))
+case("hf-pgm-maxval-zero.pgm", HF, 65, "maxval 0",
+     "maxval 0", b"P5\n1 1\n0\n" + bytes(1))
+case("hf-pgm-maxval-huge.pgm", HF, 65, "maxval 65536",
+     "maxval 65536", b"P5\n1 1\n65536\n" + bytes(2))
+case("hf-pgm-over-maxval.pgm", HF, 65, "exceeds maxval",
+     "sample 200 over maxval 100", b"P5\n2 1\n100\n" + bytes([5, 200]))
+case("hf-pgm-size-zero.pgm", HF, 65, "size 0 x 2",
+     "width 0", b"P5\n0 2\n255\n")
+case("hf-pgm-size-huge.pgm", HF, 65, "each side",
+     "65537 x 65537 (no data)", b"P5\n65537 65537\n255\n" + bytes(4))
+case("hf-pgm-size-word.pgm", HF, 65, "bad or missing size",
+     "width 'two'", b"P5\ntwo 2\n255\n" + bytes(4))
+case("hf-pgm-size-2e64.pgm", HF, 65, "bad or missing size",
+     "width 2^64", b"P5\n18446744073709551616 1\n255\n" + bytes(1))
+case("hf-pgm-no-maxval.pgm", HF, 65, "maxval",
+     "header ends after the size", b"P5\n2 2\n")
+case("hf-pgm-plain.pgm", HF, 65, "not a PGM (P5), PNG or PFM",
+     "plain (ASCII) PGM, P2", b"P2\n2 2\n255\n0 1 2 3\n")
+case("hf-png-cut.png", HF, 65, "hf-png-cut.png",
+     "a PNG signature and half an IHDR",
+     b"\x89PNG\r\n\x1a\n\x00\x00\x00\x0dIHDR\x00\x00")
+case("hf-pfm-nan.pfm", HF, 65, "pixel (1, 0): height is not finite",
+     "a NaN height", pfm(b"Pf\n2 1\n-1\n", 0) +
+     struct.pack("<2f", 0.5, float("nan")))
+case("hf-stream.vxs", HF, 65, "(voxlux stream)",
+     "a voxlux stream, not a map", V)
+case("hf-missing.pgm", "heightfield -o OUT NOFILE", 66, "No such file",
+     "map file does not exist", None)
+case("hf-empty.pgm", "heightfield -o OUT <FILE", 66, "empty input",
+     "empty standard input", b"")
+case("hf-nz.pgm", "heightfield --nz 1 -o OUT FILE", 64, "--nz",
+     "--nz below 2", b"P5\n1 1\n255\n\x00")
+case("hf-range.pgm", "heightfield --range 1,1 -o OUT FILE", 64, "--range",
+     "an empty --range", b"P5\n1 1\n255\n\x00")
+
 # ---- no input, usage ----
 case("missing.vxs", "vinfo NOFILE", 66, "No such file",
      "input file does not exist", None)

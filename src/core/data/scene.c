@@ -339,6 +339,7 @@ vx_scene_equal(const vx_scene *a, const vx_scene *b)
 	    a->ntf_surface != b->ntf_surface ||
 	    a->ntf_gradient != b->ntf_gradient ||
 	    a->has_tf_step != b->has_tf_step ||
+	    a->has_tf_surface_ramp != b->has_tf_surface_ramp ||
 	    strcmp(a->tf_file, b->tf_file) != 0 ||
 	    a->has_medium != b->has_medium || a->next != b->next)
 		return 0;
@@ -380,6 +381,22 @@ vx_scene_equal(const vx_scene *a, const vx_scene *b)
 			return 0;
 	if (a->has_tf_step && !same(&a->tf_step, &b->tf_step, 1))
 		return 0;
+	if (a->has_tf_surface_ramp && !same(a->tf_surface_ramp,
+	    b->tf_surface_ramp, 2))
+		return 0;
+	for (i = 0; i < VX_PERTURB_N; i++) {
+		const vx_scene_perturb *p = &a->perturb[i], *q = &b->perturb[i];
+
+		if (p->on != q->on)
+			return 0;
+		if (p->on && (!same(&p->scale, &q->scale, 1) ||
+		    !same(&p->amplitude, &q->amplitude, 1) ||
+		    p->octaves != q->octaves ||
+		    !same(&p->lacunarity, &q->lacunarity, 1) ||
+		    !same(&p->gain, &q->gain, 1) || p->seed != q->seed ||
+		    p->turbulence != q->turbulence))
+			return 0;
+	}
 	if (a->tf_file[0] != '\0' && a->tf_file_format != b->tf_file_format)
 		return 0;
 	if (a->has_medium && (a->phase != b->phase ||

@@ -350,6 +350,12 @@ vx_scene_format(const vx_scene *s, char **text, size_t *n, vx_err *e)
 	format_tf(&b, "transport", s->ntf_transport, &s->tf_transport[0][0], 4);
 	format_tf(&b, "surface", s->ntf_surface, &s->tf_surface[0][0], 2);
 	format_tf(&b, "gradient", s->ntf_gradient, &s->tf_gradient[0][0], 2);
+	if (s->has_tf_surface_ramp) {
+		sb_put(&b, "transfer surface gradient");
+		sb_num(&b, s->tf_surface_ramp[0]);
+		sb_num(&b, s->tf_surface_ramp[1]);
+		sb_put(&b, "\n");
+	}
 	if (s->has_tf_step) {
 		sb_put(&b, "transfer");
 		sb_key(&b, "step", &s->tf_step, 1);
@@ -372,6 +378,22 @@ vx_scene_format(const vx_scene *s, char **text, size_t *n, vx_err *e)
 			sb_key(&b, "g", &s->phase_g, 1);
 		sb_key(&b, "albedo", s->albedo, 3);
 		sb_put(&b, "\n");
+	}
+	for (i = 0; i < VX_PERTURB_N; i++) {
+		const vx_scene_perturb *q = &s->perturb[i];
+
+		if (!q->on)
+			continue;
+		sb_put(&b, "perturb ");
+		sb_put(&b, vx_enum_str(&vx_perturb_target_enum, i + 1));
+		sb_key(&b, "scale", &q->scale, 1);
+		sb_key(&b, "amplitude", &q->amplitude, 1);
+		sb_int(&b, "octaves", q->octaves);
+		sb_key(&b, "lacunarity", &q->lacunarity, 1);
+		sb_key(&b, "gain", &q->gain, 1);
+		sb_int(&b, "seed", q->seed);
+		sb_put(&b, q->turbulence ? " noise turbulence\n" :
+		    " noise fbm\n");
 	}
 	for (i = 0; i < s->next && i < VX_SCENE_MAX_EXT; i++) {
 		sb_put(&b, s->ext[i]);

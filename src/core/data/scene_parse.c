@@ -59,6 +59,14 @@ static const vx_enum_name phase_names[] = {
 };
 const vx_enum vx_phase_enum = { "phase", phase_names, "unknown", 0 };
 
+static const vx_enum_name perturb_names[] = {
+	{ "coordinates", VX_PERTURB_COORDINATES },
+	{ "value", VX_PERTURB_VALUE }, { "density", VX_PERTURB_DENSITY },
+	{ NULL, VX_PERTURB_UNKNOWN }
+};
+const vx_enum vx_perturb_target_enum = { "perturbation", perturb_names,
+    "unknown", 0 };
+
 static const vx_enum_name effect_names[] = {
 	{ "shadows", VX_FX_SHADOWS }, { "specular", VX_FX_SPECULAR },
 	{ "transparency", VX_FX_TRANSPARENCY }, { "texture", VX_FX_TEXTURE },
@@ -1011,6 +1019,27 @@ do_transfer_file(pctx *P)
 	return 0;
 }
 
+/* "transfer surface gradient G0 G1": the surface weight's ramp over the
+ * gradient magnitude. */
+static int
+do_surface_ramp(pctx *P)
+{
+	double g[2];
+
+	if (P->ntok != 5 || P->quoted[3] || P->quoted[4] ||
+	    number(P->tok[3], &g[0]) != 0 || number(P->tok[4], &g[1]) != 0)
+		return perr(P, "transfer surface gradient: expected two numbers "
+		    "(the gradient magnitudes where the weight is 0 and 1)");
+	if (!(g[0] >= 0) || !isfinite(g[0]) || !isfinite(g[1]) ||
+	    !(g[1] > g[0]))
+		return perr(P, "transfer surface gradient: %g %g: need 0 <= G0 "
+		    "< G1, finite", g[0], g[1]);
+	P->s->tf_surface_ramp[0] = g[0];
+	P->s->tf_surface_ramp[1] = g[1];
+	P->s->has_tf_surface_ramp = 1;
+	return 0;
+}
+
 static int
 do_transfer(pctx *P)
 {
@@ -1021,6 +1050,8 @@ do_transfer(pctx *P)
 	if (P->ntok == 2 && !P->quoted[1] && strcmp(P->tok[1], "none") == 0) {
 		P->s->ntf_opacity = P->s->ntf_color = P->s->ntf_transport = 0;
 		P->s->ntf_surface = P->s->ntf_gradient = 0;
+		P->s->has_tf_surface_ramp = 0;
+		P->s->tf_surface_ramp[0] = P->s->tf_surface_ramp[1] = 0;
 		P->s->has_tf_step = 0;
 		P->s->tf_step = 0;
 		memset(P->s->tf_file, 0, sizeof P->s->tf_file);
@@ -1029,6 +1060,9 @@ do_transfer(pctx *P)
 	}
 	if (P->ntok >= 2 && !P->quoted[1] && strcmp(P->tok[1], "file") == 0)
 		return do_transfer_file(P);
+	if (P->ntok >= 3 && !P->quoted[1] && strcmp(P->tok[1], "surface") == 0 &&
+	    !P->quoted[2] && strcmp(P->tok[2], "gradient") == 0)
+		return do_surface_ramp(P);
 	if (P->ntok >= 2 && !P->quoted[1] && strcmp(P->tok[1], "step") == 0) {
 		double v;
 
@@ -1127,6 +1161,75 @@ do_medium(pctx *P)
 	return 0;
 }
 
+/* "perturb TARGET scale S amplitude A [octaves N] [lacunarity L] [gain G]
+ * [seed K] [noise fbm|turbulence]", "perturb TARGET none", "perturb
+ * none". */
+static int
+do_perturb(pctx *P)
+{
+	static const keydef defs[] = {
+		{ "scale", K_NUM1 }, { "amplitude", K_NUM1 },
+		{ "octaves", K_INT }, { "lacunarity", K_NUM1 },
+		{ "gain", K_NUM1 }, { "seed", K_INT }, { "noise", K_WORD },
+		{ NULL, 0 }
+	};
+	kval kv[7];
+	vx_scene_perturb q;
+	int rc, t;
+
+	if (P->ntok == 2 && !P->quoted[1] && strcmp(P->tok[1], "none") == 0) {
+		memset(P->s->perturb, 0, sizeof P->s->perturb);
+		return 0;
+	}
+	if (P->ntok < 2 || P->quoted[1])
+		return perr(P, "perturb: expected coordinates, value, density "
+		    "or none");
+	if ((rc = need_word(P, "perturb", "target", P->tok[1],
+	    &vx_perturb_target_enum, &t)) != 0)
+		return rc;
+	if (P->ntok == 3 && !P->quoted[2] && strcmp(P->tok[2], "none") == 0) {
+		memset(&P->s->perturb[t - 1], 0, sizeof P->s->perturb[t - 1]);
+		return 0;
+	}
+	if ((rc = parse_keys(P, "perturb", 2, defs, kv)) != 0)
+		return rc;
+	if (!kv[0].seen || !kv[1].seen)
+		return perr(P, "perturb %s: scale and amplitude are required",
+		    P->tok[1]);
+	memset(&q, 0, sizeof q);
+	q.on = 1;
+	q.scale = kv[0].v[0];
+	q.amplitude = kv[1].v[0];
+	q.octaves = kv[2].seen ? (int)kv[2].i : 4;
+	q.lacunarity = kv[3].seen ? kv[3].v[0] : 2;
+	q.gain = kv[4].seen ? kv[4].v[0] : 0.5;
+	q.seed = kv[5].seen ? kv[5].i : 0;
+	if (!(q.scale > 0) || !isfinite(q.scale))
+		return perr(P, "perturb: scale: %g is not a positive number",
+		    q.scale);
+	if (!(q.amplitude >= 0) || !isfinite(q.amplitude))
+		return perr(P, "perturb: amplitude: %g is not a number >= 0",
+		    q.amplitude);
+	if (q.octaves < 1 || q.octaves > 24)
+		return perr(P, "perturb: octaves: %d outside [1, 24]", q.octaves);
+	if ((rc = need_range(P, "perturb", "lacunarity", q.lacunarity, 0,
+	    1000, 1, 0)) != 0 || (rc = need_range(P, "perturb", "gain", q.gain,
+	    0, 1000, 1, 0)) != 0)
+		return rc;
+	if (q.seed < 0 || q.seed > VX_PERTURB_MAX_SEED)
+		return perr(P, "perturb: seed: %ld outside [0, %ld]", q.seed,
+		    VX_PERTURB_MAX_SEED);
+	if (kv[6].seen) {
+		if (strcmp(kv[6].w, "turbulence") == 0)
+			q.turbulence = 1;
+		else if (strcmp(kv[6].w, "fbm") != 0)
+			return perr(P, "perturb: noise: unknown value '%.40s' "
+			    "(one of: fbm, turbulence)", kv[6].w);
+	}
+	P->s->perturb[t - 1] = q;
+	return 0;
+}
+
 static int
 do_extension(pctx *P)
 {
@@ -1181,6 +1284,7 @@ static const struct {
 	{ "illumination", do_illumination },
 	{ "transfer", do_transfer },
 	{ "medium", do_medium },
+	{ "perturb", do_perturb },
 	{ NULL, NULL }
 };
 

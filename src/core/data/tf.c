@@ -183,6 +183,12 @@ vx_tf_check(const vx_tf *tf, vx_err *e)
 	if (!tf->has_table && tf->opacity.n == 0)
 		return vx_err_set(e, VX_EDATA, "no opacity: the transfer "
 		    "function needs an opacity list or a 2D table");
+	if (tf->has_surface_ramp && !(tf->surface_ramp[0] >= 0 &&
+	    isfinite(tf->surface_ramp[1]) &&
+	    tf->surface_ramp[1] > tf->surface_ramp[0]))
+		return vx_err_set(e, VX_EDATA, "surface gradient ramp %g %g: "
+		    "need 0 <= G0 < G1, finite", tf->surface_ramp[0],
+		    tf->surface_ramp[1]);
 	if (!isfinite(tf->ref_step) || tf->ref_step < 0)
 		return vx_err_set(e, VX_EDATA, "reference step %g is negative "
 		    "or not finite", tf->ref_step);
@@ -261,13 +267,41 @@ vx_tf_classify(const vx_tf *tf, double v, double g, vx_tf_sample *o)
 	if (tf->surface.n > 0)
 		vx_tf_list_eval(&tf->surface, v, &o->surface);
 	else
-		o->surface = 0;
+		o->surface = tf->has_surface_ramp ? 1 : 0;
+	if (tf->has_surface_ramp)
+		o->surface *= vx_tf_surface_ramp(tf, g);
+}
+
+double
+vx_tf_surface_ramp(const vx_tf *tf, double g)
+{
+	double g0 = tf->surface_ramp[0], g1 = tf->surface_ramp[1];
+
+	if (!tf->has_surface_ramp)
+		return 1;
+	if (!(g > g0))
+		return 0;          /* NaN too */
+	if (g >= g1)
+		return 1;
+	return (g - g0) / (g1 - g0);
+}
+
+int
+vx_tf_has_surface(const vx_tf *tf)
+{
+	return tf->surface.n > 0 || tf->has_surface_ramp;
+}
+
+int
+vx_tf_class_gradient(const vx_tf *tf)
+{
+	return tf->has_table || tf->gradient.n > 0 || tf->has_surface_ramp;
 }
 
 int
 vx_tf_needs_gradient(const vx_tf *tf)
 {
-	return tf->has_table || tf->gradient.n > 0 || tf->surface.n > 0;
+	return vx_tf_class_gradient(tf) || vx_tf_has_surface(tf);
 }
 
 /* list_extreme: the largest (want_max) or smallest value of channel c of
@@ -351,7 +385,7 @@ vx_tf_lut_build(vx_tf_lut *t, const vx_tf *tf, double lo, double hi, int n,
     vx_err *e)
 {
 	memset(t, 0, sizeof *t);
-	if (tf->has_table || tf->gradient.n > 0)
+	if (vx_tf_class_gradient(tf))
 		return vx_err_set(e, VX_EDATA, "transfer table: the function "
 		    "depends on the gradient magnitude");
 	if (!isfinite(lo) || !isfinite(hi) || lo > hi || n < 1 ||

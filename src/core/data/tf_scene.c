@@ -51,6 +51,11 @@ vx_tf_apply_scene(vx_tf *tf, const vx_scene *s, vx_err *e)
 	if (rc == 0 && s->ntf_gradient > 0)
 		rc = set_list(&tf->gradient, &s->tf_gradient[0][0],
 		    s->ntf_gradient, 2, "gradient", e);
+	if (rc == 0 && s->has_tf_surface_ramp) {
+		tf->has_surface_ramp = 1;
+		tf->surface_ramp[0] = s->tf_surface_ramp[0];
+		tf->surface_ramp[1] = s->tf_surface_ramp[1];
+	}
 	if (rc == 0 && s->has_tf_step)
 		tf->ref_step = s->tf_step;
 	return rc;

@@ -139,6 +139,34 @@ typedef enum vx_phase {
 	VX_PHASE_LAST
 } vx_phase;
 
+/* Volume perturbation (formats/scene.md, "perturb"; dvr's vx_perturb.h
+ * computes it): what the noise moves, one slot each in vx_scene.perturb
+ * (index target - 1). */
+typedef enum vx_perturb_target {
+	VX_PERTURB_UNKNOWN = 0,
+	VX_PERTURB_COORDINATES,   /* the data coordinates a sample reads */
+	VX_PERTURB_VALUE,         /* the sampled value, before classification */
+	VX_PERTURB_DENSITY,       /* the extinction: opacity and transport */
+	VX_PERTURB_LAST
+} vx_perturb_target;
+
+#define VX_PERTURB_N (VX_PERTURB_LAST - 1)
+#define VX_PERTURB_MAX_SEED 1000000000L
+
+typedef struct vx_scene_perturb {
+	int on;                   /* 1: a perturb line set this target */
+	double scale;             /* world units per lattice cell of the first
+	                             octave, > 0, finite */
+	double amplitude;         /* >= 0, finite: world units (coordinates),
+	                             value units (value), a factor (density) */
+	int octaves;              /* 1 .. 24 (default 4) */
+	double lacunarity;        /* (0, 1000] (default 2) */
+	double gain;              /* (0, 1000] (default 0.5) */
+	long seed;                /* 0 .. VX_PERTURB_MAX_SEED (default 0) */
+	int turbulence;           /* 1: turbulence (sums of |noise|, [0, 1]),
+	                             0: fBm ([-1, 1], the default) */
+} vx_scene_perturb;
+
 typedef struct vx_scene {
 	vx_camera camera;         /* includes the image size (camera.w, .h) */
 	char volume[VX_SCENE_NAME_MAX];   /* isosurface volume; "" the first */
@@ -178,6 +206,9 @@ typedef struct vx_scene {
 	double tf_surface[VX_SCENE_MAX_TF][2];
 	int ntf_gradient;         /* gradient magnitude (>= 0), factor */
 	double tf_gradient[VX_SCENE_MAX_TF][2];
+	int has_tf_surface_ramp;  /* 1: "transfer surface gradient G0 G1" */
+	double tf_surface_ramp[2];/* surface weight 0 at gradient magnitude
+	                             G0, 1 at G1: 0 <= G0 < G1, finite */
 	int has_tf_step;          /* 1: tf_step was given */
 	double tf_step;           /* reference step, world units, >= 0 (0: one
 	                             voxel along the smallest spacing) */
@@ -187,6 +218,7 @@ typedef struct vx_scene {
 	vx_phase phase;
 	double phase_g;           /* Henyey-Greenstein asymmetry, (-1, 1) */
 	double albedo[3];         /* scattering albedo, [0,1] */
+	vx_scene_perturb perturb[VX_PERTURB_N];   /* by target - 1 */
 
 	/* ---- extension lines (x-...) kept verbatim, written back ---- */
 	int next;
@@ -273,13 +305,13 @@ int vx_scene_to_stream(const vx_scene *s, vx_stream *st, vx_err *e);
 
 /* ---- names and helpers ----
  * The words of the format (vx_enum.h): light types, environment layouts,
- * falloffs, illumination modes, phases, colormaps (an
- * unknown name has the UNKNOWN value, an unknown value the name
+ * falloffs, illumination modes, phases, colormaps, perturbation targets
+ * (an unknown name has the UNKNOWN value, an unknown value the name
  * "unknown"); effects, named by their VX_FX_ bit (an unknown bit has no
  * name, NULL). */
 extern const vx_enum vx_light_type_enum, vx_env_layout_enum, vx_falloff_enum,
     vx_illum_enum, vx_phase_enum, vx_colormap_enum,
-    vx_effect_enum;
+    vx_effect_enum, vx_perturb_target_enum;
 /* vx_colormap_eval: color for t (clamped to [0,1]) under map m; unknown
  * maps give gray.  The maps are piecewise linear (formats/scene.md). */
 void vx_colormap_eval(vx_colormap m, double t, double rgb[3]);

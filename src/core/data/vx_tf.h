@@ -12,7 +12,12 @@
  *              colour); absent: 1 - alpha in every channel (grey, the
  *              direct light's attenuation)
  *   surface    weight in [0,1] of the surface (Blinn-Phong on the
- *              gradient) term; absent: 0 (pure volume shading)
+ *              gradient) term, over the value; absent: 0 (pure volume
+ *              shading), or 1 when a surface ramp is given
+ *   surface ramp  G0 < G1: the surface weight is multiplied by the
+ *              gradient magnitude's ramp, 0 at and below G0 rising
+ *              linearly to 1 at G1 and above (the paper's surface term
+ *              "by gradient magnitude")
  *   gradient   opacity factor in [0,1] as a function of g alone (3D
  *              Slicer's gradient opacity); absent: 1
  * and, with no color list and no table, the colour is white (1, 1, 1).
@@ -82,6 +87,8 @@ typedef struct vx_tf {
 	double vrange[2], grange[2];
 	float *rgba;
 	double ref_step;          /* world units, >= 0; 0: one voxel */
+	int has_surface_ramp;     /* 1: surface_ramp applies */
+	double surface_ramp[2];   /* G0, G1: 0 <= G0 < G1, finite */
 } vx_tf;
 
 /* vx_tf_init: an empty transfer function (every list absent, no table,
@@ -133,13 +140,27 @@ typedef struct vx_tf_sample {
  * function that passed vx_tf_check: color from the color list (white when
  * absent) or the table; alpha from the opacity list or the table, times
  * the gradient list's factor at g; transport from its list, else 1 - alpha
- * per channel; surface from its list, else 0.  v NaN: an empty sample
+ * per channel; surface from its list (else 1 with a surface ramp, 0
+ * without) times vx_tf_surface_ramp(tf, g).  v NaN: an empty sample
  * (color 0, alpha 0, transport 1, surface 0). */
 void vx_tf_classify(const vx_tf *tf, double v, double g, vx_tf_sample *o);
 
+/* vx_tf_surface_ramp: the surface ramp's factor at gradient magnitude g:
+ * 0 for g <= G0 (and g NaN), (g - G0) / (G1 - G0) between, 1 for
+ * g >= G1; 1 when tf has no ramp. */
+double vx_tf_surface_ramp(const vx_tf *tf, double g);
+
+/* vx_tf_has_surface: 1 when samples may have a surface weight > 0 (a
+ * surface list or a surface ramp): the renderer's surface term is on. */
+int vx_tf_has_surface(const vx_tf *tf);
+
+/* vx_tf_class_gradient: 1 when vx_tf_classify looks at g: a table, a
+ * gradient list or a surface ramp. */
+int vx_tf_class_gradient(const vx_tf *tf);
+
 /* vx_tf_needs_gradient: 1 when vx_tf_classify looks at g or the renderer
- * needs the gradient for the surface term: a table, a gradient list or a
- * surface list. */
+ * needs the gradient for the surface term: vx_tf_class_gradient or
+ * vx_tf_has_surface. */
 int vx_tf_needs_gradient(const vx_tf *tf);
 
 /* vx_tf_range_clear: 1 when every value in [lo, hi] (any g) classifies to
@@ -176,10 +197,11 @@ typedef struct vx_tf_optic {
 void vx_tf_optic_of(const vx_tf_sample *c, vx_tf_optic *o);
 
 /* A 1D classification table: the optical form of a transfer function
- * without a gradient dependence (no table, no gradient list) at n + 1
- * evenly spaced values over [lo, hi], linear between them; values outside
- * take the end nodes' (a renderer builds it over its volume's range, where
- * every interpolated value lies).  Between two nodes the error against
+ * without a gradient dependence (no table, gradient list or surface
+ * ramp) at n + 1 evenly spaced values over [lo, hi], linear between them;
+ * values outside take the end nodes' (a renderer builds it over its
+ * volume's range, where every interpolated value lies, widened by a value
+ * perturbation's reach).  Between two nodes the error against
  * vx_tf_classify is that of linear interpolation over one spacing
  * (hi - lo) / n, in sigma rather than alpha: none where the lists are
  * linear in sigma or constant across the spacing, second order in the
@@ -194,8 +216,8 @@ typedef struct vx_tf_lut {
 
 /* vx_tf_lut_build: t for tf over [lo, hi] with n intervals, n in [1,
  * VX_TF_MAX_LUT] (lo == hi: one node repeated).  Errors, t absent:
- * VX_EDATA (tf depends on the gradient, a bound not finite, lo > hi, n
- * out of range), VX_ENOMEM. */
+ * VX_EDATA (tf depends on the gradient: vx_tf_class_gradient; a bound
+ * not finite, lo > hi, n out of range), VX_ENOMEM. */
 int vx_tf_lut_build(vx_tf_lut *t, const vx_tf *tf, double lo, double hi,
     int n, vx_err *e);
 void vx_tf_lut_free(vx_tf_lut *t);
@@ -255,8 +277,8 @@ vx_tf_lut_eval(const vx_tf_lut *t, double v, vx_tf_optic *o)
 /* vx_tf_apply_scene: the scene's transfer lines over tf (which may hold
  * an imported file's function): each list the scene gives replaces tf's
  * list of that channel (a color or opacity list drops a 2D table: the
- * table is colour and opacity together), and "transfer step" replaces
- * ref_step.  The scene's file is not read here (vx_tfimport.h, from a
+ * table is colour and opacity together), "transfer surface gradient" sets
+ * the surface ramp and "transfer step" replaces ref_step.  The scene's file is not read here (vx_tfimport.h, from a
  * tool).  Errors, tf then partly changed: VX_EDATA, VX_ENOMEM. */
 struct vx_scene;
 int vx_tf_apply_scene(vx_tf *tf, const struct vx_scene *s, vx_err *e);

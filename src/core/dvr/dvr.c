@@ -6,6 +6,7 @@
 
 #include "vx_dvr.h"
 #include "vx_par.h"
+#include "vx_perturb.h"
 #include "vx_phase.h"
 #include "vx_rng.h"
 #include "vx_vec.h"
@@ -55,7 +56,7 @@ vx_dvr_plan(const vx_scene *s, const vx_tf *tf, const vx_dvr_opts *o,
 	d->light_buffer = (want_shadow || want_scatter) && d->driver >= 0;
 	d->scatter = want_scatter && d->light_buffer;
 	d->gradient = vx_tf_needs_gradient(tf);
-	d->surface = tf->surface.n > 0;
+	d->surface = vx_tf_has_surface(tf);
 	d->specular = d->surface && (s->effects & VX_FX_SPECULAR);
 	d->g = s->has_medium && s->phase == VX_PHASE_HENYEY_GREENSTEIN ?
 	    s->phase_g : 0;
@@ -97,20 +98,21 @@ vx_dvr_plan(const vx_scene *s, const vx_tf *tf, const vx_dvr_opts *o,
 		vx_plan_add(p, "phase", VX_PLAN_OFF, 0, "isotropic");
 	vx_plan_add(p, "gradient", d->gradient ? VX_PLAN_ON : VX_PLAN_OFF, 0,
 	    "%s", d->gradient ? "central differences (6 more samples per "
-	    "sample): the transfer function has a table, a gradient or a "
-	    "surface list" : "the transfer function needs none (no table, "
-	    "gradient or surface list)");
+	    "sample): the transfer function has a table, a gradient list or "
+	    "a surface list or ramp" : "the transfer function needs none (no "
+	    "table, gradient list or surface list or ramp)");
 	vx_plan_add(p, "surface shading", d->surface ? VX_PLAN_ON :
 	    VX_PLAN_OFF, 0, "%s", d->surface ? (d->specular ? "Blinn-Phong, "
-	    "diffuse and specular, weighted by the surface list" :
+	    "diffuse and specular, weighted by the surface list or ramp" :
 	    "Blinn-Phong, diffuse only (no specular effect), weighted by the "
-	    "surface list") : "no surface list: volume shading only");
+	    "surface list or ramp") : "no surface list or ramp: volume "
+	    "shading only");
 	vx_plan_add(p, "empty-space skipping", o->no_skip ? VX_PLAN_OFF :
 	    VX_PLAN_ON, 0, "%s", o->no_skip ? "--no-skip: every sample "
 	    "classified" : "samples in level-1 macrocells whose [min, max] "
 	    "the transfer function maps to alpha 0 and transport 1 are "
 	    "skipped");
-	if (tf->has_table || tf->gradient.n > 0)
+	if (vx_tf_class_gradient(tf))
 		vx_plan_add(p, "classification table", VX_PLAN_OFF, 0, "the "
 		    "transfer function depends on the gradient magnitude: "
 		    "evaluated at every sample");
@@ -159,6 +161,7 @@ vx_dvr_plan(const vx_scene *s, const vx_tf *tf, const vx_dvr_opts *o,
 	if (s->effects & VX_FX_INTERREFLECTION)
 		vx_plan_add(p, "interreflection", VX_PLAN_UNSUPPORTED, 0,
 		    "not computed by dvr");
+	vx_perturb_plan(s, p);
 }
 
 /* ---- geometry ---- */
@@ -347,6 +350,7 @@ typedef struct frame {
 	                             index share, per axis */
 	double dir[256][2];       /* the blur's directions: cos, sin */
 	vx_phase_table phase;
+	vx_perturb pt;            /* the scene's perturbation (or none) */
 	int class_g;              /* classification needs the gradient */
 	int W, H;                 /* eye image */
 	int LW;                   /* light buffer edge */
@@ -547,6 +551,35 @@ gradient(const frame *f, const double p[3], double grad[3])
 	}
 }
 
+/* perturbed: sample() of a perturbed volume (vx_perturb.h): the value
+ * (and the gradient) of the perturbed field, the extinction (sigma and
+ * ltr) times the density factor. */
+static void
+perturbed(const frame *f, const double p[3], vx_f4 q[2], double grad[3],
+    int *has_grad)
+{
+	double m, v = vx_perturb_field(&f->pt, f->g, p, f->class_g ? grad :
+	    NULL, &m), gm = 0;
+	vx_tf_sample cs;
+	vx_tf_optic c;
+
+	*has_grad = f->class_g;
+	if (f->lut.n > 0)
+		vx_tf_lut_at(&f->lut, v, q);
+	else {
+		if (f->class_g)
+			gm = sqrt(vx_dot3(grad, grad));
+		vx_tf_classify(f->tf, v, gm, &cs);
+		vx_tf_optic_of(&cs, &c);
+		q[0] = (vx_f4){ (float)c.sigma, (float)c.color[0],
+		    (float)c.color[1], (float)c.color[2] };
+		q[1] = (vx_f4){ (float)c.ltr[0], (float)c.ltr[1],
+		    (float)c.ltr[2], (float)c.surface };
+	}
+	q[0][0] *= (float)m;
+	q[1] *= (vx_f4){ (float)m, (float)m, (float)m, 1 };
+}
+
 /* sample: classification of the sample at index point p, as the table's
  * quads (vx_tf_lut_at: q[0] sigma, color; q[1] ltr, surface); *grad gets
  * the gradient when classification looks at its magnitude (a table or a
@@ -556,10 +589,15 @@ static inline void
 sample(const frame *f, const double p[3], vx_f4 q[2], double grad[3],
     int *has_grad)
 {
-	double v = value(f, p), gm = 0;
+	double v, gm = 0;
 	vx_tf_sample cs;
 	vx_tf_optic c;
 
+	if (f->pt.any) {
+		perturbed(f, p, q, grad, has_grad);
+		return;
+	}
+	v = value(f, p);
 	*has_grad = 0;
 	if (f->lut.n > 0) {
 		vx_tf_lut_at(&f->lut, v, q);
@@ -578,18 +616,17 @@ sample(const frame *f, const double p[3], vx_f4 q[2], double grad[3],
 	    (float)c.surface };
 }
 
-/* light_at: bilinear D, I from buffer b at light image point (px, py);
- * outside the buffer, unattenuated. */
-static void
-light_at(const frame *f, const float *b, double px, double py, double out[4])
+/* light_at: bilinear D, I from buffer b at light image point (px, py),
+ * in single precision (the buffer's); outside the buffer, unattenuated. */
+static inline vx_f4
+light_at(const frame *f, const float *b, double px, double py)
 {
-	double x = px - 0.5, y = py - 0.5, fx, fy;
+	double x = px - 0.5, y = py - 0.5;
 	int n = f->LW, x0, y0, x1, y1;
+	vx_f4 a, bb, cc, dd, fx, fy;
 
-	if (!(px >= 0 && px <= n && py >= 0 && py <= n)) {
-		out[0] = out[1] = out[2] = out[3] = 1;
-		return;
-	}
+	if (!(px >= 0 && px <= n && py >= 0 && py <= n))
+		return (vx_f4){ 1, 1, 1, 1 };
 	x = x < n - 1 ? x : n - 1;
 	x = x > 0 ? x : 0;
 	y = y < n - 1 ? y : n - 1;
@@ -598,17 +635,15 @@ light_at(const frame *f, const float *b, double px, double py, double out[4])
 	y0 = (int)y;
 	x1 = x0 + 1 < n ? x0 + 1 : x0;
 	y1 = y0 + 1 < n ? y0 + 1 : y0;
-	fx = x - x0;
-	fy = y - y0;
-	for (int c = 0; c < 4; c++) {
-		double a = b[4 * ((size_t)y0 * n + x0) + c];
-		double bb = b[4 * ((size_t)y0 * n + x1) + c];
-		double cc = b[4 * ((size_t)y1 * n + x0) + c];
-		double dd = b[4 * ((size_t)y1 * n + x1) + c];
-
-		out[c] = (1 - fy) * ((1 - fx) * a + fx * bb) +
-		    fy * ((1 - fx) * cc + fx * dd);
-	}
+	memcpy(&a, b + 4 * ((size_t)y0 * n + x0), sizeof a);
+	memcpy(&bb, b + 4 * ((size_t)y0 * n + x1), sizeof bb);
+	memcpy(&cc, b + 4 * ((size_t)y1 * n + x0), sizeof cc);
+	memcpy(&dd, b + 4 * ((size_t)y1 * n + x1), sizeof dd);
+	fx = (vx_f4){ 1, 1, 1, 1 } * (float)(x - x0);
+	fy = (vx_f4){ 1, 1, 1, 1 } * (float)(y - y0);
+	a += fx * (bb - a);
+	cc += fx * (dd - cc);
+	return a + fy * (cc - a);
 }
 
 /* surface_f: Blinn-Phong f for light direction l (unit, toward the light) and
@@ -681,12 +716,11 @@ radiance(const frame *f, const double w[3], const double d[3],
 			    v);
 		}
 		if (l->driver && f->d->light_buffer) {
-			double px, py, dep, b[4];
+			double px, py, dep;
+			vx_f4 b = { 1, 1, 1, 1 };
 
 			if (vx_camera_project(&f->geo->light, w, &px, &py, &dep))
-				light_at(f, f->cur, px, py, b);
-			else
-				b[0] = b[1] = b[2] = b[3] = 1;
+				b = light_at(f, f->cur, px, py);
 			for (int a = 0; a < 3; a++) {
 				lt[a] = b[0] * pc;
 				if (f->d->scatter)
@@ -733,7 +767,8 @@ eye_rows(void *ctx, void *local, const vx_par_block *b)
 			if (c[0][0] <= 0)
 				continue;
 			if (!hg && f->d->surface && c[1][3] > 0)
-				gradient(f, p, grad);
+				f->pt.any ? (void)vx_perturb_field(&f->pt, g, p,
+				    grad, NULL) : gradient(f, p, grad);
 			a = -expm1(-c[0][0] * (double)r->ratio);
 			for (int q = 0; q < 3; q++) {
 				w[q] = g->origin[q] + p[q] * g->spacing[q];
@@ -767,11 +802,11 @@ blur(const frame *f, int x, int y, double rad, double out[3])
 	int ns = f->o->blur_samples;
 	uint64_t stream = (uint64_t)y * (uint64_t)f->LW + (uint64_t)x;
 
-	out[0] = out[1] = out[2] = 0;
+	vx_f4 sum = { 0, 0, 0, 0 };
 	uint64_t h = 0;
 
 	for (int j = 0; j < ns; j++) {
-		double u1, r, b[4];
+		double u1, r;
 		const double *d;
 
 		/* one hash gives two points: four 16-bit numbers, ample for a
@@ -784,14 +819,11 @@ blur(const frame *f, int x, int y, double rad, double out[3])
 		h >>= 32;
 		r = rad * sqrt(u1);
 
-		light_at(f, f->cur, x + 0.5 + r * d[0], y + 0.5 + r * d[1], b);
-		out[0] += b[1];
-		out[1] += b[2];
-		out[2] += b[3];
+		sum += light_at(f, f->cur, x + 0.5 + r * d[0], y + 0.5 + r * d[1]);
 	}
-	out[0] /= ns;
-	out[1] /= ns;
-	out[2] /= ns;
+	out[0] = (double)sum[1] / ns;
+	out[1] = (double)sum[2] / ns;
+	out[2] = (double)sum[3] / ns;
 }
 
 static int
@@ -926,13 +958,18 @@ vx_dvr_render(const vx_scene *s, const vx_dvr_decide *d, const vx_tf *tf,
 		f.dir[i][0] = cos(2 * M_PI * (i + 0.5) / 256);
 		f.dir[i][1] = sin(2 * M_PI * (i + 0.5) / 256);
 	}
-	f.class_g = d->gradient && (tf->has_table || tf->gradient.n > 0);
+	f.class_g = d->gradient && vx_tf_class_gradient(tf);
+	if ((rc = vx_perturb_init(&f.pt, s, e)) != 0)
+		return rc;
 	vx_phase_table_hg(&f.phase, d->g);
 	if (m != NULL && !o->no_skip && m->nlev >= 1 && !m->explicit_leaves &&
 	    g->dims[0] > 1 && g->dims[1] > 1 && g->dims[2] > 1) {
 		f.m = m;
 		if ((f.clear = clear_cells(m, tf, e)) == NULL)
 			return VX_ENOMEM;
+		if ((rc = vx_perturb_clear(&f.pt, tf, g, m, (uint8_t *)f.clear,
+		    e)) != 0)
+			goto done;
 		for (int a = 0; a < 3; a++) {
 			size_t sd = a == 0 ? 1 : a == 1 ? (size_t)m->dims[1][0] :
 			    (size_t)m->dims[1][0] * (size_t)m->dims[1][1];
@@ -948,10 +985,13 @@ vx_dvr_render(const vx_scene *s, const vx_dvr_decide *d, const vx_tf *tf,
 		}
 	}
 	if (o->tf_table > 0 && !f.class_g) {
-		double vlo = g->vmin, vhi = g->vmax;
+		double vlo = g->vmin, vhi = g->vmax, below, above;
 
 		if (!g->has_range)
 			vlo = vhi = 0;
+		vx_perturb_value_margin(&f.pt, &below, &above);
+		vlo -= below;     /* where a perturbed value can go */
+		vhi += above;
 		if ((rc = vx_tf_lut_build(&f.lut, tf, vlo, vhi, o->tf_table,
 		    e)) != 0)
 			goto done;

@@ -7,6 +7,7 @@
 
 #include "vx_dvrref.h"
 #include "vx_par.h"
+#include "vx_perturb.h"
 #include "vx_phase.h"
 #include "vx_rng.h"
 #include "vx_vec.h"
@@ -69,8 +70,9 @@ vx_dvrref_plan(const vx_scene *s, const vx_tf *tf, const vx_dvr_decide *d,
 		vx_plan_add(p, "phase", VX_PLAN_OFF, 0, "isotropic");
 	vx_plan_add(p, "surface shading", d->surface ? VX_PLAN_ON :
 	    VX_PLAN_OFF, 0, "%s", d->surface ? (pt ? "Blinn-Phong at the "
-	    "first vertex, weighted by the surface list" : "Blinn-Phong, "
-	    "weighted by the surface list") : "no surface list");
+	    "first vertex, weighted by the surface list or ramp" :
+	    "Blinn-Phong, weighted by the surface list or ramp") : "no "
+	    "surface list or ramp");
 	for (int k = 0; k < s->nlight; k++)
 		if (d->local[k] && k != d->driver) {
 			char name[VX_PLAN_NAME];
@@ -86,6 +88,7 @@ vx_dvrref_plan(const vx_scene *s, const vx_tf *tf, const vx_dvr_decide *d,
 		    "reference for it)");
 	vx_plan_add(p, "empty-space skipping", VX_PLAN_OFF, 0, "every sample "
 	    "classified");
+	vx_perturb_plan(s, p);
 }
 
 /* ---- the frame ---- */
@@ -100,6 +103,7 @@ typedef struct ctx {
 	double ref, h;            /* reference step, march step */
 	double smax;              /* majorant (path tracer) */
 	int class_g;              /* classification needs the gradient */
+	vx_perturb pt;            /* the scene's perturbation (or none) */
 	int shadow;               /* transmittance toward the driver */
 	float *px;                /* output RGBA */
 } ctx;
@@ -141,24 +145,12 @@ classify(const ctx *c, const double w[3], int want_grad, vx_tf_sample *smp,
     double grad[3])
 {
 	const vx_grid *g = c->g;
-	double p[3], gm = 0;
+	double p[3];
 
 	for (int a = 0; a < 3; a++)
 		p[a] = (w[a] - g->origin[a]) / g->spacing[a];
-	grad[0] = grad[1] = grad[2] = 0;
-	if (want_grad || c->class_g) {
-		for (int a = 0; a < 3; a++) {
-			double q[3] = { p[0], p[1], p[2] }, v1;
-
-			q[a] = p[a] + 1;
-			v1 = vx_grid_trilinear(g, q);
-			q[a] = p[a] - 1;
-			grad[a] = (v1 - vx_grid_trilinear(g, q)) /
-			    (2 * g->spacing[a]);
-		}
-		gm = sqrt(vx_dot3(grad, grad));
-	}
-	vx_tf_classify(c->tf, vx_grid_trilinear(g, p), gm, smp);
+	vx_perturb_classify(&c->pt, c->tf, g, p, want_grad || c->class_g, smp,
+	    grad);
 }
 
 /* light_dir: for light k at world point w: the unit direction the light
@@ -503,13 +495,14 @@ merge(void *vc, void *local, int t)
 	return 0;
 }
 
-/* alpha_max: the largest opacity tf gives over the grid's values (the
- * list's maximum over [vmin, vmax] is at an end or a control point
+/* alpha_max: the largest opacity tf gives over the grid's values widened
+ * by below and above (the value perturbation's margin; the list's maximum
+ * over [vmin - below, vmax + above] is at an end or a control point
  * inside; a table: its largest alpha). */
 static double
-alpha_max(const vx_tf *tf, const vx_grid *g)
+alpha_max(const vx_tf *tf, const vx_grid *g, double below, double above)
 {
-	double m = 0, y;
+	double m = 0, y, lo = g->vmin - below, hi = g->vmax + above;
 
 	if (tf->has_table) {
 		size_t n = (size_t)tf->size[0] * (size_t)tf->size[1];
@@ -525,12 +518,12 @@ alpha_max(const vx_tf *tf, const vx_grid *g)
 			m = fmax(m, tf->opacity.y[i]);
 		return m;
 	}
-	vx_tf_list_eval(&tf->opacity, g->vmin, &y);
+	vx_tf_list_eval(&tf->opacity, lo, &y);
 	m = y;
-	vx_tf_list_eval(&tf->opacity, g->vmax, &y);
+	vx_tf_list_eval(&tf->opacity, hi, &y);
 	m = fmax(m, y);
 	for (int i = 0; i < tf->opacity.n; i++)
-		if (tf->opacity.x[i] >= g->vmin && tf->opacity.x[i] <= g->vmax)
+		if (tf->opacity.x[i] >= lo && tf->opacity.x[i] <= hi)
 			m = fmax(m, tf->opacity.y[i]);
 	return m;
 }
@@ -570,9 +563,17 @@ vx_dvrref_render(const vx_scene *s, const vx_dvr_decide *d, const vx_tf *tf,
 	ms = fmin(g->spacing[0], fmin(g->spacing[1], g->spacing[2]));
 	c.ref = tf->ref_step > 0 ? tf->ref_step : ms;
 	c.h = o->step > 0 ? o->step : c.ref;
-	c.class_g = tf->has_table || tf->gradient.n > 0;
+	c.class_g = vx_tf_class_gradient(tf);
+	if ((rc = vx_perturb_init(&c.pt, s, e)) != 0)
+		return rc;
 	if (o->method == VX_DVRREF_PATHTRACE) {
-		c.smax = sigma_t(&c, alpha_max(tf, g));
+		double below, above;
+
+		/* the perturbed extinction is at most the density factor's
+		 * maximum times the largest over the widened values */
+		vx_perturb_value_margin(&c.pt, &below, &above);
+		c.smax = vx_perturb_density_max(&c.pt) * sigma_t(&c,
+		    alpha_max(tf, g, below, above));
 		c.shadow = d->driver >= 0;
 	} else
 		c.shadow = d->light_buffer;

@@ -19,8 +19,9 @@
  * correction (formats/transfer.md), is taken along each ray between two
  * planes: dt / |s . d| for a ray of unit direction d, not dt.
  *
- * Lighting of a sample of colour E, surface weight S, at a point where the
- * light buffer holds the direct transmittance D and the indirect
+ * Lighting of a sample of colour E, surface weight S (the transfer
+ * function's surface list times its gradient-magnitude ramp), at a point
+ * where the light buffer holds the direct transmittance D and the indirect
  * transmittance I (RGB), with light radiance Ll (colour times intensity,
  * over the squared distance for an inverse-square point light) and
  * P = 4 pi p(cos theta) the phase function relative to isotropic
@@ -73,6 +74,12 @@
  * samples shifted along it by its own offset in [-1/2, 1/2) of a slice, a
  * pure function of (seed, pixel), so the planes' rings (wood grain) become
  * fine noise; the light buffer is read where the sample is.
+ *
+ * Perturbation: with the scene's perturb lines every sample, eye or
+ * light, value and gradient, is taken of the perturbed field and its
+ * optical properties scaled by the density factor (vx_perturb.h); the
+ * clear macrocells are those that stay clear under the perturbation, so
+ * skipping still changes no pixel.
  *
  * Determinism: each slice's eye pass and light pass run in parallel over
  * rows; every output value depends only on its pixel or texel and the

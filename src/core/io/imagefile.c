@@ -23,6 +23,9 @@ vx_image_sniff(const void *buf, size_t n)
 		return VX_IMGFMT_HDR;
 	if (n >= 4 && memcmp(p, "\x76\x2f\x31\x01", 4) == 0)
 		return VX_IMGFMT_EXR;
+	if (n >= 3 && p[0] == 'P' && p[1] == '5' && (p[2] == ' ' ||
+	    p[2] == '\t' || p[2] == '\n' || p[2] == '\r' || p[2] == '#'))
+		return VX_IMGFMT_PGM;
 	return VX_IMGFMT_UNKNOWN;
 }
 
@@ -31,7 +34,7 @@ vx_image_format_name(int fmt)
 {
 	static const char *const names[VX_IMGFMT_LAST] = {
 		"unknown", "voxlux stream", "PFM", "PNG", "Radiance HDR",
-		"OpenEXR"
+		"OpenEXR", "PGM"
 	};
 
 	return fmt > 0 && fmt < VX_IMGFMT_LAST ? names[fmt] : names[0];

@@ -21,6 +21,7 @@ enum {
 	VX_IMGFMT_PNG,         /* PNG signature */
 	VX_IMGFMT_HDR,         /* Radiance RGBE: "#?" */
 	VX_IMGFMT_EXR,         /* OpenEXR magic 76 2f 31 01 */
+	VX_IMGFMT_PGM,         /* binary PGM: "P5" then whitespace or '#' */
 	VX_IMGFMT_LAST
 };
 
@@ -58,6 +59,21 @@ int vx_image_png_write_gamma(const vx_image *img, FILE *f, int bits,
  * is 1032:1).  Errors: VX_EDATA for bad or truncated data. */
 int vx_image_png_read_mem(vx_image *img, const void *buf, size_t n,
     int *bits, vx_err *e);
+
+/* ---- PGM (Netpbm's binary portable graymap) ----
+ * "P5", whitespace, width, whitespace, height, whitespace, maxval (1 ..
+ * 65535), one whitespace byte, then w*h samples, top row first, of one
+ * byte (maxval < 256) or two, most significant first; '#' starts a
+ * comment to the end of the line anywhere before the maxval's end. */
+
+/* vx_pgm_read_mem: decode a binary PGM into img (initialized by this
+ * call), nc 1, each value its sample over maxval, in [0,1]; *maxval (if
+ * not NULL) gets the maxval.  Dimensions are checked against the limits
+ * and the data must fill the rest of the buffer exactly (one image)
+ * before anything is allocated.  A sample over maxval, and the plain
+ * (ASCII, "P2") form, are VX_EDATA. */
+int vx_pgm_read_mem(vx_image *img, const void *buf, size_t n, int *maxval,
+    vx_err *e);
 
 /* ---- PFM (portable float map) ----
  * "PF" (RGB) or "Pf" (gray), whitespace, width, whitespace, height,

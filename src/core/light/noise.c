@@ -146,14 +146,24 @@ sum(const vx_noise_fbm *f, const double p[3], double grad[3], int absolute)
 	double gsum[3] = { 0, 0, 0 };
 
 	for (int o = 0; o < f->octaves; o++) {
-		double off[3], q[3], g[3], v;
-		uint64_t s = octave(f->seed, o, off);
+		double offd[3], q[3], g[3], v;
+		const double *off = offd;
+		uint64_t s;
+
+		if (f->prepared == f->seed + 1 && o < VX_NOISE_MAX_OCTAVES) {
+			s = f->oseed_[o];
+			off = f->off_[o];
+		} else
+			s = octave(f->seed, o, offd);
 
 		for (int a = 0; a < 3; a++)
 			q[a] = p[a] * freq + off[a];
 		v = vx_noise3_grad(s, q, grad ? g : NULL);
-		if (absolute)
-			v = fabs(v);
+		if (absolute && v < 0) {
+			v = -v;
+			for (int a = 0; a < 3 && grad != NULL; a++)
+				g[a] = -g[a];
+		}
 		total += amp * v;
 		if (grad != NULL)
 			for (int a = 0; a < 3; a++)
@@ -168,6 +178,15 @@ sum(const vx_noise_fbm *f, const double p[3], double grad[3], int absolute)
 	return total / wsum;
 }
 
+void
+vx_noise_fbm_prepare(vx_noise_fbm *f)
+{
+	/* every octave: a later change of the octave count stays right */
+	for (int o = 0; o < VX_NOISE_MAX_OCTAVES; o++)
+		f->oseed_[o] = octave(f->seed, o, f->off_[o]);
+	f->prepared = f->seed + 1;
+}
+
 double
 vx_noise_fbm_eval(const vx_noise_fbm *f, const double p[3], double grad[3])
 {
@@ -178,4 +197,11 @@ double
 vx_noise_turbulence(const vx_noise_fbm *f, const double p[3])
 {
 	return sum(f, p, NULL, 1);
+}
+
+double
+vx_noise_turbulence_grad(const vx_noise_fbm *f, const double p[3],
+    double grad[3])
+{
+	return sum(f, p, grad, 1);
 }

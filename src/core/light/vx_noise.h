@@ -48,11 +48,23 @@ typedef struct vx_noise_fbm {
 	double frequency;     /* of octave 0: lattice cells per world unit */
 	double lacunarity;    /* frequency ratio between octaves, (0, 1000] */
 	double gain;          /* amplitude ratio between octaves, (0, 1000] */
+	/* private: the octaves' seeds and offsets drawn once by
+	 * vx_noise_fbm_prepare (prepared: the seed they were drawn for + 1,
+	 * 0 when not drawn) */
+	uint64_t prepared;
+	uint64_t oseed_[VX_NOISE_MAX_OCTAVES];
+	double off_[VX_NOISE_MAX_OCTAVES][3];
 } vx_noise_fbm;
 
 /* vx_noise_fbm_init: seed 0, 4 octaves, frequency 1, lacunarity 2,
- * gain 1/2. */
+ * gain 1/2, not prepared. */
 void vx_noise_fbm_init(vx_noise_fbm *f);
+
+/* vx_noise_fbm_prepare: draw the octaves' seeds and offsets once, for
+ * f's seed (all VX_NOISE_MAX_OCTAVES of them), so that evaluations skip
+ * drawing them per point; a sum whose seed has changed since draws them
+ * again.  The sums are the same bits prepared or not. */
+void vx_noise_fbm_prepare(vx_noise_fbm *f);
 
 /* vx_noise_fbm_check: VX_EUSAGE naming the knob when octaves, frequency
  * (> 0, finite), lacunarity or gain is out of range. */
@@ -66,5 +78,12 @@ double vx_noise_fbm_eval(const vx_noise_fbm *f, const double p[3],
 /* vx_noise_turbulence: Perlin's turbulence, the same sum of |noise|
  * divided by the sum of the weights: in [0, 1]. */
 double vx_noise_turbulence(const vx_noise_fbm *f, const double p[3]);
+
+/* vx_noise_turbulence_grad: the same value, and in grad (may be NULL) its
+ * gradient where it has one: each octave's |noise| contributes
+ * sign(noise) times the noise's gradient (at a zero, the gradient
+ * itself). */
+double vx_noise_turbulence_grad(const vx_noise_fbm *f, const double p[3],
+    double grad[3]);
 
 #endif
