@@ -1133,7 +1133,8 @@ examples(void **state)
 	static const char *const files[] = {
 		"examples/scenes/head.scn", "examples/scenes/head-layers.scn",
 		"examples/scenes/orbit.scn", "examples/scenes/reserved.scn",
-		"examples/scenes/iso-headlight.scn", NULL
+		"examples/scenes/iso-headlight.scn", "examples/scenes/head-dvr.scn",
+		"examples/scenes/head-ct-dvr.scn", NULL
 	};
 	int i;
 

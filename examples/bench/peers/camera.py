@@ -14,7 +14,9 @@ embree_render.c implements too and the README documents:
   Rays start at the eye (t >= 0); for the MIP peers the eye must lie outside the volume.
 
 Command line:
-  camera.py teem VOLUME.nrrd CAMERA-FLAGS   print teem-mrender's camera options (mip_teem.sh)
+  camera.py teem VOLUME.nrrd [--near-offset D] CAMERA-FLAGS
+                                            print teem-mrender's (and teem-miter's)
+                                            camera options (mip_teem.sh, dvr_miter.sh)
   camera.py scene [--iso V] CAMERA-FLAGS    print the voxlux scene (formats/scene.md) of the
                                             same picture: this camera and image size, black
                                             background, no ambient, the headlight, and with
@@ -74,17 +76,19 @@ def depth_range(args, lo, hi):
     return min(ts), max(ts)
 
 
-def teem_args(args, lo, hi):
+def teem_args(args, lo, hi, near_offset=0.0):
     """teem-mrender options for this camera over the world box [lo, hi].
 
     -rh makes teem's V point down, so vRange runs from the top row to the bottom row;
     -fv nan makes teem use -ur/-vr instead of deriving them from the default 20 degrees.
     Near and far clip the rays tightly to the box (rays start at the eye at the
-    earliest)."""
+    earliest); near_offset moves the near plane that far (world units along f) into
+    the box: hoover's first sample lies on the near plane and the next ones on planes
+    parallel to it, one step apart."""
     w, h = args.size
     d = float(np.linalg.norm(np.array(args.look) - np.array(args.eye)))
     tmin, tmax = depth_range(args, lo, hi)
-    near = max(tmin, 1e-6 * max(d, 1.0))
+    near = max(tmin + near_offset, 1e-6 * max(d, 1.0))
     if tmax <= near:
         raise ValueError("the volume lies behind the eye")
     f, _, v = frame(args)
@@ -150,6 +154,8 @@ def main():
     sub = p.add_subparsers(dest="cmd", required=True)
     t = sub.add_parser("teem")
     t.add_argument("volume")
+    t.add_argument("--near-offset", type=float, default=0.0,
+                   help="move the near plane this far into the box (world units)")
     add_camera_args(t)
     sc = sub.add_parser("scene")
     sc.add_argument("--iso", type=float)
@@ -164,7 +170,8 @@ def main():
         sizes, spacing, origin = volio.nrrd_geometry(fields)
         lo = np.array(origin)
         hi = lo + (np.array(sizes) - 1) * np.array(spacing)
-        print(" ".join(teem_args(args, np.minimum(lo, hi), np.maximum(lo, hi))))
+        print(" ".join(teem_args(args, np.minimum(lo, hi), np.maximum(lo, hi),
+                                 args.near_offset)))
     except (OSError, ValueError, KeyError) as e:
         sys.exit("camera.py: %s" % e)
 

@@ -3,7 +3,7 @@
 world frame, mesh format, image orientation.  Run by `make -C examples/bench check`.
 
 usage: selftest.py --embree PATH/embree_render --work DIR [--probe PATH/camera_probe]
-                   [--embree-pt PATH/embree_pt]
+                   [--embree-pt PATH/embree_pt] [--vxbin VOXLUX/bin]
 
 1. Sphere (anisotropic spacing, non-zero origin) -> extract.py -> embree_render, both
    orthographic and perspective.  Oracle: analytic ray-sphere intersection written here
@@ -19,6 +19,8 @@ usage: selftest.py --embree PATH/embree_render --work DIR [--probe PATH/camera_p
    count, for a convex surface: every bounce ray escapes); a directional light alone
    (bounces 0): a * I * max(0, n . l) with the exact sphere normal; -j 1 and -j 2, and
    --packets and single rays, give the same bytes.
+5. DVR peers (dvr_miter.sh, dvr_vtk.py and, with --vxbin, voxlux's dvr) on a box of
+   constant material: emission-absorption by formula (test_dvr_peers says how).
 0. With --probe (camera_probe.c, linked with libvoxlux): voxlux's own vx_camera_ray
    against camera.py and this file's ray generator, for perspective and orthographic
    cameras, non-square images, a slanted up and an up parallel to the view.
@@ -32,6 +34,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import numpy as np  # noqa: E402
+import dvr_tf  # noqa: E402
 import volio  # noqa: E402
 
 PY = sys.executable
@@ -341,12 +344,96 @@ def test_mip_peers(work):
                                      extra))
 
 
+SLAB_VIEWS = [
+    # (name, camera flags, thickness along the view in world units)
+    ("along -z", "--eye 30 17 200 --look 30 17 20 --up 0 1 0 --ortho 80 --size 64 48", 38.0),
+    ("along +y", "--eye 30 -100 20 --look 30 17 20 --up 0 0 1 --ortho 70 --size 50 56", 29.0),
+]
+SLAB_ALPHA, SLAB_RGB = 0.05, (0.8, 0.5, 0.2)
+
+
+def test_dvr_peers(work, vxbin=None):
+    """A box of constant value (40 x 30 x 20 samples, spacing 1.5 1 2, origin 0 2 1),
+    opacity 0.05 per world unit, colour (0.8, 0.5, 0.2), viewed orthographically along
+    two axes.  Oracle: emission-absorption through a thickness L of constant material,
+    premultiplied colour C (1 - (1 - a)^L), alpha 1 - (1 - a)^L, for rays whose footprint
+    lies inside the box (a pixel away from its outline), 0 for rays that miss it (a pixel
+    away too).  miter (-n1 1, its near plane half a step inside the box) samples L planes
+    and must be exact to float rounding (1e-5); voxlux's dvr, when --vxbin is given, too
+    (its alpha is read from the red channel).  VTK steps 1 along each ray from where it
+    enters the box and takes L samples here, in 15-bit fixed point: within 2e-3 (one
+    sample more or less is off by 4e-3 to 6e-3)."""
+    sp, org, dims = (1.5, 1.0, 2.0), (0.0, 2.0, 1.0), (40, 30, 20)
+    vol = volio.Volume(np.full(dims[::-1], 100, dtype=np.uint8), sp, org)
+    path = os.path.join(work, "slab.nrrd")
+    volio.write_nrrd(path, vol)
+    scene = os.path.join(work, "slab.scn")
+    with open(scene, "w") as fh:
+        fh.write("voxlux-scene 1\ntransfer opacity 0 %g 255 %g\n"
+                 "transfer color 0 %g %g %g 255 %g %g %g\ntransfer step 1\n"
+                 % ((SLAB_ALPHA, SLAB_ALPHA) + SLAB_RGB + SLAB_RGB))
+    txf = os.path.join(work, "slab.txf")
+    run([PY, os.path.join(HERE, "dvr_tf.py"), "txf", scene, txf, "--range", "0", "255"])
+    lo = np.array(org)
+    hi = lo + (np.array(dims) - 1) * np.array(sp)
+    for name, cam, thick in SLAB_VIEWS:
+        a = cam.split()
+        eye = [float(x) for x in a[1:4]]
+        look = [float(x) for x in a[5:8]]
+        up = [float(x) for x in a[9:12]]
+        w, h = int(a[15]), int(a[16])
+        o, d = rays(eye, look, up, w, h, ortho=float(a[13]))
+        # footprint: the ray's position across the view axis, inside the box by a pixel
+        pix = float(a[13]) / w
+        axis = int(np.argmax(np.abs(d[0, 0])))
+        inside = np.ones((h, w), bool)
+        outside = np.zeros((h, w), bool)
+        for c in range(3):
+            if c == axis:
+                continue
+            inside &= (o[:, :, c] > lo[c] + pix) & (o[:, :, c] < hi[c] - pix)
+            outside |= (o[:, :, c] < lo[c] - pix) | (o[:, :, c] > hi[c] + pix)
+        cov = 1 - (1 - SLAB_ALPHA) ** thick
+        want = np.array(SLAB_RGB) * cov
+
+        def verdict(tool, rgb, alpha, tol):
+            ok_in = np.all(np.abs(rgb[inside] - want) <= tol)
+            ok_a = np.all(np.abs(alpha[inside] - cov) <= tol)
+            ok_out = not np.any(rgb[outside] != 0)
+            check(ok_in and ok_a and ok_out and inside.sum() > 100 and outside.sum() > 100,
+                  "dvr %s %s: colour %s alpha %.5f..%.5f inside (want %s, %.5f), "
+                  "%d of %d outside pixels 0" % (
+                      tool, name, np.round(rgb[inside].mean(0), 5), alpha[inside].min(),
+                      alpha[inside].max(), np.round(want, 5), cov,
+                      int(np.sum(~np.any(rgb[outside] != 0, axis=1))), int(outside.sum())))
+        mp = os.path.join(work, "slab-miter.pfm")
+        run(["sh", os.path.join(HERE, "dvr_miter.sh"), "-n", "1", "-t", "1", path, txf, mp]
+            + a)
+        verdict("teem-miter", volio.read_pfm_rgb(mp), volio.read_pfm(mp[:-4] + ".alpha.pfm"),
+                1e-5)
+        vp = os.path.join(work, "slab-vtk.pfm")
+        run(["xvfb-run", "-a", PY, os.path.join(HERE, "dvr_vtk.py"), path, "--scene", scene,
+             "-o", vp, "--runs", "1"] + a)
+        verdict("VTK", volio.read_pfm_rgb(vp), volio.read_pfm(vp[:-4] + ".alpha.pfm"), 2e-3)
+        if vxbin:
+            sc = os.path.join(work, "slab-%d.scn" % axis)
+            with open(sc, "w") as fh:
+                fh.write(dvr_tf.variant_scene(dvr_tf.parse_scene(scene), "unshaded", a))
+            xp = os.path.join(work, "slab-voxlux.pfm")
+            run(["sh", "-c", "%s %s | %s --scene %s --hdr --pfm %s -o %s" % (
+                os.path.join(vxbin, "vread"), path, os.path.join(vxbin, "dvr"), sc, xp,
+                os.path.join(work, "slab-voxlux.vx"))])
+            rgb = volio.read_pfm_rgb(xp)
+            verdict("voxlux", rgb, rgb[:, :, 0] / SLAB_RGB[0], 1e-5)
+
+
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("--embree", required=True)
     p.add_argument("--work", required=True)
     p.add_argument("--probe", help="camera_probe (voxlux's vx_camera_ray)")
     p.add_argument("--embree-pt", help="embree_pt (the path tracer)")
+    p.add_argument("--vxbin", help="voxlux's bin/ (its dvr against the slab's oracle)")
     args = p.parse_args()
     os.makedirs(args.work, exist_ok=True)
     if args.probe:
@@ -356,6 +443,7 @@ def main():
         test_pathtracer(args.embree_pt, args.work)
     test_mip_ref(args.work)
     test_mip_peers(args.work)
+    test_dvr_peers(args.work, args.vxbin)
     print("1..%d" % count)
     sys.exit(1 if failures else 0)
 

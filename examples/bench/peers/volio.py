@@ -182,6 +182,16 @@ def read_nrrd(path):
     """NRRD volume or image: raw or gzip encoding, attached or detached (data file:) data.
     Space directions must be axis-aligned (diagonal); returns a Volume for 3-D data and a
     plain 2-D float64 array for 2-D data (axis 0 fastest, as rows of the array)."""
+    fields, a = read_nrrd_array(path)
+    if a.ndim == 2:
+        return a.astype(np.float64)
+    _, spacing, origin = nrrd_geometry(fields)
+    return Volume(a, spacing, origin)
+
+
+def read_nrrd_array(path):
+    """(fields, samples) of a 2-D or 3-D NRRD, the array indexed [axis 2, axis 1, axis 0]
+    in the file's type (native byte order); no geometry is looked at."""
     with open(path, "rb") as f:
         fields, _ = read_nrrd_header(f)
         offset = f.tell()
@@ -224,11 +234,7 @@ def read_nrrd(path):
             buf = z.decompress(f.read(), n * dt.itemsize)
     if len(buf) != n * dt.itemsize:
         raise ValueError("%s: %d bytes of data, %d needed" % (path, len(buf), n * dt.itemsize))
-    a = np.frombuffer(buf, dtype=dt).reshape(sizes[::-1]).astype(dt.newbyteorder("="))
-    if dim == 2:
-        return a.astype(np.float64)
-    _, spacing, origin = nrrd_geometry(fields)
-    return Volume(a, spacing, origin)
+    return fields, np.frombuffer(buf, dtype=dt).reshape(sizes[::-1]).astype(dt.newbyteorder("="))
 
 
 def read_nifti(path):
@@ -364,6 +370,58 @@ def write_pfm(path, img):
         f.write(b"Pf\n%d %d\n-1.0\n" % (w, h))
         f.write(np.flipud(img).tobytes())
     os.replace(tmp, path)
+
+
+def write_pfm_rgb(path, img):
+    """RGB PFM of img[row, col, 3] (row 0 at the top), little-endian, rows bottom to top."""
+    img = np.asarray(img, dtype="<f4")
+    h, w, _ = img.shape
+    tmp = path + ".tmp"
+    with open(tmp, "wb") as f:
+        f.write(b"PF\n%d %d\n-1.0\n" % (w, h))
+        f.write(np.ascontiguousarray(np.flipud(img)).tobytes())
+    os.replace(tmp, path)
+
+
+def read_pfm_rgb(path):
+    """img[row, col, 3] (row 0 at the top) of an RGB PFM; a gray one is repeated."""
+    with open(path, "rb") as f:
+        kind = f.readline().strip()
+        if kind not in (b"Pf", b"PF"):
+            raise ValueError("%s: not a PFM file" % path)
+        dims = f.readline().split()
+        while len(dims) < 2:
+            dims += f.readline().split()
+        w, h = int(dims[0]), int(dims[1])
+        scale = float(f.readline())
+        ch = 3 if kind == b"PF" else 1
+        _check_count((w, h, ch))
+        buf = f.read(w * h * ch * 4)
+    if len(buf) != w * h * ch * 4:
+        raise ValueError("%s: truncated PFM" % path)
+    a = np.frombuffer(buf, dtype="<f4" if scale < 0 else ">f4").reshape(h, w, ch)
+    a = np.flipud(a).astype(np.float64)
+    return a if ch == 3 else np.repeat(a, 3, axis=2)
+
+
+def write_png_rgb(path, img, scale=1.0, srgb=True):
+    """8-bit PNG of an RGB image img[row, col, 3] times scale, clipped to [0, 1]:
+    with srgb, a linear image through the sRGB transfer curve (as voxlux's PNGs);
+    without, the codes are linear in the values (difference images)."""
+    x = np.clip(np.nan_to_num(np.asarray(img, dtype=np.float64)) * scale, 0, 1)
+    if srgb:
+        x = np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1 / 2.4) - 0.055)
+    g = (x * 255 + 0.5).astype(np.uint8)
+    h, w, _ = g.shape
+    raw = b"".join(b"\x00" + g[r].tobytes() for r in range(h))
+
+    def chunk(t, d):
+        c = struct.pack(">I", len(d)) + t + d
+        return c + struct.pack(">I", zlib.crc32(t + d) & 0xffffffff)
+    png = (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0))
+           + chunk(b"IDAT", zlib.compress(raw, 6)) + chunk(b"IEND", b""))
+    with open(path, "wb") as f:
+        f.write(png)
 
 
 def read_image(path):
