@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "tool.h"
@@ -241,8 +242,21 @@ what(void)
 	return sh ? "SH transfer volume" : "irradiance volume";
 }
 
+/* the process's CPU seconds so far (all threads) */
+static double
+cpu_now(void)
+{
+	struct timespec ts;
+
+	if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts) != 0)
+		return 0;
+	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* cpu_s: CPU seconds of the planning and baking (every thread) */
 static void
-print_stats(const vx_bake_stats *bs, const vx_irrvol *v, int nthr)
+print_stats(const vx_bake_stats *bs, const vx_irrvol *v, int nthr,
+    double cpu_s)
 {
 	double t = bs->bake_s > 0 ? bs->bake_s : 1e-9;
 	uint64_t rays = bs->gi.rays + bs->gi.shadow_rays;
@@ -255,13 +269,14 @@ print_stats(const vx_bake_stats *bs, const vx_irrvol *v, int nthr)
 	    (unsigned long long)bs->flat, (unsigned long long)bs->nan,
 	    (unsigned long long)bs->border);
 	fprintf(stderr, "%s: %llu samples (paths), %llu bounce rays, "
-	    "%llu shadow rays, %llu hits; %.0f paths/s, %.0f rays/s, %.0f "
-	    "paths per core-second on %d thread%s\n", me,
+	    "%llu shadow rays, %llu hits; %.0f paths/s, %.0f rays/s on %d "
+	    "thread%s; %.0f paths per core-second (%.2f CPU s, plan and "
+	    "bake)\n", me,
 	    (unsigned long long)bs->samples, (unsigned long long)bs->gi.rays,
 	    (unsigned long long)bs->gi.shadow_rays,
 	    (unsigned long long)bs->gi.hits, (double)bs->samples / t,
-	    (double)rays / t, (double)bs->samples / t / nthr, nthr,
-	    nthr == 1 ? "" : "s");
+	    (double)rays / t, nthr, nthr == 1 ? "" : "s",
+	    cpu_s > 0 ? (double)bs->samples / cpu_s : 0.0, cpu_s);
 	fprintf(stderr, "%s: time: plan %.3f s, bake %.3f s; storage "
 	    "%s%s, %zu bytes per texel in the stream (%zu in memory), %zu "
 	    "bricks of %d^3, %.1f MB in memory\n", me, bs->plan_s, bs->bake_s,
@@ -294,6 +309,7 @@ tool_bake_main(int argc, char **argv, int want_sh)
 	vx_err e = { 0, "" };
 	long gidx, iidx = -1;
 	int nthr, resumed = 0;
+	double cpu0;
 	char settings[2048], key[17];
 	progress pr;
 
@@ -516,14 +532,16 @@ tool_bake_main(int argc, char **argv, int want_sh)
 		o.b.progress = show_progress;
 		o.b.progress_ctx = &pr;
 	}
+	cpu0 = cpu_now();
 	if (!o.lazy && o.b.samples > 0 &&
 	    vx_bake_run(&v, &gi, &g, &o.b, &bs, &e) != 0)
 		tool_fail_err(&e);
+	cpu0 = cpu_now() - cpu0;
 	v.samples += o.b.samples;
 	if (o.store != VX_IRR_ACCUM && vx_irr_finalize(&v, o.store, &e) != 0)
 		tool_fail_err(&e);
 	if (o.run.stats)
-		print_stats(&bs, &v, nthr);
+		print_stats(&bs, &v, nthr, cpu0);
 	{
 		vx_chunk c;
 
