@@ -1,6 +1,7 @@
 /* pfm.c: the portable float map (PFM), read from memory and written to a
  * FILE.  "PF" is RGB, "Pf" gray; the scale's sign gives the byte order
  * (negative: little-endian); rows are stored bottom row first. */
+#include "pnm_priv.h"
 #include "vx_imageio.h"
 #include "vx_scan.h"
 
@@ -27,9 +28,8 @@ skip_space(const unsigned char *p, size_t n, size_t *pos)
 	return 0;
 }
 
-/* read_dim: a decimal integer of at most 9 digits. */
-static int
-read_dim(const unsigned char *p, size_t n, size_t *pos, long *out)
+int
+vx_pnm_decimal(const unsigned char *p, size_t n, size_t *pos, long *out)
 {
 	long v = 0;
 	int k = 0;
@@ -72,8 +72,8 @@ vx_pfm_read_mem(vx_image *img, const void *buf, size_t n, vx_err *e)
 		return vx_err_set(e, VX_EDATA, "pfm: not a PFM file (no PF or Pf "
 		    "magic)");
 	nc = p[1] == 'F' ? 3 : 1;
-	if (skip_space(p, n, &pos) || read_dim(p, n, &pos, &w) ||
-	    skip_space(p, n, &pos) || read_dim(p, n, &pos, &h))
+	if (skip_space(p, n, &pos) || vx_pnm_decimal(p, n, &pos, &w) ||
+	    skip_space(p, n, &pos) || vx_pnm_decimal(p, n, &pos, &h))
 		return vx_err_set(e, VX_EDATA, "pfm: bad or missing size in "
 		    "header");
 	if (skip_space(p, n, &pos) || read_scale(p, n, &pos, &scale))

@@ -1,5 +1,6 @@
 /* pgm.c: the binary portable graymap (Netpbm PGM, "P5"), read from memory
  * (vx_imageio.h). */
+#include "pnm_priv.h"
 #include "vx_imageio.h"
 
 #include <stdint.h>
@@ -31,24 +32,6 @@ skip(const unsigned char *p, size_t n, size_t *pos)
 	return *pos > s ? 0 : -1;
 }
 
-/* number: a decimal integer of 1 to 9 digits. */
-static int
-number(const unsigned char *p, size_t n, size_t *pos, long *out)
-{
-	long v = 0;
-	int k = 0;
-
-	while (*pos < n && p[*pos] >= '0' && p[*pos] <= '9' && k < 10) {
-		v = v * 10 + (p[*pos] - '0');
-		(*pos)++;
-		k++;
-	}
-	if (k == 0 || k > 9)
-		return -1;
-	*out = v;
-	return 0;
-}
-
 int
 vx_pgm_read_mem(vx_image *img, const void *buf, size_t n, int *maxval,
     vx_err *e)
@@ -62,11 +45,11 @@ vx_pgm_read_mem(vx_image *img, const void *buf, size_t n, int *maxval,
 	if (n < 2 || p[0] != 'P' || p[1] != '5')
 		return vx_err_set(e, VX_EDATA, "pgm: not a binary PGM file (no "
 		    "P5 magic)");
-	if (skip(p, n, &pos) || number(p, n, &pos, &w) ||
-	    skip(p, n, &pos) || number(p, n, &pos, &h))
+	if (skip(p, n, &pos) || vx_pnm_decimal(p, n, &pos, &w) ||
+	    skip(p, n, &pos) || vx_pnm_decimal(p, n, &pos, &h))
 		return vx_err_set(e, VX_EDATA, "pgm: bad or missing size in "
 		    "header");
-	if (skip(p, n, &pos) || number(p, n, &pos, &mv))
+	if (skip(p, n, &pos) || vx_pnm_decimal(p, n, &pos, &mv))
 		return vx_err_set(e, VX_EDATA, "pgm: bad or missing maxval in "
 		    "header");
 	if (pos >= n || !is_space(p[pos]))
