@@ -213,13 +213,11 @@ explain_reference(const opts *o, const vx_scene *s, const vx_tf *tf,
     const vx_dvr_decide *d, const vx_grid *g, int nthr)
 {
 	vx_plan p;
-	char buf[8192];
 	double ms = fmin(g->spacing[0], fmin(g->spacing[1], g->spacing[2]));
 	double ref = tf->ref_step > 0 ? tf->ref_step : ms;
 
 	vx_dvrref_plan(s, tf, d, &o->r, &p);
-	vx_plan_format(&p, buf, sizeof buf);
-	fprintf(stderr, "%s", buf);
+	tool_plan_print(&p);
 	fprintf(stderr, "dvr: %dx%d pixels (%s camera), volume '%s' %lldx%lldx"
 	    "%lld; %d thread%s\n", s->camera.w, s->camera.h,
 	    vx_enum_str(&vx_projection_enum, s->camera.projection), g->name,
