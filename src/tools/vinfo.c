@@ -12,6 +12,7 @@
 #include "vx_image.h"
 #include "vx_irrvol.h"
 #include "vx_macroio.h"
+#include "vx_shlight.h"
 #include "vx_stats.h"
 #include "vx_stream.h"
 #include "vx_tetimport.h"
@@ -833,9 +834,91 @@ json_irrv(const irrv_info *ii)
 	putchar('}');
 }
 
+/* ---- SH lighting (SHLC, formats/shlight.md) ---- */
+
+/* band_energy: the sum of the squares of channel k's coefficients of band
+ * l (its rotation-invariant part). */
+static double
+band_energy(const vx_shlight *l, int k, int band)
+{
+	const double *c = l->c + (size_t)k * (size_t)l->order * (size_t)l->order;
+	double e = 0;
+
+	for (int i = band * band; i < (band + 1) * (band + 1); i++)
+		e += c[i] * c[i];
+	return e;
+}
+
+static int
+is_identity(const double r[3][3])
+{
+	for (int i = 0; i < 3; i++)
+		for (int j = 0; j < 3; j++)
+			if (r[i][j] != (i == j))
+				return 0;
+	return 1;
+}
+
+static void
+text_shlc(const vx_shlight *l)
+{
+	int n = l->order * l->order;
+
+	printf("  SH lighting: order %d (%d coefficients a channel, r g b), "
+	    "phase %s\n", l->order, n, l->phase == VX_SHLIGHT_PHASE_CS ?
+	    "condon-shortley" : "none");
+	if (l->has_hash)
+		printf("    source map: content hash %016llx\n",
+		    (unsigned long long)l->env_hash);
+	else
+		printf("    source map: none recorded\n");
+	if (is_identity(l->rot))
+		printf("    rotation: identity\n");
+	else
+		printf("    rotation: %.9g %.9g %.9g / %.9g %.9g %.9g / %.9g %.9g "
+		    "%.9g (rows)\n", l->rot[0][0], l->rot[0][1], l->rot[0][2],
+		    l->rot[1][0], l->rot[1][1], l->rot[1][2], l->rot[2][0],
+		    l->rot[2][1], l->rot[2][2]);
+	printf("    c00: %.9g %.9g %.9g (the mean radiance times sqrt(4 pi))\n",
+	    l->c[0], l->c[n], l->c[2 * n]);
+	for (int b = 0; b < l->order; b++)
+		printf("    band %d energy: %.9g %.9g %.9g\n", b,
+		    band_energy(l, 0, b), band_energy(l, 1, b),
+		    band_energy(l, 2, b));
+}
+
+static void
+json_shlc(const vx_shlight *l)
+{
+	int n = l->order * l->order;
+	double c00[3] = { l->c[0], l->c[n], l->c[2 * n] };
+
+	printf(",\"sh_lighting\":{\"order\":%d,\"phase\":\"%s\",\"hash\":",
+	    l->order, l->phase == VX_SHLIGHT_PHASE_CS ? "condon-shortley" :
+	    "none");
+	if (l->has_hash)
+		printf("\"%016llx\"", (unsigned long long)l->env_hash);
+	else
+		fputs("null", stdout);
+	printf(",\"rotation\":");
+	json_nums(&l->rot[0][0], 9);
+	printf(",\"c00\":");
+	json_nums(c00, 3);
+	printf(",\"band_energy\":[");
+	for (int b = 0; b < l->order; b++) {
+		double e3[3] = { band_energy(l, 0, b), band_energy(l, 1, b),
+		    band_energy(l, 2, b) };
+
+		if (b > 0)
+			putchar(',');
+		json_nums(e3, 3);
+	}
+	printf("]}");
+}
+
 /* What vinfo decoded of a content chunk, for either report. */
 enum { K_OTHER, K_VOLUME, K_IMAGE, K_SCENE, K_MCEL, K_TETM, K_TLEF,
-    K_IRRV };
+    K_IRRV, K_SHLC };
 
 typedef struct content {
 	int kind;
@@ -847,6 +930,7 @@ typedef struct content {
 	vx_tetmesh tm;
 	tlef_info ti;
 	irrv_info ii;
+	vx_shlight sl;
 } content;
 
 /* decode_content: the payload of c as its type says (K_OTHER: nothing to
@@ -886,6 +970,10 @@ decode_content(const vx_stream *s, const vx_chunk *c, const opts *o,
 	    memcmp(c->type, VX_CHUNK_SHXFER, 4) == 0) {
 		d->kind = K_IRRV;
 		return decode_irrv(s, c, &d->ii, e);
+	}
+	if (memcmp(c->type, VX_CHUNK_SHLIGHT, 4) == 0) {
+		d->kind = K_SHLC;
+		return vx_shlight_from_chunk(&d->sl, c, e);
 	}
 	return 0;
 }
@@ -1087,6 +1175,7 @@ text_chunk(const vx_stream *s, size_t idx, const vx_chunk *c, const opts *o)
 	case K_TETM: text_tetm(&d.tm); break;
 	case K_TLEF: text_tlef(&d.ti); break;
 	case K_IRRV: text_irrv(&d.ii); break;
+	case K_SHLC: text_shlc(&d.sl); break;
 	default: break;
 	}
 	check_range(c, &d);
@@ -1256,6 +1345,7 @@ json_chunk(const vx_stream *s, size_t idx, const vx_chunk *c, const opts *o)
 	case K_TETM: json_tetm(&d.tm); break;
 	case K_TLEF: json_tlef(&d.ti); break;
 	case K_IRRV: json_irrv(&d.ii); break;
+	case K_SHLC: json_shlc(&d.sl); break;
 	default: break;
 	}
 	check_range(c, &d);

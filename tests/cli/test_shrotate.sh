@@ -140,6 +140,30 @@ expect_fail "no light and no SH lighting" 64 "no environment" sh-rotate --print 
 expect_fail "--order above the stream's" 64 "order 5" sh-rotate --order 6 --print "$T/p.vx"
 check "no half-written PFM on error" test ! -e "$T/x.pfm"
 
+# ---- vinfo decodes the SHLC chunk: what it holds, and the bands' energy,
+# which a rotation keeps (the rotation mixes coefficients within a band) ----
+sh-rotate --env "$T/c32.pfm" --order 3 > "$T/v.vx"
+sh-rotate --env "$T/lin.pfm" --order 3 > "$T/vl.vx"
+sh-rotate --axis 0,0,1,90 "$T/vl.vx" > "$T/vr.vx"
+vinfo "$T/v.vx" > "$T/v.info"
+check "vinfo: SHLC order and phase" grep -q "SH lighting: order 3 (9 coefficients a channel, r g b), phase condon-shortley" "$T/v.info"
+check "vinfo: the source map's hash, no rotation" sh -c "grep -q 'source map: content hash [0-9a-f]\{16\}' '$T/v.info' && grep -q 'rotation: identity' '$T/v.info'"
+check_close "vinfo: c00 r of the constant map = 2 sqrt(4 pi)" "$(awk '/c00:/ { print $2 }' "$T/v.info")" "$(awk -v s=$s4pi 'BEGIN { printf "%.17g", 2 * s }')" 1e-7
+check_close "vinfo: band 0 energy r = c00^2 = 16 pi" "$(awk '/band 0 energy:/ { print $4 }' "$T/v.info")" 50.26548245743669 1e-6
+vinfo "$T/vr.vx" | grep -q "rotation: 6.123234e-17 -1 0 / 1 6.123234e-17 0 / 0 0 1 (rows)"
+check_eq "vinfo: the turn's rotation matrix (90 degrees about z)" "$?" 0
+vinfo --json "$T/vl.vx" > "$T/vl.json"
+vinfo --json "$T/vr.vx" > "$T/vr.json"
+check_close "vinfo --json: a rotation keeps each band's energy (bands 1, 2; r g b)" "$(python3 - "$T/vl.json" "$T/vr.json" <<'EOF2'
+import json, sys
+def bands(p):
+    return [c["sh_lighting"]["band_energy"] for c in json.load(open(p))["chunks"] if "sh_lighting" in c][0]
+a, b = bands(sys.argv[1]), bands(sys.argv[2])
+assert a[1][0] > 1e-3 and len(a) == 3
+print(max(abs(x - y) / max(abs(x), 1e-300) for l in (1, 2) for x, y in zip(a[l], b[l])))
+EOF2
+)" 0 1e-12
+
 # ---- blender-data: c00 = sqrt(4 pi) x the mean radiance ----
 if [ ! -r "$W/forest.exr" ]; then
 	skip "blender-data forest.exr" "no $W (Debian package blender-data)"

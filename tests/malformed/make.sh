@@ -833,6 +833,7 @@ for name, phrase, what, data in SL:
     case(name, "raycast --size 8x8 -o OUT FILE", 65, phrase, what, data)
     case(name, "sh-rotate --euler 0,0,90 -o OUT FILE", 65, phrase,
          "(as above)", None)
+    case(name, "vinfo FILE (listing)", 65, phrase, "(as above)", None)
 
 # ---- HDR images (tonemap reads them) and environment maps (vscene) ----
 HDRH = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n"
