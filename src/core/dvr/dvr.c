@@ -11,9 +11,6 @@
 #include "vx_rng.h"
 #include "vx_vec.h"
 
-#define KD 1.0
-#define KS 0.2
-#define SHININESS 32.0          /* surface_f squares 5 times */
 
 void
 vx_dvr_opts_init(vx_dvr_opts *o)
@@ -646,27 +643,6 @@ light_at(const frame *f, const float *b, double px, double py)
 	return a + fy * (cc - a);
 }
 
-/* surface_f: Blinn-Phong f for light direction l (unit, toward the light) and
- * view direction v (unit, toward the eye) at unit normal n. */
-static double
-surface_f(const frame *f, const double n[3], const double l[3],
-    const double v[3])
-{
-	double nl = vx_dot3(n, l), r = KD * (nl > 0 ? nl : 0);
-
-	if (f->d->specular) {
-		double h[3] = { l[0] + v[0], l[1] + v[1], l[2] + v[2] }, x;
-
-		vx_unit3(h);
-		x = vx_dot3(n, h);
-		x = x > 0 ? x : 0;
-		for (int i = 0; i < 5; i++)    /* x^SHININESS, 2^5 */
-			x *= x;
-		r += KS * x;
-	}
-	return r;
-}
-
 /* radiance of one eye sample at world point w, seen along unit d. */
 static void
 radiance(const frame *f, const double w[3], const double d[3],
@@ -679,18 +655,8 @@ radiance(const frame *f, const double w[3], const double d[3],
 
 	for (int a = 0; a < 3; a++)
 		out[a] = color[a] * f->amb[a];
-	if (f->d->surface && surface > 0) {
-		n[0] = -grad[0];
-		n[1] = -grad[1];
-		n[2] = -grad[2];
-		vx_unit3(n);
-		has_n = vx_dot3(n, n) > 0.5 && vx_finite3(n);
-		if (has_n && vx_dot3(n, v) < 0) {
-			n[0] = -n[0];
-			n[1] = -n[1];
-			n[2] = -n[2];
-		}
-	}
+	if (f->d->surface && surface > 0)
+		has_n = vx_dvr_normal(grad, v, n);
 	for (int k = 0; k < f->nlight; k++) {
 		const flight *l = &f->light[k];
 		double L[3], tl[3], Ll = 1, pc, sw, lt[3];
@@ -712,8 +678,8 @@ radiance(const frame *f, const double w[3], const double d[3],
 			tl[0] = -L[0];
 			tl[1] = -L[1];
 			tl[2] = -L[2];
-			sw = (1 - surface) + surface * surface_f(f, n, tl,
-			    v);
+			sw = (1 - surface) + surface * vx_dvr_blinn_phong(n,
+			    tl, v, f->d->specular);
 		}
 		if (l->driver && f->d->light_buffer) {
 			double px, py, dep;

@@ -12,9 +12,6 @@
 #include "vx_rng.h"
 #include "vx_vec.h"
 
-#define KD 1.0
-#define KS 0.2
-#define SHININESS 32.0
 
 void
 vx_dvrref_opts_init(vx_dvrref_opts *o)
@@ -261,25 +258,12 @@ static double
 surface_w(const ctx *c, const vx_tf_sample *smp, const double grad[3],
     const double L[3], const double v[3])
 {
-	double n[3] = { -grad[0], -grad[1], -grad[2] };
-	double l[3] = { -L[0], -L[1], -L[2] }, f;
+	double n[3], l[3] = { -L[0], -L[1], -L[2] };
 
-	if (!(c->d->surface && smp->surface > 0))
+	if (!(c->d->surface && smp->surface > 0) || !vx_dvr_normal(grad, v, n))
 		return 1;
-	vx_unit3(n);
-	if (!(vx_dot3(n, n) > 0.5 && vx_finite3(n)))
-		return 1;
-	if (vx_dot3(n, v) < 0)
-		for (int a = 0; a < 3; a++)
-			n[a] = -n[a];
-	f = KD * fmax(0, vx_dot3(n, l));
-	if (c->d->specular) {
-		double hv[3] = { l[0] + v[0], l[1] + v[1], l[2] + v[2] };
-
-		vx_unit3(hv);
-		f += KS * pow(fmax(0, vx_dot3(n, hv)), SHININESS);
-	}
-	return (1 - smp->surface) + smp->surface * f;
+	return (1 - smp->surface) + smp->surface *
+	    vx_dvr_blinn_phong(n, l, v, c->d->specular);
 }
 
 /* shade: the radiance of a sample at w seen from v (toward the eye), the

@@ -98,6 +98,51 @@
 #include "vx_plan.h"
 #include "vx_scene.h"
 #include "vx_tf.h"
+#include "vx_vec.h"
+
+/* The surface term's Blinn-Phong (the model above; dvr and its references
+ * share it): kd 1, ks 0.2 with the specular effect, shininess 32. */
+#define VX_DVR_KD 1.0
+#define VX_DVR_KS 0.2
+
+/* vx_dvr_normal: n = -grad / |grad| turned toward v (unit, toward the
+ * eye); 0 (n unusable) where the gradient is 0 or not finite. */
+static inline int
+vx_dvr_normal(const double grad[3], const double v[3], double n[3])
+{
+	n[0] = -grad[0];
+	n[1] = -grad[1];
+	n[2] = -grad[2];
+	vx_unit3(n);
+	if (!(vx_dot3(n, n) > 0.5 && vx_finite3(n)))
+		return 0;
+	if (vx_dot3(n, v) < 0)
+		for (int a = 0; a < 3; a++)
+			n[a] = -n[a];
+	return 1;
+}
+
+/* vx_dvr_blinn_phong: f = kd max(n . l, 0) + ks max(n . h, 0)^32 (ks
+ * only when specular) for unit n, l (toward the light), v (toward the
+ * eye), h = unit(l + v); the power by five squarings. */
+static inline double
+vx_dvr_blinn_phong(const double n[3], const double l[3], const double v[3],
+    int specular)
+{
+	double nl = vx_dot3(n, l), r = VX_DVR_KD * (nl > 0 ? nl : 0);
+
+	if (specular) {
+		double h[3] = { l[0] + v[0], l[1] + v[1], l[2] + v[2] }, x;
+
+		vx_unit3(h);
+		x = vx_dot3(n, h);
+		x = x > 0 ? x : 0;
+		for (int i = 0; i < 5; i++)
+			x *= x;
+		r += VX_DVR_KS * x;
+	}
+	return r;
+}
 
 #define VX_DVR_MAX_SLICES     65536
 #define VX_DVR_MAX_LIGHT_SIZE 8192
