@@ -258,22 +258,6 @@ vx_tf_lut_at(const vx_tf_lut *t, double v, vx_f4 q[2])
 	q[1] = a1 + f * (b1 - a1);
 }
 
-/* vx_tf_lut_eval: the table at value v (NaN: the empty sample, sigma 0,
- * color 0, ltr 0, surface 0). */
-static inline void
-vx_tf_lut_eval(const vx_tf_lut *t, double v, vx_tf_optic *o)
-{
-	vx_f4 q[2];
-
-	vx_tf_lut_at(t, v, q);
-	o->sigma = q[0][0];
-	for (int c = 0; c < 3; c++) {
-		o->color[c] = q[0][1 + c];
-		o->ltr[c] = q[1][c];
-	}
-	o->surface = q[1][3];
-}
-
 /* vx_tf_apply_scene: the scene's transfer lines over tf (which may hold
  * an imported file's function): each list the scene gives replaces tf's
  * list of that channel (a color or opacity list drops a 2D table: the
