@@ -44,4 +44,19 @@ expect_fail() {
 	fi
 }
 
+# slab_scene FILE [LINE...]: the homogeneous slab of the dvr tests (an
+# 8x8x40 volume of 1 seen straight down z, orthographic, 8x8 pixels; emission
+# 1, no light, opacity 0.05 a voxel: coverage 1 - 0.95^39), then any LINEs
+slab_scene() {
+	_f=$1; shift
+	{
+		echo "camera orthographic eye 3.5 3.5 100 look 3.5 3.5 0 up 0 1 0 width 7"
+		echo "image width 8 height 8"
+		echo "light none"
+		echo "ambient intensity 1"
+		echo "effects none"
+		echo "transfer opacity 0 0.05"
+		for _l in "$@"; do echo "$_l"; done
+	} > "$_f"
+}
 done_testing() { echo "1..$_n"; [ "$_nfail" -eq 0 ]; }

@@ -12,14 +12,7 @@ px() { python3 tests/cli/vximg.py "$@"; }
 
 # 1. a homogeneous slab 39 deep seen straight on, emission 1, no light
 $MK volume "$T/slab.vx" --type f32 --dims 8 8 40 --formula 1
-cat > "$T/slab.scn" <<'SCN'
-camera orthographic eye 3.5 3.5 100 look 3.5 3.5 0 up 0 1 0 width 7
-image width 8 height 8
-light none
-ambient intensity 1
-effects none
-transfer opacity 0 0.05
-SCN
+slab_scene "$T/slab.scn"
 want=$(awk 'BEGIN { printf "%.9f", 1 - exp(39 * log(0.95)) }')
 for h in 1 0.3 7; do
 	dvr --scene "$T/slab.scn" --reference raymarch --march-step $h --hdr "$T/slab.vx" > "$T/rm.out"

@@ -82,15 +82,7 @@ check "path tracer vs the unperturbed ray march: rel. RMSE $ru > 2x that" \
 # test_dvr.sh, with the data coordinates perturbed)
 $MK volume "$T/slab0.vx" --type f32 --dims 8 8 40 --formula 1
 macrocell < "$T/slab0.vx" > "$T/slab.vx"
-cat > "$T/slab.scn" <<'SCN'
-camera orthographic eye 3.5 3.5 100 look 3.5 3.5 0 up 0 1 0 width 7
-image width 8 height 8
-light none
-ambient intensity 1
-effects none
-transfer opacity 0 0.05
-perturb coordinates scale 3 amplitude 2 octaves 5
-SCN
+slab_scene "$T/slab.scn" "perturb coordinates scale 3 amplitude 2 octaves 5"
 want=$(awk 'BEGIN { printf "%.9f", 1 - exp(39 * log(0.95)) }')
 dvr --scene "$T/slab.scn" --hdr "$T/slab.vx" > "$T/slab.out"
 check_close "constant slab displaced: coverage 1 - exp(-sigma d)" \
