@@ -34,15 +34,10 @@
 #include "vx_scene.h"
 #include "vx_stream.h"
 
-#define NB 12
+#define BENCH_NAME "bakeprobe"
+#include "benchutil.h"
 
-static void
-die(const char *what, const vx_err *e)
-{
-	fprintf(stderr, "bakeprobe: %s%s%s\n", what, e ? ": " : "",
-	    e ? e->msg : "");
-	exit(e && e->code ? e->code : 1);
-}
+#define NB 12
 
 static double
 cpu_now(void)
@@ -77,7 +72,6 @@ main(int argc, char **argv)
 	band bd[NB], tot;
 	long gsrc = -1;
 	uint64_t n = 0;
-	FILE *f;
 
 	for (i = 1; i < argc; i++) {
 		if (!strcmp(argv[i], "--scene") && i + 1 < argc)
@@ -95,20 +89,10 @@ main(int argc, char **argv)
 	    every < 1)
 		die("usage: bakeprobe --scene FILE [--samples N] [--every K] "
 		    "STREAM", NULL);
-	vx_scene_init(&s);
-	if ((f = fopen(scene, "r")) == NULL)
-		die(scene, NULL);
-	if (vx_scene_read(&s, f, &e) != 0)
-		die(scene, &e);
-	fclose(f);
+	load_scene(&s, scene);
 	if (s.nsurface < 1)
 		die("the scene has no surface", NULL);
-	vx_stream_init(&st);
-	if ((f = fopen(stream, "rb")) == NULL)
-		die(stream, NULL);
-	if (vx_stream_read(&st, f, &e) != 0)
-		die(stream, &e);
-	fclose(f);
+	load_stream(&st, stream);
 	if (vx_grid_from_stream(&g, &st, NULL, &gsrc, &e) != 0)
 		die(stream, &e);
 	if (vx_macro_from_stream(&m, &st, &g, gsrc, &status, NULL, &e) != 0)

@@ -56,13 +56,8 @@
 #include "vx_rng.h"
 #include "vx_warp.h"
 
-static void
-die(const char *what, const vx_err *e)
-{
-	fprintf(stderr, "giprobe: %s%s%s\n", what, e ? ": " : "",
-	    e ? e->msg : "");
-	exit(e && e->code ? e->code : 1);
-}
+#define BENCH_NAME "giprobe"
+#include "benchutil.h"
 
 static double
 cpu_now(void)
@@ -243,7 +238,6 @@ main(int argc, char **argv)
 	int status;
 	double iso;             /* traced as a double, the mask's as a float */
 	float isof;
-	FILE *f;
 	uint64_t nhit = 0;
 
 	for (i = 1; i < argc; i++) {
@@ -268,12 +262,7 @@ main(int argc, char **argv)
 		die("usage: giprobe --scene FILE [--spp N] [--flat] [--mask] "
 		    "[--sizes AxBxC[,DxExF...]] [--walks] STREAM", NULL);
 
-	vx_scene_init(&s);
-	if ((f = fopen(scene, "r")) == NULL)
-		die(scene, NULL);
-	if (vx_scene_read(&s, f, &e) != 0)
-		die(scene, &e);
-	fclose(f);
+	load_scene(&s, scene);
 	if (spp > 0)
 		s.pt_samples = spp;
 	if (s.nsurface != 1)
@@ -281,12 +270,7 @@ main(int argc, char **argv)
 	iso = s.surface[0].iso;
 	isof = (float)iso;
 
-	vx_stream_init(&st);
-	if ((f = fopen(stream, "rb")) == NULL)
-		die(stream, NULL);
-	if (vx_stream_read(&st, f, &e) != 0)
-		die(stream, &e);
-	fclose(f);
+	load_stream(&st, stream);
 	if (vx_grid_from_stream(&g, &st, NULL, &gsrc, &e) != 0)
 		die(stream, &e);
 	if (sizes != NULL) {

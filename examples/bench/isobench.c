@@ -48,39 +48,10 @@
 #include "vx_scene.h"
 #include "vx_stream.h"
 
+#define BENCH_NAME "isobench"
+#include "benchutil.h"
+
 #define MAXFRAMES 1000
-
-static void
-die(const char *what, const vx_err *e)
-{
-	fprintf(stderr, "isobench: %s%s%s\n", what, e ? ": " : "",
-	    e ? e->msg : "");
-	exit(e && e->code ? e->code : 1);
-}
-
-static double
-now(clockid_t id)
-{
-	struct timespec ts;
-
-	clock_gettime(id, &ts);
-	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int
-cmp_double(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-
-	return x < y ? -1 : x > y;
-}
-
-static double
-median(double *v, int n)
-{
-	qsort(v, (size_t)n, sizeof *v, cmp_double);
-	return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 typedef struct bench {
 	vx_scene s;
@@ -149,10 +120,8 @@ main(int argc, char **argv)
 	vx_raycast_stats rs;
 	double wall[MAXFRAMES], cpu[MAXFRAMES], tiles[MAXFRAMES];
 	double busy[MAXFRAMES], bins[MAXFRAMES], t0;
-	FILE *f;
 
 	memset(&b, 0, sizeof b);
-	vx_scene_init(&b.s);
 	vx_raycast_opts_init(&b.ro);
 	vx_macro_init(&b.m);
 	/* first pass: the scene file, so that the options apply over it */
@@ -161,11 +130,7 @@ main(int argc, char **argv)
 			scene = argv[++i];
 	if (scene == NULL)
 		die("usage: isobench --scene FILE [options] STREAM", NULL);
-	if ((f = fopen(scene, "r")) == NULL)
-		die(scene, NULL);
-	if (vx_scene_read(&b.s, f, &e) != 0)
-		die(scene, &e);
-	fclose(f);
+	load_scene(&b.s, scene);
 	for (i = 1; i < argc; i++) {
 		const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
 		const char *opt = NULL;
@@ -234,12 +199,7 @@ main(int argc, char **argv)
 
 	/* load: the stream, the volume, its macrocells */
 	t0 = now(CLOCK_MONOTONIC);
-	vx_stream_init(&st);
-	if ((f = fopen(stream, "rb")) == NULL)
-		die(stream, NULL);
-	if (vx_stream_read(&st, f, &e) != 0)
-		die(stream, &e);
-	fclose(f);
+	load_stream(&st, stream);
 	if (vx_grid_from_stream(&b.g, &st, NULL, &gsrc, &e) != 0)
 		die(stream, &e);
 	if (!b.ro.flat && sizes == NULL) {

@@ -45,48 +45,13 @@
 #include "vx_scene.h"
 #include "vx_stream.h"
 
+#define BENCH_NAME "t2bench"
+#include "benchutil.h"
+
 #define MAXROUNDS 1000
 #define MAXIRR 8
 #define NLOCAL 3
 #define MAXMODES (NLOCAL + MAXIRR)
-
-static void
-die(const char *what, const vx_err *e)
-{
-	fprintf(stderr, "t2bench: %s%s%s\n", what, e ? ": " : "",
-	    e ? e->msg : "");
-	exit(e && e->code ? e->code : 1);
-}
-
-static double
-now(clockid_t id)
-{
-	struct timespec ts;
-
-	clock_gettime(id, &ts);
-	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int
-cmp_double(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-
-	return x < y ? -1 : x > y;
-}
-
-/* quantile q of v[0..n) (sorts v): linear between order statistics */
-static double
-quantile(double *v, int n, double q)
-{
-	double x = q * (n - 1);
-	int i = (int)x;
-
-	qsort(v, (size_t)n, sizeof *v, cmp_double);
-	if (i + 1 >= n)
-		return v[n - 1];
-	return v[i] + (x - i) * (v[i + 1] - v[i]);
-}
 
 typedef struct mode {
 	char label[64];
@@ -129,20 +94,6 @@ frame(const mode *md, const vx_grid *g, const vx_macro *m, int have_m,
 	vx_image_free(&color);
 }
 
-static void
-read_stream(const char *path, vx_stream *st)
-{
-	vx_err e = { 0, "" };
-	FILE *f;
-
-	vx_stream_init(st);
-	if ((f = fopen(path, "rb")) == NULL)
-		die(path, NULL);
-	if (vx_stream_read(st, f, &e) != 0)
-		die(path, &e);
-	fclose(f);
-}
-
 int
 main(int argc, char **argv)
 {
@@ -163,7 +114,6 @@ main(int argc, char **argv)
 	vx_macro m;
 	long gsrc = -1, ii;
 	double lo[3], hi[3];
-	FILE *f;
 
 	for (i = 1; i < argc; i++) {
 		const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -198,17 +148,12 @@ main(int argc, char **argv)
 		    "[-j N] [-n ROUNDS] [--warm N] [--size WxH] "
 		    "[--only LABEL] STREAM", NULL);
 
-	vx_scene_init(&base);
-	if ((f = fopen(scene, "r")) == NULL)
-		die(scene, NULL);
-	if (vx_scene_read(&base, f, &e) != 0)
-		die(scene, &e);
-	fclose(f);
+	load_scene(&base, scene);
 	if (w > 0) {
 		base.camera.w = w;
 		base.camera.h = h;
 	}
-	read_stream(stream, &st);
+	load_stream(&st, stream);
 	if (vx_grid_from_stream(&g, &st, NULL, &gsrc, &e) != 0)
 		die(stream, &e);
 	vx_macro_init(&m);
@@ -235,7 +180,7 @@ main(int argc, char **argv)
 		snprintf(md->label, sizeof md->label, "%.*s",
 		    (int)(n < sizeof md->label ? n : sizeof md->label - 1),
 		    irrarg[k]);
-		read_stream(eq + 1, &ist[k]);
+		load_stream(&ist[k], eq + 1);
 		vx_irr_init(&irr[k]);
 		if (vx_irr_from_stream(&irr[k], &ist[k], g.name, &ii, &e) != 0)
 			die(eq + 1, &e);
