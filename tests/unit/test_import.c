@@ -16,6 +16,8 @@
 #include <zlib.h>
 #include <cmocka.h>
 
+#include "helper_tmp.h"
+
 #include "vx_import.h"
 
 /* ---- building inputs ---- */
@@ -66,7 +68,6 @@ gz(const void *p, size_t n)
 	return b;
 }
 
-static char tmpdir[64];
 
 static char *
 tpath(const char *name)
@@ -75,7 +76,7 @@ tpath(const char *name)
 	static int k;
 
 	k = (k + 1) % 4;
-	snprintf(s[k], sizeof s[k], "%s/%s", tmpdir, name);
+	snprintf(s[k], sizeof s[k], "%s/%s", helper_tmpdir, name);
 	return s[k];
 }
 
@@ -1540,24 +1541,6 @@ ch2_template(void **state)
 	vx_grid_free(&g);
 }
 
-static int
-setup(void **state)
-{
-	(void)state;
-	snprintf(tmpdir, sizeof tmpdir, "/tmp/test_importXXXXXX");
-	return mkdtemp(tmpdir) == NULL ? -1 : 0;
-}
-
-static int
-teardown(void **state)
-{
-	char cmd[128];
-
-	(void)state;
-	snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
-	return system(cmd) == 0 ? 0 : -1;
-}
-
 int
 main(void)
 {
@@ -1574,5 +1557,6 @@ main(void)
 		cmocka_unit_test(ch2_template),
 	};
 
-	return cmocka_run_group_tests(tests, setup, teardown);
+	return cmocka_run_group_tests(tests, helper_tmp_setup,
+	    helper_tmp_teardown);
 }

@@ -16,12 +16,14 @@
 #include <unistd.h>
 #include <cmocka.h>
 
+#include "helper_tmp.h"
+
 #include "tf_priv.h"
 #include "vx_tfimport.h"
 
-static char tmpdir[64];
 
-/* put: a file in tmpdir holding text; its path (static, 4 in turn). */
+/* put: a file in helper_tmpdir holding text; its path (static, 4 in
+ * turn). */
 static const char *
 put(const char *name, const char *text, size_t n)
 {
@@ -30,7 +32,7 @@ put(const char *name, const char *text, size_t n)
 	FILE *f;
 
 	k = (k + 1) % 4;
-	snprintf(s[k], sizeof s[k], "%s/%s", tmpdir, name);
+	snprintf(s[k], sizeof s[k], "%s/%s", helper_tmpdir, name);
 	assert_non_null(f = fopen(s[k], "wb"));
 	assert_int_equal(fwrite(text, 1, n, f), n);
 	assert_int_equal(fclose(f), 0);
@@ -572,8 +574,8 @@ malformed(void **state)
 	}
 	assert_int_equal(vx_tf_import("/nonexistent/x.vp", VX_TF_FORMAT_AUTO,
 	    &tf, &e), VX_ENOINPUT);
-	assert_int_equal(vx_tf_import(tmpdir, VX_TF_FORMAT_AUTO, &tf, &e),
-	    VX_ENOINPUT);
+	assert_int_equal(vx_tf_import(helper_tmpdir, VX_TF_FORMAT_AUTO, &tf,
+	    &e), VX_ENOINPUT);
 	assert_non_null(strstr(e.msg, "is a directory"));
 }
 
@@ -627,24 +629,6 @@ json(void **state)
 	assert_int_equal(vx_json_parse(&j, "-", 1, 2, 9, &e), VX_EDATA);
 }
 
-static int
-setup(void **state)
-{
-	(void)state;
-	snprintf(tmpdir, sizeof tmpdir, "/tmp/test_tfimportXXXXXX");
-	return mkdtemp(tmpdir) == NULL ? -1 : 0;
-}
-
-static int
-teardown(void **state)
-{
-	char cmd[128];
-
-	(void)state;
-	snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
-	return system(cmd) == 0 ? 0 : -1;
-}
-
 int
 main(void)
 {
@@ -659,5 +643,6 @@ main(void)
 		cmocka_unit_test(json),
 	};
 
-	return cmocka_run_group_tests(tests, setup, teardown);
+	return cmocka_run_group_tests(tests, helper_tmp_setup,
+	    helper_tmp_teardown);
 }
