@@ -42,35 +42,8 @@ import camera  # noqa: E402
 import dvr_tf  # noqa: E402
 import volio  # noqa: E402
 
-try:
-    import vtk
-    from vtk.util import numpy_support as ns
-except ImportError:
-    sys.exit("dvr_vtk.py: VTK for Python is missing (make -C examples/bench bench-deps)")
-
-FP_ONE = 32767.0   # VTKKW_FP_SCALE: the mapper's fixed-point 1.0
-
-
-def internal_rgba(mapper, w, h):
-    """The mapper's last ray-cast image as float [h, w, 4] in [0, 1], row 0 at the top,
-    placed in the window by its image origin (one ray per pixel)."""
-    ri = mapper.GetRayCastImage()
-    vs = ri.GetImageViewportSize()
-    if tuple(vs) != (w, h) or ri.GetImageSampleDistance() != 1.0:
-        raise RuntimeError("ray-cast image %s at sample distance %g, not one ray per pixel"
-                           % (vs, ri.GetImageSampleDistance()))
-    mw, mh = ri.GetImageMemorySize()
-    uw, uh = ri.GetImageInUseSize()
-    ox, oy = ri.GetImageOrigin()
-    buf = vtk.vtkUnsignedShortArray()
-    buf.SetNumberOfComponents(4)
-    buf.SetVoidArray(ri.GetImage(), mw * mh * 4, 1)
-    a = ns.vtk_to_numpy(buf).reshape(mh, mw, 4)[:uh, :uw].astype(np.float64) / FP_ONE
-    out = np.zeros((h, w, 4))
-    x0, y0 = max(ox, 0), max(oy, 0)
-    x1, y1 = min(ox + uw, w), min(oy + uh, h)
-    out[y0:y1, x0:x1] = a[y0 - oy:y1 - oy, x0 - ox:x1 - ox]
-    return np.flipud(out)
+import vtkpeer  # noqa: E402
+from vtkpeer import vtk  # noqa: E402
 
 
 def main():
@@ -102,22 +75,10 @@ def main():
     w, h = args.size
     ref = tf["step"] if tf["step"] > 0 else min(vol.spacing)
 
-    img = vtk.vtkImageData()
-    img.SetDimensions(*vol.dims)
-    img.SetSpacing(*vol.spacing)
-    img.SetOrigin(*vol.origin)
-    img.GetPointData().SetScalars(ns.numpy_to_vtk(np.ascontiguousarray(vol.data).ravel(),
-                                                  deep=1))
+    img = vtkpeer.image_data(vol)
     load_s = time.perf_counter() - t0
-    mapper = vtk.vtkFixedPointVolumeRayCastMapper()
-    mapper.SetInputData(img)
+    mapper = vtkpeer.mapper(img, args.step, args.threads)
     mapper.SetBlendModeToComposite()
-    mapper.SetAutoAdjustSampleDistances(0)
-    mapper.SetImageSampleDistance(1.0)
-    mapper.SetSampleDistance(args.step)
-    mapper.SetLockSampleDistanceToInputSpacing(0)
-    if args.threads > 0:
-        mapper.SetNumberOfThreads(args.threads)
     ctf = vtk.vtkColorTransferFunction()
     for x, r, g, b in dvr_tf.vtk_points(tf["color"]):
         ctf.AddRGBPoint(x, r, g, b)
@@ -148,30 +109,10 @@ def main():
             ren.AddLight(light)
     else:
         prop.ShadeOff()
-    actor = vtk.vtkVolume()
-    actor.SetMapper(mapper)
-    actor.SetProperty(prop)
-    ren.AddVolume(actor)
-    ren.SetBackground(0, 0, 0)
-    win = vtk.vtkRenderWindow()
-    win.SetOffScreenRendering(1)
-    win.SetMultiSamples(0)
-    win.AddRenderer(ren)
-    win.SetSize(w, h)
-    camera.vtk_camera(ren.GetActiveCamera(), args)
-    ren.ResetCameraClippingRange()
-
-    t0 = time.perf_counter()
-    win.Render()   # warm-up: tables, min-max volume, gradients when shaded, GL context
-    first = time.perf_counter() - t0
-    times, cpu = [], []
-    for _ in range(args.runs):
-        c0, t0 = time.process_time(), time.perf_counter()
-        win.Render()
-        times.append(time.perf_counter() - t0)
-        cpu.append(time.process_time() - c0)
+    win = vtkpeer.window(ren, mapper, prop, args)
+    first, times, cpu = vtkpeer.timed_renders(win, args.runs)
     try:
-        rgba = internal_rgba(mapper, w, h)
+        rgba = vtkpeer.internal_rgba(mapper, w, h)
     except RuntimeError as e:
         sys.exit("dvr_vtk.py: %s" % e)
     if not args.output.endswith(".pfm"):

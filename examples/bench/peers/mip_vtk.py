@@ -26,36 +26,8 @@ import numpy as np  # noqa: E402
 import camera  # noqa: E402
 import volio  # noqa: E402
 
-try:
-    import vtk
-    from vtk.util import numpy_support as ns
-except ImportError:
-    sys.exit("mip_vtk.py: VTK for Python is missing (make -C examples/bench bench-deps)")
-
-FP_ONE = 32767.0   # VTKKW_FP_SCALE: the mapper's fixed-point 1.0
-
-
-def internal_image(mapper, w, h):
-    """The mapper's last ray-cast image as a float [h, w] array in [0, 1], row 0 at the
-    top, placed in the window by the image origin (rays are one per pixel), and the mask
-    of pixels whose rays met the volume (alpha > 0)."""
-    ri = mapper.GetRayCastImage()
-    vs = ri.GetImageViewportSize()
-    if tuple(vs) != (w, h) or ri.GetImageSampleDistance() != 1.0:
-        raise RuntimeError("ray-cast image %s at sample distance %g, not one ray per pixel"
-                           % (vs, ri.GetImageSampleDistance()))
-    mw, mh = ri.GetImageMemorySize()
-    uw, uh = ri.GetImageInUseSize()
-    ox, oy = ri.GetImageOrigin()
-    buf = vtk.vtkUnsignedShortArray()
-    buf.SetNumberOfComponents(4)
-    buf.SetVoidArray(ri.GetImage(), mw * mh * 4, 1)
-    a = ns.vtk_to_numpy(buf).reshape(mh, mw, 4)[:uh, :uw].astype(np.float64) / FP_ONE
-    out = np.zeros((h, w, 2))
-    x0, y0 = max(ox, 0), max(oy, 0)
-    x1, y1 = min(ox + uw, w), min(oy + uh, h)
-    out[y0:y1, x0:x1] = a[y0 - oy:y1 - oy, x0 - ox:x1 - ox][:, :, [0, 3]]
-    return np.flipud(out[:, :, 0]), np.flipud(out[:, :, 1] > 0)
+import vtkpeer  # noqa: E402
+from vtkpeer import vtk  # noqa: E402
 
 
 def main():
@@ -82,21 +54,8 @@ def main():
     if hi <= lo:
         hi = lo + 1.0
 
-    img = vtk.vtkImageData()
-    img.SetDimensions(*vol.dims)
-    img.SetSpacing(*vol.spacing)
-    img.SetOrigin(*vol.origin)
-    img.GetPointData().SetScalars(ns.numpy_to_vtk(np.ascontiguousarray(vol.data).ravel(),
-                                                  deep=1))
-    mapper = vtk.vtkFixedPointVolumeRayCastMapper()
-    mapper.SetInputData(img)
+    mapper = vtkpeer.mapper(vtkpeer.image_data(vol), args.step, args.threads)
     mapper.SetBlendModeToMaximumIntensity()
-    mapper.SetAutoAdjustSampleDistances(0)
-    mapper.SetImageSampleDistance(1.0)
-    mapper.SetSampleDistance(args.step)
-    mapper.SetLockSampleDistanceToInputSpacing(0)
-    if args.threads > 0:
-        mapper.SetNumberOfThreads(args.threads)
     ctf = vtk.vtkColorTransferFunction()
     ctf.AddRGBPoint(lo, 0, 0, 0)
     ctf.AddRGBPoint(hi, 1, 1, 1)
@@ -108,31 +67,13 @@ def main():
     prop.SetScalarOpacity(otf)
     prop.SetInterpolationTypeToLinear()
     prop.ShadeOff()
-    actor = vtk.vtkVolume()
-    actor.SetMapper(mapper)
-    actor.SetProperty(prop)
-    ren = vtk.vtkRenderer()
-    ren.AddVolume(actor)
-    ren.SetBackground(0, 0, 0)
-    win = vtk.vtkRenderWindow()
-    win.SetOffScreenRendering(1)
-    win.SetMultiSamples(0)
-    win.AddRenderer(ren)
-    win.SetSize(w, h)
-    camera.vtk_camera(ren.GetActiveCamera(), args)
-    ren.ResetCameraClippingRange()
-
-    win.Render()   # warm-up: tables, min-max volume, GL context
-    times, cpu = [], []
-    for _ in range(args.runs):
-        c0, t0 = time.process_time(), time.perf_counter()
-        win.Render()
-        times.append(time.perf_counter() - t0)
-        cpu.append(time.process_time() - c0)
+    win = vtkpeer.window(vtk.vtkRenderer(), mapper, prop, args)
+    _, times, cpu = vtkpeer.timed_renders(win, args.runs)
     try:
-        frac, hit = internal_image(mapper, w, h)
+        rgba = vtkpeer.internal_rgba(mapper, w, h)
     except RuntimeError as e:
         sys.exit("mip_vtk.py: %s" % e)
+    frac, hit = rgba[:, :, 0], rgba[:, :, 3] > 0
     if frac.shape != (h, w):
         sys.exit("mip_vtk.py: read back %s, expected %dx%d" % (frac.shape, w, h))
     out = np.where(hit, lo + frac * (hi - lo), 0.0)
