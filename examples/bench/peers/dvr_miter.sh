@@ -49,30 +49,11 @@ cam=$("$PYTHON" "$here/camera.py" teem "$vol" --near-offset "${offset:-$(echo "$
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT INT TERM
 "$PYTHON" "$here/volio.py" nodeheader "$vol" "$tmp/vol.nhdr" || exit 65
-cpu_of() {
-	awk 'NR == 2 { split($1, u, "m"); split($2, s, "m"); sub("s", "", u[2]); sub("s", "", s[2]);
-		printf "%.6f\n", u[1] * 60 + u[2] + s[1] * 60 + s[2] }' "$1"
-}
-i=0
-while [ $i -lt "$runs" ]; do
-	times >"$tmp/times0"
-	t0=$(date +%s.%N)
-	# shellcheck disable=SC2086 # $cam is a list of options
-	if ! teem-miter -i "$tmp/vol.nhdr" -txf "$txf" $cam -k00 tent -ss none \
+. "$here/teemruns.sh"
+# shellcheck disable=SC2086 # $cam is a list of options
+teem_runs dvr_miter.sh teem-miter -i "$tmp/vol.nhdr" -txf "$txf" $cam -k00 tent -ss none \
 	    -ads 1 0 0 -am 1 1 1 -step "$step" -ref "$ref" -n1 "$near1" -nt "$threads" \
-	    -o "$tmp/img.nrrd" 2>"$tmp/log"; then
-		grep -v '^ *[0-9]*/[0-9]* ' "$tmp/log" | tail -5 >&2
-		echo "dvr_miter.sh: teem-miter failed" >&2
-		exit 70
-	fi
-	t1=$(date +%s.%N)
-	times >"$tmp/times1"
-	echo "$t0 $t1" | awk '{ printf "%.6f\n", $2 - $1 }' >>"$tmp/wall"
-	echo "$(cpu_of "$tmp/times0") $(cpu_of "$tmp/times1")" | awk '{ printf "%.6f\n", $2 - $1 }' >>"$tmp/cpu"
-	sed -n 's/.*rendering time = \([0-9.e+-]*\) secs.*/\1/p' "$tmp/log" >>"$tmp/render"
-	i=$((i + 1))
-done
-median() { sort -g "$1" | awk '{ v[NR] = $1 } END { printf "%.3f", 1e3 * (NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2) }'; }
+	    -o "$tmp/img.nrrd"
 # miter's image: 5 x W x H doubles, R G B A Z per pixel, RGB divided by A
 "$PYTHON" -c '
 import sys

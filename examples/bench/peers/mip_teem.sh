@@ -36,31 +36,10 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT INT TERM
 # teem reads the volume through a detached header that states node centring
 "$PYTHON" "$here/volio.py" nodeheader "$vol" "$tmp/vol.nhdr" || exit 65
-# cpu_of FILE: CPU seconds (user + system) of all finished children in the output of the
-# shell's `times` builtin, which must run in this shell (a subshell starts at zero).
-cpu_of() {
-	awk 'NR == 2 { split($1, u, "m"); split($2, s, "m"); sub("s", "", u[2]); sub("s", "", s[2]);
-		printf "%.6f\n", u[1] * 60 + u[2] + s[1] * 60 + s[2] }' "$1"
-}
-i=0
-while [ $i -lt "$runs" ]; do
-	times >"$tmp/times0"
-	t0=$(date +%s.%N)
-	# shellcheck disable=SC2086 # $cam is a list of options
-	if ! teem-mrender -i "$tmp/vol.nhdr" -k scalar $cam -k00 "$kernel" -q val -m max \
-	    -step "$step" -nt "$threads" -o "$tmp/img.nrrd" 2>"$tmp/log"; then
-		grep -v '^[0-9]*/[0-9]* ' "$tmp/log" | tail -5 >&2
-		echo "mip_teem.sh: teem-mrender failed" >&2
-		exit 70
-	fi
-	t1=$(date +%s.%N)
-	times >"$tmp/times1"
-	echo "$t0 $t1" | awk '{ printf "%.6f\n", $2 - $1 }' >>"$tmp/wall"
-	echo "$(cpu_of "$tmp/times0") $(cpu_of "$tmp/times1")" | awk '{ printf "%.6f\n", $2 - $1 }' >>"$tmp/cpu"
-	sed -n 's/.*rendering time = \([0-9.e+-]*\) secs.*/\1/p' "$tmp/log" >>"$tmp/render"
-	i=$((i + 1))
-done
-median() { sort -g "$1" | awk '{ v[NR] = $1 } END { printf "%.3f", 1e3 * (NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2) }'; }
+. "$here/teemruns.sh"
+# shellcheck disable=SC2086 # $cam is a list of options
+teem_runs mip_teem.sh teem-mrender -i "$tmp/vol.nhdr" -k scalar $cam -k00 "$kernel" -q val -m max \
+	    -step "$step" -nt "$threads" -o "$tmp/img.nrrd"
 case $out in
 *.pfm) "$PYTHON" -c 'import sys; sys.path.insert(0, sys.argv[1]); import volio; volio.write_pfm(sys.argv[3], volio.read_image(sys.argv[2]))' "$here" "$tmp/img.nrrd" "$out" ;;
 *) mv "$tmp/img.nrrd" "$out" ;;
