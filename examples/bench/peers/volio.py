@@ -339,9 +339,9 @@ def write_nrrd(path, vol):
 
 # ---- images: float arrays indexed [row, col], row 0 at the top ----
 
-def read_pfm(path):
-    """PFM ('Pf' gray or 'PF' RGB; RGB is reduced to its first channel).  PFM stores rows
-    bottom to top; the array returned has row 0 at the top."""
+def _read_pfm_any(path):
+    """A PFM's pixels as float64 [row, col, channels] (1 or 3), row 0 at the top (PFM
+    stores rows bottom to top)."""
     with open(path, "rb") as f:
         kind = f.readline().strip()
         if kind not in (b"Pf", b"PF"):
@@ -353,12 +353,17 @@ def read_pfm(path):
         scale = float(f.readline())
         ch = 3 if kind == b"PF" else 1
         _check_count((w, h, ch))
-        dt = np.dtype("<f4" if scale < 0 else ">f4")
         buf = f.read(w * h * ch * 4)
     if len(buf) != w * h * ch * 4:
         raise ValueError("%s: truncated PFM" % path)
-    a = np.frombuffer(buf, dtype=dt).reshape(h, w, ch)[:, :, 0]
+    a = np.frombuffer(buf, dtype="<f4" if scale < 0 else ">f4").reshape(h, w, ch)
     return np.flipud(a).astype(np.float64)
+
+
+def read_pfm(path):
+    """PFM ('Pf' gray or 'PF' RGB; RGB is reduced to its first channel), row 0 at the
+    top."""
+    return _read_pfm_any(path)[:, :, 0]
 
 
 def write_pfm(path, img):
@@ -385,23 +390,8 @@ def write_pfm_rgb(path, img):
 
 def read_pfm_rgb(path):
     """img[row, col, 3] (row 0 at the top) of an RGB PFM; a gray one is repeated."""
-    with open(path, "rb") as f:
-        kind = f.readline().strip()
-        if kind not in (b"Pf", b"PF"):
-            raise ValueError("%s: not a PFM file" % path)
-        dims = f.readline().split()
-        while len(dims) < 2:
-            dims += f.readline().split()
-        w, h = int(dims[0]), int(dims[1])
-        scale = float(f.readline())
-        ch = 3 if kind == b"PF" else 1
-        _check_count((w, h, ch))
-        buf = f.read(w * h * ch * 4)
-    if len(buf) != w * h * ch * 4:
-        raise ValueError("%s: truncated PFM" % path)
-    a = np.frombuffer(buf, dtype="<f4" if scale < 0 else ">f4").reshape(h, w, ch)
-    a = np.flipud(a).astype(np.float64)
-    return a if ch == 3 else np.repeat(a, 3, axis=2)
+    a = _read_pfm_any(path)
+    return a if a.shape[2] == 3 else np.repeat(a, 3, axis=2)
 
 
 def write_png_rgb(path, img, scale=1.0, srgb=True):
