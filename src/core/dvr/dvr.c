@@ -548,6 +548,22 @@ gradient(const frame *f, const double p[3], double grad[3])
 	}
 }
 
+/* classify_exact: the transfer function at value v and gradient magnitude
+ * gm, evaluated (no table), as the table's quads. */
+static void
+classify_exact(const frame *f, double v, double gm, vx_f4 q[2])
+{
+	vx_tf_sample cs;
+	vx_tf_optic c;
+
+	vx_tf_classify(f->tf, v, gm, &cs);
+	vx_tf_optic_of(&cs, &c);
+	q[0] = (vx_f4){ (float)c.sigma, (float)c.color[0], (float)c.color[1],
+	    (float)c.color[2] };
+	q[1] = (vx_f4){ (float)c.ltr[0], (float)c.ltr[1], (float)c.ltr[2],
+	    (float)c.surface };
+}
+
 /* perturbed: sample() of a perturbed volume (vx_perturb.h): the value
  * (and the gradient) of the perturbed field, the extinction (sigma and
  * ltr) times the density factor. */
@@ -557,8 +573,6 @@ perturbed(const frame *f, const double p[3], vx_f4 q[2], double grad[3],
 {
 	double m, v = vx_perturb_field(&f->pt, f->g, p, f->class_g ? grad :
 	    NULL, &m), gm = 0;
-	vx_tf_sample cs;
-	vx_tf_optic c;
 
 	*has_grad = f->class_g;
 	if (f->lut.n > 0)
@@ -566,12 +580,7 @@ perturbed(const frame *f, const double p[3], vx_f4 q[2], double grad[3],
 	else {
 		if (f->class_g)
 			gm = sqrt(vx_dot3(grad, grad));
-		vx_tf_classify(f->tf, v, gm, &cs);
-		vx_tf_optic_of(&cs, &c);
-		q[0] = (vx_f4){ (float)c.sigma, (float)c.color[0],
-		    (float)c.color[1], (float)c.color[2] };
-		q[1] = (vx_f4){ (float)c.ltr[0], (float)c.ltr[1],
-		    (float)c.ltr[2], (float)c.surface };
+		classify_exact(f, v, gm, q);
 	}
 	q[0][0] *= (float)m;
 	q[1] *= (vx_f4){ (float)m, (float)m, (float)m, 1 };
@@ -587,8 +596,6 @@ sample(const frame *f, const double p[3], vx_f4 q[2], double grad[3],
     int *has_grad)
 {
 	double v, gm = 0;
-	vx_tf_sample cs;
-	vx_tf_optic c;
 
 	if (f->pt.any) {
 		perturbed(f, p, q, grad, has_grad);
@@ -605,12 +612,7 @@ sample(const frame *f, const double p[3], vx_f4 q[2], double grad[3],
 		gm = sqrt(vx_dot3(grad, grad));
 		*has_grad = 1;
 	}
-	vx_tf_classify(f->tf, v, gm, &cs);
-	vx_tf_optic_of(&cs, &c);
-	q[0] = (vx_f4){ (float)c.sigma, (float)c.color[0], (float)c.color[1],
-	    (float)c.color[2] };
-	q[1] = (vx_f4){ (float)c.ltr[0], (float)c.ltr[1], (float)c.ltr[2],
-	    (float)c.surface };
+	classify_exact(f, v, gm, q);
 }
 
 /* light_at: bilinear D, I from buffer b at light image point (px, py),
